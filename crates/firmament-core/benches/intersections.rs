@@ -1,0 +1,3 @@
+//! Intersection benchmarks (in progress).
+
+fn main() {}

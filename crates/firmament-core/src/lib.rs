@@ -1,0 +1,38 @@
+//! firmament's f64 core: the physics and geometry that every GPU pass is checked against.
+//!
+//! Nothing here touches a GPU, a window or an image file; it is plain data and math in `f64`.
+//!
+//! # Conventions (for the whole crate)
+//! - **Units**: SI. Distances in metres, angles in radians, times in seconds — unless a field's
+//!   name or doc says otherwise (the scene file, for people, speaks degrees and `HH:MM`).
+//! - **Frames**: right-handed, **+Z up**.
+//!   - *Local frame* (a scene on the ground): East-North-Up, `x` east, `y` north, `z` up, origin
+//!     on the ground under the scene's reference point.
+//!   - *Planet frame*: planet-centred, `z` along the rotation axis towards the north pole, `x`
+//!     through the prime meridian on the equator (like ECEF).
+//!   - *View space* (OpenGL style): the camera looks down `-z`, `+y` is up on screen, `+x` right.
+//! - **Clip space**: our own passes use wgpu's `z ∈ [0, 1]` with *reversed* depth (near → 1,
+//!   far/infinity → 0). The `glu_*` functions reproduce OpenGL's `z ∈ [-1, 1]` exactly.
+//! - **Directions** are unit vectors; **elevation** is the angle above the local horizon plane,
+//!   **heading** (azimuth) is measured from north (+y) clockwise towards east (+x).
+//! - **Colours** are linear RGB (not sRGB-encoded) unless a name says `srgb`.
+
+pub mod camera;
+pub mod color;
+pub mod controller;
+pub mod display;
+pub mod error;
+pub mod frame;
+pub mod frustum;
+pub mod geometry;
+pub mod gradient_sky;
+pub mod projection;
+pub mod sun;
+pub mod time_of_day;
+pub mod viewport;
+
+pub use camera::Camera;
+pub use color::LinearRgb;
+pub use error::CoreError;
+pub use frame::Frame;
+pub use time_of_day::TimeOfDay;

@@ -1,0 +1,150 @@
+//! The one place where the `f64` core becomes `f32` GPU data.
+//!
+//! Everything is made camera-relative here, in `f64`, before it is rounded: the sky only needs the
+//! view *rotation*, so a camera at 100 AU gives the same `f32` matrix as one at the origin.
+//! Each struct mirrors a WGSL struct of the same name; a unit test checks sizes and offsets
+//! against the shader source with naga.
+
+use bytemuck::{Pod, Zeroable};
+use firmament_core::Camera;
+use firmament_core::color::LinearRgb;
+use firmament_core::display::{DisplaySettings, ToneCurve};
+use firmament_core::gradient_sky::{Blend, GradientSkyState};
+use firmament_core::sun::SUN_HORIZON_FADE;
+use glam::{DMat4, Mat4};
+
+/// `vec4<f32>` of a colour, alpha `w`.
+fn rgbw(c: LinearRgb, w: f64) -> [f32; 4] {
+    [c.r as f32, c.g as f32, c.b as f32, w as f32]
+}
+
+/// Clip space → camera-relative world position, for passes that only need view directions.
+/// Computed in `f64` (the inverse of projection × view rotation), rounded once at the end.
+pub fn clip_to_world_direction(camera: &Camera) -> Mat4 {
+    let m: DMat4 = (camera.projection_matrix() * camera.view_rotation()).inverse();
+    m.as_mat4()
+}
+
+/// Mirrors `GradientSky` in `shaders/sky_gradient.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct GradientSkyUniforms {
+    /// Clip space → camera-relative world position.
+    pub clip_to_world: [[f32; 4]; 4],
+    /// Zenith colour, rgb.
+    pub zenith: [f32; 4],
+    /// Upper colour (top of the horizon band), rgb.
+    pub upper: [f32; 4],
+    /// Horizon colour, rgb.
+    pub horizon: [f32; 4],
+    /// Lower colour (bottom of the horizon band), rgb.
+    pub lower: [f32; 4],
+    /// Ground colour, rgb.
+    pub ground: [f32; 4],
+    /// Unit direction to the sun; `w` = angular radius, radians.
+    pub sun_direction: [f32; 4],
+    /// Disc radiance, rgb; `w` = edge softness.
+    pub sun_disc: [f32; 4],
+    /// Glow radiance at the centre, rgb; `w` = glow falloff, radians.
+    pub sun_glow: [f32; 4],
+    /// zenith_start, horizon_half_width, ground_start (radians), blend (0 linear, 1 smooth).
+    pub shape: [f32; 4],
+    /// upper_exponent, lower_exponent, sun horizon fade (radians), unused.
+    pub exponents: [f32; 4],
+}
+
+impl GradientSkyUniforms {
+    /// The uniforms for a gradient sky seen by `camera`.
+    pub fn new(sky: &GradientSkyState, camera: &Camera) -> Self {
+        let b = &sky.bands;
+        let s = &sky.shape;
+        let sun = &sky.sun;
+        let blend = match s.blend {
+            Blend::Linear => 0.0,
+            Blend::Smooth => 1.0,
+        };
+        Self {
+            clip_to_world: clip_to_world_direction(camera).to_cols_array_2d(),
+            zenith: rgbw(b.zenith, 0.0),
+            upper: rgbw(b.upper, 0.0),
+            horizon: rgbw(b.horizon, 0.0),
+            lower: rgbw(b.lower, 0.0),
+            ground: rgbw(b.ground, 0.0),
+            sun_direction: {
+                let d = sun.direction.normalize_or_zero().as_vec3();
+                [d.x, d.y, d.z, sun.angular_radius as f32]
+            },
+            sun_disc: rgbw(sun.disc_radiance, sun.edge_softness),
+            sun_glow: rgbw(sun.glow_radiance, sun.glow_falloff),
+            shape: [
+                s.zenith_start as f32,
+                s.horizon_half_width as f32,
+                s.ground_start as f32,
+                blend,
+            ],
+            exponents: [
+                s.upper_exponent as f32,
+                s.lower_exponent as f32,
+                SUN_HORIZON_FADE as f32,
+                0.0,
+            ],
+        }
+    }
+}
+
+/// Mirrors `Tonemap` in `shaders/tonemap.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct TonemapUniforms {
+    /// Exposure multiplier.
+    pub exposure: f32,
+    /// 0 none, 1 ACES fitted, 2 PBR Neutral.
+    pub curve: u32,
+    /// 1 when the shader must apply the sRGB transfer function itself.
+    pub encode_srgb: u32,
+    /// Padding to 16 bytes.
+    pub _pad: u32,
+}
+
+impl TonemapUniforms {
+    /// The uniforms for `display`, writing to a texture of `output_format`.
+    pub fn new(display: &DisplaySettings, output_format: wgpu::TextureFormat) -> Self {
+        Self {
+            exposure: display.exposure.multiplier as f32,
+            curve: match display.tone_curve {
+                ToneCurve::None => 0,
+                ToneCurve::AcesFitted => 1,
+                ToneCurve::PbrNeutral => 2,
+            },
+            encode_srgb: u32::from(!output_format.is_srgb()),
+            _pad: 0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{DVec2, DVec3, DVec4, Vec4};
+
+    #[test]
+    fn directions_survive_100_au() {
+        // The same view from the origin and from 100 AU must give the same f32 matrix.
+        let au = 1.495_978_707e11;
+        let near = Camera::from_heading_pitch(DVec3::ZERO, 0.7, 0.2);
+        let far = Camera {
+            position: DVec3::new(100.0 * au, -3.0 * au, 7.0 * au),
+            ..near
+        };
+        assert_eq!(clip_to_world_direction(&near), clip_to_world_direction(&far));
+        // And the f32 matrix reproduces the f64 view directions closely.
+        let m = clip_to_world_direction(&far);
+        for ndc in [DVec2::ZERO, DVec2::new(1.0, 1.0), DVec2::new(-0.3, 0.8)] {
+            let p: Vec4 = m * Vec4::new(ndc.x as f32, ndc.y as f32, 1.0, 1.0);
+            let d = (p.truncate() / p.w).normalize().as_dvec3();
+            let reference = far.view_direction(ndc);
+            assert!((d - reference).length() < 1e-6, "{d} vs {reference}");
+            let _ = DVec4::ZERO;
+        }
+    }
+}

@@ -1,0 +1,85 @@
+//! Copying a texture back to memory, minding wgpu's 256-byte row alignment.
+
+use crate::context::GpuContext;
+use crate::error::RenderError;
+
+/// Bytes per row of a copy, rounded up to [`wgpu::COPY_BYTES_PER_ROW_ALIGNMENT`].
+pub fn padded_bytes_per_row(width: u32, bytes_per_pixel: u32) -> u32 {
+    let unpadded = width * bytes_per_pixel;
+    unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+}
+
+/// Reads mip 0 of a 2D colour texture (with `COPY_SRC`) into tightly packed rows, top row first.
+pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>, RenderError> {
+    let (width, height) = (texture.width(), texture.height());
+    let bytes_per_pixel = texture
+        .format()
+        .block_copy_size(None)
+        .ok_or_else(|| RenderError::Readback(format!("cannot copy {:?} textures", texture.format())))?;
+    let padded = padded_bytes_per_row(width, bytes_per_pixel);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("firmament readback staging buffer"),
+        size: u64::from(padded) * u64::from(height),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("firmament readback encoder"),
+    });
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    ctx.queue.submit([encoder.finish()]);
+
+    let slice = buffer.slice(..);
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        // The receiver outlives the poll below; a failed send only means we already gave up.
+        let _ = sender.send(result);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    receiver
+        .recv()
+        .map_err(|e| RenderError::Readback(e.to_string()))?
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+
+    let row = (width * bytes_per_pixel) as usize;
+    let mapped = slice
+        .get_mapped_range()
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let mut out = Vec::with_capacity(row * height as usize);
+    for padded_row in mapped.chunks(padded as usize) {
+        out.extend_from_slice(&padded_row[..row]);
+    }
+    drop(mapped);
+    buffer.unmap();
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_pad_to_256_bytes() {
+        assert_eq!(padded_bytes_per_row(64, 4), 256);
+        assert_eq!(padded_bytes_per_row(65, 4), 512);
+        assert_eq!(padded_bytes_per_row(333, 8), 2816);
+        assert_eq!(padded_bytes_per_row(1, 4), 256);
+    }
+}

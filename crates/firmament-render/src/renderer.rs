@@ -1,0 +1,89 @@
+//! The frame renderer: HDR sky (and, later, everything else) → tonemap → the caller's view.
+
+use firmament_core::Frame;
+use firmament_core::frame::Sky;
+
+use crate::context::GpuContext;
+use crate::error::RenderError;
+use crate::passes::{GradientSkyPass, TonemapPass};
+use crate::targets::{DEPTH_CLEAR, FrameTargets};
+
+/// Renders [`Frame`]s into any texture view of the output format it was built for.
+#[derive(Debug)]
+pub struct Renderer {
+    sky_gradient: GradientSkyPass,
+    tonemap: TonemapPass,
+    targets: Option<FrameTargets>,
+}
+
+impl Renderer {
+    /// Builds every pipeline once, for output views of `output_format`.
+    pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
+        Self {
+            sky_gradient: GradientSkyPass::new(&ctx.device),
+            tonemap: TonemapPass::new(&ctx.device, output_format),
+            targets: None,
+        }
+    }
+
+    /// Uploads everything `frame` needs and (re)creates the HDR targets at `width` × `height`.
+    /// The camera's aspect ratio is taken from the size.
+    pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
+        ctx.check_image_size(width, height)?;
+        if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
+            self.targets = Some(FrameTargets::new(&ctx.device, width, height));
+        }
+        let camera = firmament_core::Camera {
+            aspect: f64::from(width) / f64::from(height),
+            ..frame.camera
+        };
+        match &frame.sky {
+            Sky::Gradient(sky) => self.sky_gradient.prepare(&ctx.queue, sky, &camera),
+        }
+        if let Some(targets) = &self.targets {
+            self.tonemap
+                .prepare(&ctx.device, &ctx.queue, &frame.display, &targets.hdr_view);
+        }
+        Ok(())
+    }
+
+    /// Encodes the frame: clear the HDR and depth targets, draw the sky, tone-map into `output`.
+    /// Does nothing before the first `prepare`.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, output: &wgpu::TextureView) {
+        let Some(targets) = &self.targets else {
+            tracing::warn!("Renderer::record before prepare: nothing drawn");
+            return;
+        };
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("firmament Renderer main pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.hdr_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(DEPTH_CLEAR),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                ..Default::default()
+            });
+            // Opaque geometry goes here first; the sky then fills only what is left.
+            self.sky_gradient.draw(&mut pass);
+        }
+        self.tonemap.record(encoder, output);
+    }
+
+    /// The HDR and depth targets of the last `prepare` (for EXR output and tests).
+    pub fn targets(&self) -> Option<&FrameTargets> {
+        self.targets.as_ref()
+    }
+}

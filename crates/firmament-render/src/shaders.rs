@@ -1,0 +1,109 @@
+//! WGSL sources. Each pass has one entry file; shared include files are prepended at compile
+//! time (WGSL has no `#include`), so what the GPU gets is exactly what the naga test validates.
+
+/// Shared full-screen triangle (`common/fullscreen.wgsl`).
+const FULLSCREEN: &str = include_str!("shaders/common/fullscreen.wgsl");
+
+/// The gradient sky pass, with its includes.
+pub const SKY_GRADIENT: &str = concat!(
+    include_str!("shaders/common/fullscreen.wgsl"),
+    "\n",
+    include_str!("shaders/sky_gradient.wgsl")
+);
+
+/// The tonemap pass, with its includes.
+pub const TONEMAP: &str = concat!(
+    include_str!("shaders/common/fullscreen.wgsl"),
+    "\n",
+    include_str!("shaders/tonemap.wgsl")
+);
+
+/// Every composed shader by name, for validation and tooling.
+pub const ALL: &[(&str, &str)] = &[("sky_gradient", SKY_GRADIENT), ("tonemap", TONEMAP)];
+
+/// The include files on their own (validated as modules too, so errors point at the right file).
+pub const INCLUDES: &[(&str, &str)] = &[("common/fullscreen", FULLSCREEN)];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu_types::{GradientSkyUniforms, TonemapUniforms};
+
+    fn validate(name: &str, source: &str) -> naga::Module {
+        let module =
+            naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        module
+    }
+
+    #[test]
+    fn every_shader_parses_and_validates() {
+        for (name, source) in ALL.iter().chain(INCLUDES) {
+            validate(name, source);
+        }
+    }
+
+    /// Size and member offsets of the WGSL struct `name`.
+    fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+        let ty = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"))
+            .1;
+        match &ty.inner {
+            naga::TypeInner::Struct { members, span } => (
+                *span,
+                members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+                    .collect(),
+            ),
+            other => panic!("{name} is not a struct: {other:?}"),
+        }
+    }
+
+    macro_rules! assert_layout {
+        ($module:expr, $wgsl:literal, $rust:ty, [$($field:ident),* $(,)?]) => {{
+            let (size, members) = wgsl_layout(&$module, $wgsl);
+            assert_eq!(size as usize, std::mem::size_of::<$rust>(), "size of {}", $wgsl);
+            let rust: Vec<(String, u32)> =
+                vec![$((stringify!($field).trim_start_matches('_').to_owned(), std::mem::offset_of!($rust, $field) as u32)),*];
+            let wgsl: Vec<(String, u32)> =
+                members.into_iter().map(|(n, o)| (n.trim_start_matches('_').to_owned(), o)).collect();
+            assert_eq!(wgsl, rust, "members of {}", $wgsl);
+        }};
+    }
+
+    #[test]
+    fn rust_and_wgsl_struct_layouts_match() {
+        let sky = validate("sky_gradient", SKY_GRADIENT);
+        assert_layout!(
+            sky,
+            "GradientSky",
+            GradientSkyUniforms,
+            [
+                clip_to_world,
+                zenith,
+                upper,
+                horizon,
+                lower,
+                ground,
+                sun_direction,
+                sun_disc,
+                sun_glow,
+                shape,
+                exponents
+            ]
+        );
+        let tonemap = validate("tonemap", TONEMAP);
+        assert_layout!(
+            tonemap,
+            "Tonemap",
+            TonemapUniforms,
+            [exposure, curve, encode_srgb, _pad]
+        );
+    }
+}

@@ -1,0 +1,82 @@
+// tonemap.wgsl — HDR radiance → display: exposure, tone curve, sRGB encoding.
+// Includes: common/fullscreen.wgsl (prepended by the Rust side).
+//
+// Conventions: the input texture holds linear scene radiance (Rgba16Float), read texel for texel
+// (same size as the output). Curves are the f64 references in `firmament_core::display`; keep the
+// two in step. `encode_srgb` is 1 when the output format is not itself an `*Srgb` format.
+
+struct Tonemap {
+    exposure: f32,
+    curve: u32,       // 0 none (clamp), 1 ACES fitted (Hill), 2 Khronos PBR Neutral
+    encode_srgb: u32, // 1: apply the sRGB transfer function here
+    _pad: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: Tonemap;
+@group(0) @binding(1) var hdr: texture_2d<f32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
+    return fullscreen_vertex(index, FAR_DEPTH);
+}
+
+// Stephen Hill's ACES fit (BakingLab). WGSL matrices are column-major: these constructors list
+// the published rows as columns, so `v * M` multiplies by the published row-major matrix.
+fn aces_fitted(c: vec3<f32>) -> vec3<f32> {
+    let input = mat3x3<f32>(
+        vec3<f32>(0.59719, 0.35458, 0.04823),
+        vec3<f32>(0.07600, 0.90834, 0.01566),
+        vec3<f32>(0.02840, 0.13383, 0.83777),
+    );
+    let output = mat3x3<f32>(
+        vec3<f32>(1.60475, -0.53108, -0.07367),
+        vec3<f32>(-0.10208, 1.10813, -0.00605),
+        vec3<f32>(-0.00327, -0.07276, 1.07602),
+    );
+    let v = c * input;
+    let a = v * (v + 0.0245786) - 0.000090537;
+    let b = v * (0.983729 * v + 0.4329510) + 0.238081;
+    return (a / b) * output;
+}
+
+// Khronos PBR Neutral, as in the specification.
+fn pbr_neutral(color: vec3<f32>) -> vec3<f32> {
+    let start_compression = 0.8 - 0.04;
+    let desaturation = 0.15;
+    let x = min(color.r, min(color.g, color.b));
+    let offset = select(0.04, x - 6.25 * x * x, x < 0.08);
+    var c = color - offset;
+    let peak = max(c.r, max(c.g, c.b));
+    if peak < start_compression {
+        return c;
+    }
+    let d = 1.0 - start_compression;
+    let new_peak = 1.0 - d * d / (peak + d - start_compression);
+    c = c * (new_peak / peak);
+    let g = 1.0 - 1.0 / (desaturation * (peak - new_peak) + 1.0);
+    return mix(c, vec3<f32>(new_peak), g);
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let low = c * 12.92;
+    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, c <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+    let texel = vec2<i32>(floor(in.clip.xy));
+    let radiance = textureLoad(hdr, texel, 0).rgb * params.exposure;
+    var c = radiance;
+    if params.curve == 1u {
+        c = aces_fitted(radiance);
+    } else if params.curve == 2u {
+        c = pbr_neutral(radiance);
+    }
+    // NaN-safe clamp: max/min with a NaN operand may return either, so test explicitly.
+    c = select(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(0.0), c != c);
+    if params.encode_srgb == 1u {
+        c = linear_to_srgb(c);
+    }
+    return vec4<f32>(c, 1.0);
+}

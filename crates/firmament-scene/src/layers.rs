@@ -1,0 +1,104 @@
+//! Layering TOML tables: presets under files, `key.path=value` overrides on top.
+
+use crate::error::SceneError;
+use crate::presets;
+
+/// Parses TOML text into a table, naming `origin` in the error.
+pub(crate) fn parse_table(text: &str, origin: &str) -> Result<toml::Table, SceneError> {
+    text.parse::<toml::Table>().map_err(|e| SceneError::Syntax {
+        origin: origin.to_owned(),
+        message: e.to_string().trim_end().to_owned(),
+    })
+}
+
+/// Merges `top` into `base`: tables merge key by key, anything else replaces.
+pub(crate) fn merge(base: &mut toml::Table, top: toml::Table) {
+    for (key, value) in top {
+        match (base.get_mut(&key), value) {
+            (Some(toml::Value::Table(below)), toml::Value::Table(above)) => merge(below, above),
+            (_, value) => {
+                base.insert(key, value);
+            }
+        }
+    }
+}
+
+/// A scene file's table layered over its preset (`preset_override`, else its own `preset` key,
+/// else `default`).
+pub(crate) fn layer_file(text: &str, origin: &str, preset_override: Option<&str>) -> Result<toml::Table, SceneError> {
+    let own = parse_table(text, origin)?;
+    let named = match own.get("preset") {
+        None => None,
+        Some(toml::Value::String(name)) => Some(name.clone()),
+        Some(other) => {
+            return Err(SceneError::WrongType {
+                key: "preset".to_owned(),
+                message: format!("expected a preset name (a string), found {}", other.type_str()),
+            });
+        }
+    };
+    let name = preset_override
+        .map(str::to_owned)
+        .or(named)
+        .unwrap_or_else(|| "default".to_owned());
+    let mut base = presets::resolved_table(&name)?;
+    merge(&mut base, own);
+    base.insert("preset".to_owned(), toml::Value::String(name));
+    Ok(base)
+}
+
+/// Applies one `key.path=value` override. The value is read as TOML (`3`, `true`, `[1, 2, 3]`,
+/// `"text"`); anything that is not valid TOML is taken as a bare string (`tone_curve=aces_fitted`).
+/// Array elements are addressed by index: `sky.gradient.keyframes.0.zenith=#ff0000`.
+pub(crate) fn apply_override(table: &mut toml::Table, item: &str) -> Result<(), SceneError> {
+    let bad = |rule: &str| SceneError::BadOverride {
+        item: item.to_owned(),
+        rule: rule.to_owned(),
+    };
+    let (path, raw) = item.split_once('=').ok_or_else(|| bad("expected key.path=value"))?;
+    let path = path.trim();
+    let keys: Vec<&str> = path.split('.').collect();
+    if keys.iter().any(|k| k.is_empty()) {
+        return Err(bad("the key path has an empty part"));
+    }
+    let value = parse_value(raw.trim());
+    let mut root = toml::Value::Table(std::mem::take(table));
+    let result = assign(&mut root, &keys, value).map_err(|rule| bad(&rule));
+    if let toml::Value::Table(t) = root {
+        *table = t;
+    }
+    result
+}
+
+fn parse_value(raw: &str) -> toml::Value {
+    // Wrap in a one-key document so TOML's own parser decides what the value is.
+    format!("v = {raw}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| toml::Value::String(raw.to_owned()))
+}
+
+/// Sets `keys` under `node` to `value`, creating missing tables; numeric keys index arrays.
+fn assign(node: &mut toml::Value, keys: &[&str], value: toml::Value) -> Result<(), String> {
+    let Some((key, rest)) = keys.split_first() else {
+        *node = value;
+        return Ok(());
+    };
+    let child = match node {
+        toml::Value::Table(t) => t
+            .entry((*key).to_owned())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+        toml::Value::Array(items) => {
+            let len = items.len();
+            let index: usize = key
+                .parse()
+                .map_err(|_| format!("`{key}` must be an array index (0 to {})", len.saturating_sub(1)))?;
+            items
+                .get_mut(index)
+                .ok_or_else(|| format!("index {index} is past the end of an array of {len}"))?
+        }
+        other => return Err(format!("cannot set `{key}` inside a {}", other.type_str())),
+    };
+    assign(child, rest, value)
+}

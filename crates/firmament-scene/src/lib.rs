@@ -1,0 +1,83 @@
+//! firmament's scene files: a TOML format, built-in presets, `--set` overrides and validation.
+//!
+//! A scene is built in layers, each over the one before:
+//! 1. the built-in `default` preset (`presets/default.toml`, which lists every key),
+//! 2. the preset named by the file's `preset` key (or the caller's), itself built the same way,
+//! 3. the scene file's own keys,
+//! 4. `key.path=value` overrides.
+//!
+//! Tables merge key by key; any other value (arrays included) replaces what was there. The result
+//! is parsed strictly — unknown keys are errors with a "did you mean" — and every value is checked
+//! against its rule. Errors name the key path, the value and the rule.
+//!
+//! Scene files speak human units: angles in **degrees**, times as `"HH:MM"`, lengths in metres.
+//! Colours are `"#rrggbb"` (sRGB-encoded, as colour pickers give them) or `[r, g, b]` (linear).
+
+mod color;
+mod error;
+mod layers;
+mod model;
+mod presets;
+mod to_frame;
+mod validate;
+
+pub use color::SceneColor;
+pub use error::SceneError;
+pub use model::{
+    CameraSection, DisplaySection, GradientSection, KeyframeSection, RenderSection, Scene, SkyModelName, SkySection,
+    SunSection, TimeSection,
+};
+pub use presets::{PRESETS, Preset};
+
+/// Largest image side the scene format accepts, pixels. The GPU's own limit may be lower; the
+/// renderer checks that one.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+
+/// Where a scene comes from before overrides.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneSource<'a> {
+    /// A built-in preset, by name.
+    Preset(&'a str),
+    /// TOML text read from `origin` (a path, for messages). A `preset` given alongside replaces
+    /// the file's own `preset` key.
+    Text {
+        /// The TOML text.
+        text: &'a str,
+        /// Where it came from, for messages (usually the file path).
+        origin: &'a str,
+    },
+}
+
+/// Builds and validates a scene: `source`, with an optional preset to start from, then
+/// `overrides` (each `key.path=value`, the value in TOML syntax or a bare string).
+pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
+    let mut table = match source {
+        SceneSource::Preset(name) => presets::resolved_table(name)?,
+        SceneSource::Text { text, origin } => layers::layer_file(text, origin, preset)?,
+    };
+    if let (SceneSource::Preset(_), Some(name)) = (source, preset) {
+        table = presets::resolved_table(name)?;
+    }
+    for item in overrides {
+        layers::apply_override(&mut table, item)?;
+    }
+    let scene = model::from_table(table)?;
+    validate::validate(&scene)?;
+    Ok(scene)
+}
+
+/// Reads a scene file from disk and builds it like [`load`].
+pub fn load_file(path: &std::path::Path, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        path: path.display().to_string(),
+        reason: source.to_string(),
+    })?;
+    load(
+        SceneSource::Text {
+            text: &text,
+            origin: &path.display().to_string(),
+        },
+        preset,
+        overrides,
+    )
+}

@@ -1,0 +1,209 @@
+//! The scene file's data model: plain serde structs, parsed strictly.
+
+use serde::Deserialize;
+
+use crate::color::SceneColor;
+use crate::error::{SceneError, did_you_mean};
+
+/// A whole scene, as parsed from the layered TOML.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// The preset the scene was built on (informational once layered).
+    #[serde(default)]
+    pub preset: Option<String>,
+    /// Image size.
+    pub render: RenderSection,
+    /// The camera.
+    pub camera: CameraSection,
+    /// The time of day.
+    pub time: TimeSection,
+    /// The sun's path and look.
+    pub sun: SunSection,
+    /// Exposure and tone curve.
+    pub display: DisplaySection,
+    /// The sky model.
+    pub sky: SkySection,
+}
+
+/// `[render]`: the image.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    /// Image width, pixels, 1 to 16384.
+    pub width: u32,
+    /// Image height, pixels, 1 to 16384.
+    pub height: u32,
+}
+
+/// `[camera]`: where we look from, in the local East-North-Up frame.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// Eye position `[east, north, up]`, metres; `up` must be >= 0 (above the ground).
+    pub position: [f64; 3],
+    /// Direction of view from north, clockwise towards east, degrees.
+    pub heading: f64,
+    /// Angle of view above the horizon, degrees, in [-90, 90].
+    pub pitch: f64,
+    /// Rotation of the image about the view direction, clockwise, degrees.
+    pub roll: f64,
+    /// Vertical field of view, degrees, in (0, 180).
+    pub fov_y: f64,
+    /// Near plane distance, metres, > 0.
+    pub near: f64,
+    /// Far plane distance, metres, > `near`; absent for an infinite far plane.
+    #[serde(default)]
+    pub far: Option<f64>,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSection {
+    /// Local solar time of day, `"HH:MM"` or `"HH:MM:SS"`.
+    pub time_of_day: String,
+}
+
+/// `[sun]`: its path over the day and how its disc and glow look.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SunSection {
+    /// Observer latitude, degrees, in [-90, 90], north positive.
+    pub latitude: f64,
+    /// Solar declination, degrees, in [-23.44, 23.44] (0 at the equinoxes).
+    pub declination: f64,
+    /// Angular radius of the disc, degrees, in (0, 10] (the real sun: 0.2666).
+    pub angular_radius: f64,
+    /// Disc radiance as a multiple of the keyframe's sun colour, >= 0.
+    pub disc_intensity: f64,
+    /// Glow radiance at the centre as a multiple of the keyframe's sun colour, >= 0.
+    pub glow_intensity: f64,
+    /// Angle over which the glow falls by a factor e, degrees, in (0, 180].
+    pub glow_falloff: f64,
+    /// Fraction of the disc's radius over which its edge fades, in (0, 1].
+    pub edge_softness: f64,
+}
+
+/// `[display]`: from radiance to a picture (PNG only; EXR stays scene-referred).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisplaySection {
+    /// Plain exposure multiplier, > 0. Ignored when `ev100` is given.
+    pub exposure: f64,
+    /// Exposure value at ISO 100; when present it sets the exposure to `1 / (1.2 · 2^ev100)`.
+    #[serde(default)]
+    pub ev100: Option<f64>,
+    /// `"none"` (clamp), `"aces_fitted"` or `"pbr_neutral"`.
+    pub tone_curve: firmament_core::display::ToneCurve,
+}
+
+/// The sky models a scene can choose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SkyModelName {
+    /// The keyframed gradient sky (`[sky.gradient]`).
+    Gradient,
+}
+
+/// `[sky]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkySection {
+    /// Which sky model draws the sky.
+    pub model: SkyModelName,
+    /// The gradient sky's layout and keyframes.
+    pub gradient: GradientSection,
+}
+
+/// `[sky.gradient]`: band layout (elevations in degrees) and the day's keyframes.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GradientSection {
+    /// Elevation where the zenith colour begins, degrees, in (`horizon_half_width`, 90].
+    pub zenith_start: f64,
+    /// Half-height of the horizon band, degrees, in (0, 90).
+    pub horizon_half_width: f64,
+    /// Elevation where the ground colour begins, degrees, in [-90, -`horizon_half_width`).
+    pub ground_start: f64,
+    /// Exponent shaping the upper gradient, > 0 (< 1 reaches the zenith colour sooner).
+    pub upper_exponent: f64,
+    /// Exponent shaping the lower gradient, > 0.
+    pub lower_exponent: f64,
+    /// How colours blend across bands: `"smooth"` or `"linear"`.
+    pub blend: firmament_core::gradient_sky::Blend,
+    /// How colours blend between keyframes in time: `"smooth"` or `"linear"`.
+    pub keyframe_blend: firmament_core::gradient_sky::Blend,
+    /// The keyframes, any order, distinct times, at least one.
+    pub keyframes: Vec<KeyframeSection>,
+}
+
+/// One `[[sky.gradient.keyframes]]` entry: the band colours at a time of day.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeyframeSection {
+    /// A label for people (`"dawn"`); not used by the renderer.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// When these colours hold, `"HH:MM"` or `"HH:MM:SS"`.
+    pub time: String,
+    /// Colour at and above `zenith_start`.
+    pub zenith: SceneColor,
+    /// Colour at the top of the horizon band.
+    pub upper: SceneColor,
+    /// Colour exactly at the horizon.
+    pub horizon: SceneColor,
+    /// Colour at the bottom of the horizon band.
+    pub lower: SceneColor,
+    /// Colour at and below `ground_start`.
+    pub ground: SceneColor,
+    /// The sun's colour at this time.
+    pub sun: SceneColor,
+}
+
+/// Deserialises the layered table strictly, turning serde's errors into key-path messages.
+pub(crate) fn from_table(table: toml::Table) -> Result<Scene, SceneError> {
+    let value = toml::Value::Table(table);
+    serde_path_to_error::deserialize::<_, Scene>(value).map_err(|err| {
+        let path = err.path().to_string();
+        let message = err.inner().message().to_owned();
+        classify(&path, &message)
+    })
+}
+
+/// Turns serde's message into our error: unknown fields get a "did you mean".
+fn classify(path: &str, message: &str) -> SceneError {
+    // serde's derive writes "unknown field `x`, expected one of `a`, `b`" (or "expected `a`").
+    if let Some(rest) = message.strip_prefix("unknown field `") {
+        let (field, expected) = rest.split_once('`').unwrap_or((rest, ""));
+        let candidates: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+        let key = if path == "." || path.is_empty() {
+            field.to_owned()
+        } else {
+            format!("{path}.{field}")
+        };
+        let key = key.trim_start_matches('.').to_owned();
+        let suggestion = match did_you_mean(field, candidates.iter().copied()) {
+            Some(best) => format!(" (did you mean `{best}`?)"),
+            None if candidates.is_empty() => String::new(),
+            None => format!(" (known keys here: {})", candidates.join(", ")),
+        };
+        return SceneError::UnknownKey { key, suggestion };
+    }
+    if let Some(rest) = message.strip_prefix("missing field `") {
+        let field = rest.split('`').next().unwrap_or(rest);
+        let key = if path == "." {
+            field.to_owned()
+        } else {
+            format!("{path}.{field}")
+        };
+        return SceneError::WrongType {
+            key,
+            message: "missing: this key is required".to_owned(),
+        };
+    }
+    SceneError::WrongType {
+        key: path.to_owned(),
+        message: message.to_owned(),
+    }
+}

@@ -1,0 +1,108 @@
+//! Built-in presets: TOML files compiled into the binary.
+
+use crate::error::{SceneError, did_you_mean};
+use crate::layers::{merge, parse_table};
+
+/// A built-in preset.
+#[derive(Debug, Clone, Copy)]
+pub struct Preset {
+    /// Its name, as given to `preset = "..."` or `--preset`.
+    pub name: &'static str,
+    /// One line for listings.
+    pub summary: &'static str,
+    /// The TOML text.
+    pub toml: &'static str,
+}
+
+/// Every built-in preset; `default` is the base of all scenes.
+pub const PRESETS: &[Preset] = &[
+    Preset {
+        name: "default",
+        summary: "street level at 17:45, looking west at the low sun in sunset colours",
+        toml: include_str!("presets/default.toml"),
+    },
+    Preset {
+        name: "dawn",
+        summary: "06:20, looking east as the sun clears the horizon",
+        toml: include_str!("presets/dawn.toml"),
+    },
+    Preset {
+        name: "noon",
+        summary: "12:30, looking up towards the high southern sun",
+        toml: include_str!("presets/noon.toml"),
+    },
+    Preset {
+        name: "dusk",
+        summary: "18:40 afterglow in the west, PBR Neutral tone curve",
+        toml: include_str!("presets/dusk.toml"),
+    },
+    Preset {
+        name: "night",
+        summary: "midnight in the seed's night colours",
+        toml: include_str!("presets/night.toml"),
+    },
+];
+
+/// How many presets may build on each other before we call it a loop.
+const MAX_DEPTH: usize = 8;
+
+/// Finds a preset by name, with a "did you mean" when there is none.
+pub(crate) fn find(name: &str) -> Result<&'static Preset, SceneError> {
+    PRESETS
+        .iter()
+        .find(|p| p.name == name)
+        .ok_or_else(|| SceneError::UnknownPreset {
+            name: name.to_owned(),
+            suggestion: did_you_mean(name, PRESETS.iter().map(|p| p.name))
+                .map(|best| format!("; did you mean `{best}`?"))
+                .unwrap_or_default(),
+            known: PRESETS.iter().map(|p| p.name).collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// The fully layered table of a preset: `default`, then each preset it builds on, then itself.
+pub(crate) fn resolved_table(name: &str) -> Result<toml::Table, SceneError> {
+    resolve(name, 0)
+}
+
+fn resolve(name: &str, depth: usize) -> Result<toml::Table, SceneError> {
+    if depth > MAX_DEPTH {
+        return Err(SceneError::PresetTooDeep {
+            name: name.to_owned(),
+            depth: MAX_DEPTH,
+        });
+    }
+    let preset = find(name)?;
+    let own = parse_table(preset.toml, &format!("preset `{name}`"))?;
+    if name == "default" {
+        return Ok(own);
+    }
+    let base_name = own
+        .get("preset")
+        .and_then(toml::Value::as_str)
+        .unwrap_or("default")
+        .to_owned();
+    let mut base = resolve(&base_name, depth + 1)?;
+    merge(&mut base, own);
+    base.insert("preset".to_owned(), toml::Value::String(name.to_owned()));
+    Ok(base)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_builds_and_validates() {
+        for preset in PRESETS {
+            let scene = crate::load(crate::SceneSource::Preset(preset.name), None, &[]);
+            assert!(scene.is_ok(), "{}: {scene:?}", preset.name);
+        }
+    }
+
+    #[test]
+    fn unknown_preset_suggests() {
+        let err = find("nite").expect_err("unknown");
+        assert!(err.to_string().contains("did you mean `night`"), "{err}");
+    }
+}

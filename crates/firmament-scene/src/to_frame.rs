@@ -1,0 +1,127 @@
+//! From a validated scene to the core's [`Frame`]: degrees become radians, times become seconds.
+
+use firmament_core::camera::orientation_from_heading_pitch_roll;
+use firmament_core::display::{DisplaySettings, Exposure};
+use firmament_core::frame::Sky;
+use firmament_core::gradient_sky::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
+use firmament_core::sun::{SolarPath, SunDisc};
+use firmament_core::{Camera, Frame, TimeOfDay};
+use glam::DVec3;
+
+use crate::error::SceneError;
+use crate::model::{Scene, SkyModelName};
+use crate::validate::time;
+
+impl Scene {
+    /// The scene's own time of day (`time.time_of_day`).
+    pub fn time_of_day(&self) -> Result<TimeOfDay, SceneError> {
+        time("time.time_of_day", &self.time.time_of_day)
+    }
+
+    /// The camera, with the aspect ratio of `render.width / render.height`.
+    pub fn camera(&self) -> Camera {
+        let c = &self.camera;
+        Camera {
+            position: DVec3::from_array(c.position),
+            orientation: orientation_from_heading_pitch_roll(
+                c.heading.to_radians(),
+                c.pitch.to_radians(),
+                c.roll.to_radians(),
+            ),
+            fov_y: c.fov_y.to_radians(),
+            aspect: f64::from(self.render.width) / f64::from(self.render.height),
+            near: c.near,
+            far: c.far,
+        }
+    }
+
+    /// The gradient sky's band layout.
+    pub fn gradient_shape(&self) -> GradientShape {
+        let g = &self.sky.gradient;
+        GradientShape {
+            zenith_start: g.zenith_start.to_radians(),
+            horizon_half_width: g.horizon_half_width.to_radians(),
+            ground_start: g.ground_start.to_radians(),
+            upper_exponent: g.upper_exponent,
+            lower_exponent: g.lower_exponent,
+            blend: g.blend,
+        }
+    }
+
+    /// The gradient sky's day/night cycle.
+    pub fn day_cycle(&self) -> Result<DayCycle, SceneError> {
+        let g = &self.sky.gradient;
+        let keyframes = g
+            .keyframes
+            .iter()
+            .enumerate()
+            .map(|(i, k)| {
+                Ok(SkyKeyframe {
+                    time: time(&format!("sky.gradient.keyframes[{i}].time"), &k.time)?,
+                    bands: SkyBands {
+                        zenith: k.zenith.0,
+                        upper: k.upper.0,
+                        horizon: k.horizon.0,
+                        lower: k.lower.0,
+                        ground: k.ground.0,
+                        sun: k.sun.0,
+                    },
+                })
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        DayCycle::new(keyframes, g.keyframe_blend)
+            .map_err(|e| SceneError::invalid("sky.gradient.keyframes", "[...]", e.to_string()))
+    }
+
+    /// The sun's path over the day.
+    pub fn solar_path(&self) -> SolarPath {
+        SolarPath {
+            latitude: self.sun.latitude.to_radians(),
+            declination: self.sun.declination.to_radians(),
+        }
+    }
+
+    /// Exposure and tone curve.
+    pub fn display_settings(&self) -> DisplaySettings {
+        let exposure = match self.display.ev100 {
+            Some(ev) => Exposure::from_ev100(ev),
+            None => Exposure::multiplier(self.display.exposure),
+        };
+        DisplaySettings {
+            exposure,
+            tone_curve: self.display.tone_curve,
+        }
+    }
+
+    /// Everything needed to draw the scene at `time` (its own time when `None`).
+    pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
+        let time = match time {
+            Some(t) => t,
+            None => self.time_of_day()?,
+        };
+        let sky = match self.sky.model {
+            SkyModelName::Gradient => {
+                let bands = self.day_cycle()?.bands_at(time);
+                let s = &self.sun;
+                let sun = SunDisc {
+                    direction: self.solar_path().direction_at(time),
+                    angular_radius: s.angular_radius.to_radians(),
+                    disc_radiance: bands.sun.scale(s.disc_intensity),
+                    glow_radiance: bands.sun.scale(s.glow_intensity),
+                    glow_falloff: s.glow_falloff.to_radians(),
+                    edge_softness: s.edge_softness,
+                };
+                Sky::Gradient(GradientSkyState {
+                    shape: self.gradient_shape(),
+                    bands,
+                    sun,
+                })
+            }
+        };
+        Ok(Frame {
+            camera: self.camera(),
+            sky,
+            display: self.display_settings(),
+        })
+    }
+}

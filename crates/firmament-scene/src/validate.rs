@@ -1,0 +1,185 @@
+//! Every rule a scene's values must follow, each error naming the key path, value and rule.
+
+use firmament_core::TimeOfDay;
+
+use crate::MAX_IMAGE_SIDE;
+use crate::error::SceneError;
+use crate::model::Scene;
+
+/// Checks `ok`, or fails with `key = value: rule`.
+fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(SceneError::invalid(key, value, rule))
+    }
+}
+
+/// Checks that `value` is finite and inside `[lo, hi]`.
+fn in_range(key: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), SceneError> {
+    check(
+        value.is_finite() && (lo..=hi).contains(&value),
+        key,
+        value,
+        &format!("must be in [{lo}, {hi}]{unit}"),
+    )
+}
+
+/// Checks that `value` is finite and > 0.
+fn positive(key: &str, value: f64, unit: &str) -> Result<(), SceneError> {
+    check(
+        value.is_finite() && value > 0.0,
+        key,
+        value,
+        &format!("must be a finite number > 0{unit}"),
+    )
+}
+
+/// Checks that `value` is finite and >= 0.
+fn non_negative(key: &str, value: f64) -> Result<(), SceneError> {
+    check(
+        value.is_finite() && value >= 0.0,
+        key,
+        value,
+        "must be a finite number >= 0",
+    )
+}
+
+/// Parses a time of day, naming `key` in the error.
+pub(crate) fn time(key: &str, text: &str) -> Result<TimeOfDay, SceneError> {
+    text.parse::<TimeOfDay>()
+        .map_err(|e| SceneError::invalid(key, format!("\"{text}\""), e.rule))
+}
+
+/// Checks every rule of the format.
+pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
+    let side = format!("must be 1 to {MAX_IMAGE_SIDE} pixels");
+    check(
+        (1..=MAX_IMAGE_SIDE).contains(&scene.render.width),
+        "render.width",
+        scene.render.width,
+        &side,
+    )?;
+    check(
+        (1..=MAX_IMAGE_SIDE).contains(&scene.render.height),
+        "render.height",
+        scene.render.height,
+        &side,
+    )?;
+
+    let cam = &scene.camera;
+    let [e, n, u] = cam.position;
+    check(
+        [e, n, u].iter().all(|v| v.is_finite()),
+        "camera.position",
+        format!("[{e}, {n}, {u}]"),
+        "every component must be a finite number of metres",
+    )?;
+    check(
+        u >= 0.0,
+        "camera.position",
+        format!("[{e}, {n}, {u}]"),
+        "the camera must be above the ground (up >= 0)",
+    )?;
+    check(
+        cam.heading.is_finite(),
+        "camera.heading",
+        cam.heading,
+        "must be a finite number of degrees",
+    )?;
+    in_range("camera.pitch", cam.pitch, -90.0, 90.0, " degrees")?;
+    check(
+        cam.roll.is_finite(),
+        "camera.roll",
+        cam.roll,
+        "must be a finite number of degrees",
+    )?;
+    check(
+        cam.fov_y.is_finite() && cam.fov_y > 0.0 && cam.fov_y < 180.0,
+        "camera.fov_y",
+        cam.fov_y,
+        "must be in (0, 180) degrees",
+    )?;
+    positive("camera.near", cam.near, " metres")?;
+    if let Some(far) = cam.far {
+        check(
+            far.is_finite() && far > cam.near,
+            "camera.far",
+            far,
+            "must be a finite number of metres > camera.near (omit it for an infinite far plane)",
+        )?;
+    }
+
+    time("time.time_of_day", &scene.time.time_of_day)?;
+
+    let sun = &scene.sun;
+    in_range("sun.latitude", sun.latitude, -90.0, 90.0, " degrees")?;
+    in_range("sun.declination", sun.declination, -90.0, 90.0, " degrees")?;
+    check(
+        sun.angular_radius.is_finite() && sun.angular_radius > 0.0 && sun.angular_radius <= 10.0,
+        "sun.angular_radius",
+        sun.angular_radius,
+        "must be in (0, 10] degrees",
+    )?;
+    non_negative("sun.disc_intensity", sun.disc_intensity)?;
+    non_negative("sun.glow_intensity", sun.glow_intensity)?;
+    check(
+        sun.glow_falloff.is_finite() && sun.glow_falloff > 0.0 && sun.glow_falloff <= 180.0,
+        "sun.glow_falloff",
+        sun.glow_falloff,
+        "must be in (0, 180] degrees",
+    )?;
+    check(
+        sun.edge_softness.is_finite() && sun.edge_softness > 0.0 && sun.edge_softness <= 1.0,
+        "sun.edge_softness",
+        sun.edge_softness,
+        "must be in (0, 1]",
+    )?;
+
+    positive("display.exposure", scene.display.exposure, "")?;
+    if let Some(ev) = scene.display.ev100 {
+        in_range("display.ev100", ev, -20.0, 40.0, " (EV at ISO 100)")?;
+    }
+
+    let g = &scene.sky.gradient;
+    check(
+        g.horizon_half_width.is_finite() && g.horizon_half_width > 0.0 && g.horizon_half_width < 90.0,
+        "sky.gradient.horizon_half_width",
+        g.horizon_half_width,
+        "must be in (0, 90) degrees",
+    )?;
+    check(
+        g.zenith_start.is_finite() && g.zenith_start > g.horizon_half_width && g.zenith_start <= 90.0,
+        "sky.gradient.zenith_start",
+        g.zenith_start,
+        "must be above the horizon band (> horizon_half_width) and at most 90 degrees",
+    )?;
+    check(
+        g.ground_start.is_finite() && g.ground_start < -g.horizon_half_width && g.ground_start >= -90.0,
+        "sky.gradient.ground_start",
+        g.ground_start,
+        "must be below the horizon band (< -horizon_half_width) and at least -90 degrees",
+    )?;
+    positive("sky.gradient.upper_exponent", g.upper_exponent, "")?;
+    positive("sky.gradient.lower_exponent", g.lower_exponent, "")?;
+    check(
+        !g.keyframes.is_empty(),
+        "sky.gradient.keyframes",
+        "[]",
+        "needs at least one keyframe",
+    )?;
+    let mut seen: Vec<(TimeOfDay, usize)> = Vec::with_capacity(g.keyframes.len());
+    for (i, k) in g.keyframes.iter().enumerate() {
+        let key = format!("sky.gradient.keyframes[{i}].time");
+        let t = time(&key, &k.time)?;
+        if let Some((_, first)) = seen.iter().find(|(s, _)| *s == t) {
+            return Err(SceneError::invalid(
+                key,
+                format!("\"{}\"", k.time),
+                format!("keyframe {first} has the same time; each keyframe needs its own"),
+            ));
+        }
+        seen.push((t, i));
+    }
+    Ok(())
+}

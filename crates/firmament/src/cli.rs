@@ -1,0 +1,110 @@
+//! The command line, declared with clap's derive API.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// firmament renders skies — a keyframed gradient sky with a day/night cycle, sun disc and glow —
+/// headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float).
+#[derive(Debug, Parser)]
+#[command(name = "firmament", version, about, long_about = None, after_help = EXAMPLES)]
+pub(crate) struct Cli {
+    /// Print only errors.
+    #[arg(short, long, global = true)]
+    pub(crate) quiet: bool,
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+const EXAMPLES: &str = "\
+Examples:
+  firmament render                              # the default scene → firmament.png
+  firmament render --preset dawn -o dawn.png
+  firmament render scene.toml --time 06:30 -o morning.exr
+  firmament render --set camera.fov_y=90 --set display.tone_curve=aces_fitted
+  firmament check scene.toml
+  firmament presets
+
+Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
+Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
+
+#[derive(Debug, Subcommand)]
+pub(crate) enum Command {
+    /// Render a scene to a PNG or EXR file.
+    Render(RenderArgs),
+    /// Validate a scene file and report the first problem.
+    Check(CheckArgs),
+    /// List the built-in presets.
+    Presets,
+}
+
+/// Where a scene comes from and what overrides it.
+#[derive(Debug, Args)]
+pub(crate) struct SceneArgs {
+    /// Start from this built-in preset (see `firmament presets`); with a scene file it replaces
+    /// the file's own `preset` key.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) preset: Option<String>,
+    /// Override a scene value, e.g. `--set camera.fov_y=75` or
+    /// `--set sky.gradient.keyframes.0.zenith="#102040"` (repeatable; applied in order).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub(crate) overrides: Vec<String>,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct RenderArgs {
+    /// A scene file (TOML). Without one, the preset (or the built-in default scene) is rendered.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// Output file: `.png` (8-bit sRGB after exposure and tone curve) or `.exr` (linear float).
+    #[arg(short, long, value_name = "FILE", default_value = "firmament.png")]
+    pub(crate) output: PathBuf,
+    /// Image width in pixels (overrides `render.width`).
+    #[arg(long, value_name = "W")]
+    pub(crate) width: Option<u32>,
+    /// Image height in pixels (overrides `render.height`).
+    #[arg(long, value_name = "H")]
+    pub(crate) height: Option<u32>,
+    /// Local solar time of day, `HH:MM` or `HH:MM:SS` (overrides `time.time_of_day`).
+    #[arg(long, value_name = "HH:MM")]
+    pub(crate) time: Option<String>,
+    /// Graphics API to render with.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct CheckArgs {
+    /// The scene file to validate.
+    pub(crate) scene: PathBuf,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+}
+
+/// `--backend` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum BackendArg {
+    /// Vulkan, Metal or DX12 if present, else OpenGL.
+    Auto,
+    /// Vulkan only.
+    Vulkan,
+    /// OpenGL (ES) only.
+    Gl,
+    /// Metal only.
+    Metal,
+    /// DirectX 12 only.
+    Dx12,
+}
+
+impl From<BackendArg> for firmament_render::Backend {
+    fn from(arg: BackendArg) -> Self {
+        match arg {
+            BackendArg::Auto => Self::Auto,
+            BackendArg::Vulkan => Self::Vulkan,
+            BackendArg::Gl => Self::Gl,
+            BackendArg::Metal => Self::Metal,
+            BackendArg::Dx12 => Self::Dx12,
+        }
+    }
+}

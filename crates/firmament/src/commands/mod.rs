@@ -1,0 +1,38 @@
+//! One module per subcommand.
+
+mod check;
+mod presets;
+mod render;
+
+use anyhow::Result;
+use firmament_scene::{Scene, SceneSource};
+
+use crate::cli::{Command, SceneArgs};
+
+/// Runs a parsed command.
+pub(crate) fn run(command: Command) -> Result<()> {
+    match command {
+        Command::Render(args) => render::run(&args),
+        Command::Check(args) => check::run(&args),
+        Command::Presets => {
+            presets::run();
+            Ok(())
+        }
+    }
+}
+
+/// Loads a scene from a file or a preset (the default scene when neither is given), with
+/// `extra` overrides applied before the user's `--set`s.
+pub(crate) fn load_scene(file: Option<&std::path::Path>, args: &SceneArgs, extra: Vec<String>) -> Result<Scene> {
+    let mut overrides = extra;
+    overrides.extend(args.overrides.iter().cloned());
+    let scene = match file {
+        Some(path) => firmament_scene::load_file(path, args.preset.as_deref(), &overrides),
+        None => firmament_scene::load(
+            SceneSource::Preset(args.preset.as_deref().unwrap_or("default")),
+            None,
+            &overrides,
+        ),
+    };
+    Ok(scene?)
+}

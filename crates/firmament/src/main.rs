@@ -1,0 +1,45 @@
+//! `firmament`: render skies headless to PNG and EXR.
+
+mod cli;
+mod commands;
+mod output;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    init_logging(cli.quiet);
+    match commands::run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            // One clear message: the outermost context first, then each cause.
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn init_logging(quiet: bool) {
+    let from_env = tracing_subscriber::EnvFilter::try_from_env("FIRMAMENT_LOG").ok();
+    let explicit = from_env.is_some();
+    let filter = from_env.unwrap_or_else(|| {
+        tracing_subscriber::EnvFilter::new(if quiet { "error" } else { "warn,firmament=info,firmament_render=info" })
+    });
+    let subscriber = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .finish();
+    // Logging is a convenience: if another logger is already installed, keep going without ours.
+    let _ = tracing::subscriber::set_global_default(subscriber);
+    // wgpu logs through `log`. Its hal layer reports failed probes of backends it then skips
+    // (an EGL platform without a driver) as errors, which alarm users for nothing: firmament
+    // reports a real failure to find an adapter itself. FIRMAMENT_LOG shows everything.
+    let mut bridge = tracing_log::LogTracer::builder();
+    if !explicit {
+        bridge = bridge.ignore_crate("wgpu_hal");
+    }
+    let _ = bridge.init();
+}

@@ -1,0 +1,96 @@
+//! Image files: chosen by extension, written to a temporary file and renamed into place, so a
+//! failure never leaves a half-written image.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use firmament_render::headless::Image;
+
+/// The image formats `render` writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum OutputFormat {
+    /// 8-bit sRGB, display-referred.
+    Png,
+    /// 32-bit float linear RGBA, scene-referred.
+    Exr,
+}
+
+impl OutputFormat {
+    /// The format for a path's extension (case-insensitive).
+    pub(crate) fn from_path(path: &Path) -> Result<Self> {
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("png") => Ok(Self::Png),
+            Some("exr") => Ok(Self::Exr),
+            _ => bail!(
+                "output {}: the file name must end in .png (8-bit sRGB) or .exr (linear float)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Fails unless the output's folder exists and is a folder.
+pub(crate) fn check_parent_dir(path: &Path) -> Result<()> {
+    let dir = parent(path);
+    if !dir.is_dir() {
+        bail!("output {}: the folder {} does not exist", path.display(), dir.display());
+    }
+    Ok(())
+}
+
+fn parent(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder.
+fn write_atomically(path: &Path, write: impl FnOnce(&mut std::fs::File) -> Result<()>) -> Result<()> {
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".firmament-")
+        .suffix(".tmp")
+        .tempfile_in(parent(path))
+        .with_context(|| {
+            format!(
+                "output {}: cannot create a file in {}",
+                path.display(),
+                parent(path).display()
+            )
+        })?;
+    write(tmp.as_file_mut())?;
+    // Temporary files are created private (0600); an image is an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
+    tmp.as_file_mut().flush()?;
+    tmp.persist(path)
+        .with_context(|| format!("output {}: cannot write the file", path.display()))?;
+    Ok(())
+}
+
+/// Writes an 8-bit RGBA image as an RGB PNG.
+pub(crate) fn write_png(path: &Path, image: &Image<u8>) -> Result<()> {
+    let rgb: Vec<u8> = image.pixels.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let buffer = image::RgbImage::from_raw(image.width, image.height, rgb).context("image size mismatch")?;
+    write_atomically(path, |file| {
+        buffer
+            .write_to(&mut std::io::BufWriter::new(file), image::ImageFormat::Png)
+            .with_context(|| format!("output {}: PNG encoding failed", path.display()))
+    })
+}
+
+/// Writes a linear float RGBA image as an OpenEXR file.
+pub(crate) fn write_exr(path: &Path, image: &Image<f32>) -> Result<()> {
+    let buffer = image::Rgba32FImage::from_raw(image.width, image.height, image.pixels.clone())
+        .context("image size mismatch")?;
+    write_atomically(path, |file| {
+        buffer
+            .write_to(&mut std::io::BufWriter::new(file), image::ImageFormat::OpenExr)
+            .with_context(|| format!("output {}: EXR encoding failed", path.display()))
+    })
+}
