@@ -177,12 +177,12 @@ fn classify(path: &str, message: &str) -> SceneError {
     if let Some(rest) = message.strip_prefix("unknown field `") {
         let (field, expected) = rest.split_once('`').unwrap_or((rest, ""));
         let candidates: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+        // serde_path_to_error's path already ends in the unknown field.
         let key = if path == "." || path.is_empty() {
             field.to_owned()
         } else {
-            format!("{path}.{field}")
+            path.to_owned()
         };
-        let key = key.trim_start_matches('.').to_owned();
         let suggestion = match did_you_mean(field, candidates.iter().copied()) {
             Some(best) => format!(" (did you mean `{best}`?)"),
             None if candidates.is_empty() => String::new(),

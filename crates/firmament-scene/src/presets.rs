@@ -73,8 +73,9 @@ fn resolve(name: &str, depth: usize) -> Result<toml::Table, SceneError> {
         });
     }
     let preset = find(name)?;
-    let own = parse_table(preset.toml, &format!("preset `{name}`"))?;
+    let mut own = parse_table(preset.toml, &format!("preset `{name}`"))?;
     if name == "default" {
+        own.insert("preset".to_owned(), toml::Value::String(name.to_owned()));
         return Ok(own);
     }
     let base_name = own
@@ -102,7 +103,7 @@ mod tests {
 
     #[test]
     fn unknown_preset_suggests() {
-        let err = find("nite").expect_err("unknown");
+        let err = find("nigth").expect_err("unknown");
         assert!(err.to_string().contains("did you mean `night`"), "{err}");
     }
 }

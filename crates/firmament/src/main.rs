@@ -25,7 +25,11 @@ fn init_logging(quiet: bool) {
     let from_env = tracing_subscriber::EnvFilter::try_from_env("FIRMAMENT_LOG").ok();
     let explicit = from_env.is_some();
     let filter = from_env.unwrap_or_else(|| {
-        tracing_subscriber::EnvFilter::new(if quiet { "error" } else { "warn,firmament=info,firmament_render=info" })
+        tracing_subscriber::EnvFilter::new(if quiet {
+            "error"
+        } else {
+            "warn,firmament=info,firmament_render=info"
+        })
     });
     let subscriber = tracing_subscriber::fmt()
         .with_env_filter(filter)

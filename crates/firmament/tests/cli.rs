@@ -1,0 +1,248 @@
+//! End-to-end tests of the `firmament` binary: real processes, real files, real GPU (software on
+//! CI). Every bad input must give one clear message, a non-zero exit and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn firmament(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_firmament"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("FIRMAMENT_LOG")
+        .output()
+        .expect("the firmament binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn files_in(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("readable")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    files.sort();
+    files
+}
+
+/// sRGB `#rrggbb` → linear, written out here from IEC 61966-2-1 rather than taken from the code
+/// under test.
+fn hex_to_linear(hex: &str) -> [f32; 3] {
+    let decode = |i: usize| {
+        let v = f64::from(u8::from_str_radix(&hex[1 + 2 * i..3 + 2 * i], 16).expect("hex")) / 255.0;
+        (if v <= 0.04045 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }) as f32
+    };
+    [decode(0), decode(1), decode(2)]
+}
+
+#[test]
+fn the_default_render_writes_a_believable_png() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(dir.path(), &["render"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let image = image::open(dir.path().join("firmament.png")).expect("a PNG").to_rgb8();
+    assert_eq!(image.dimensions(), (1280, 720));
+    let distinct: std::collections::HashSet<_> = image.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 500, "only {} colours: not a gradient", distinct.len());
+    // Sunset: a blue sky above, the warm horizon band below it.
+    let top = image.get_pixel(100, 10).0;
+    assert!(top[2] > top[0], "the top of the sky should be blue: {top:?}");
+    assert_eq!(
+        files_in(dir.path()),
+        vec![dir.path().join("firmament.png")],
+        "stray files"
+    );
+}
+
+#[test]
+fn exr_pixels_are_the_keyframe_colours_in_linear_float() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // The default preset's "day" keyframe at 12:00 (see presets/default.toml).
+    for (pitch, hex) in [("90", "#1f5fc8"), ("0", "#d8ebff"), ("-90", "#606060")] {
+        let out = firmament(
+            dir.path(),
+            &[
+                "render",
+                "--time",
+                "12:00",
+                "--width",
+                "33",
+                "--height",
+                "33",
+                "--set",
+                &format!("camera.pitch={pitch}"),
+                "--set",
+                "sun.glow_intensity=0",
+                "-o",
+                "sky.exr",
+            ],
+        );
+        assert!(out.status.success(), "{}", stderr(&out));
+        let image = image::open(dir.path().join("sky.exr")).expect("an EXR").to_rgba32f();
+        let got = image.get_pixel(16, 16).0;
+        let expected = hex_to_linear(hex);
+        for c in 0..3 {
+            assert!(
+                (got[c] - expected[c]).abs() < 1.0 / 255.0,
+                "pitch {pitch}: {got:?} vs {expected:?} ({hex})"
+            );
+        }
+    }
+}
+
+#[test]
+fn presets_lists_every_preset_and_each_renders() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(dir.path(), &["presets"]);
+    assert!(out.status.success());
+    let listing = String::from_utf8_lossy(&out.stdout).into_owned();
+    for name in ["default", "dawn", "noon", "dusk", "night"] {
+        assert!(
+            listing.lines().any(|l| l.starts_with(name)),
+            "{name} missing from:\n{listing}"
+        );
+        let file = format!("{name}.png");
+        let out = firmament(
+            dir.path(),
+            &[
+                "render", "--preset", name, "--width", "64", "--height", "36", "-o", &file,
+            ],
+        );
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+    }
+}
+
+#[test]
+fn check_accepts_good_files_and_names_the_problem_in_bad_ones() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(
+        dir.path().join("good.toml"),
+        "preset = \"dawn\"\n[camera]\nfov_y = 50.0\n",
+    )
+    .expect("write");
+    let out = firmament(dir.path(), &["check", "good.toml"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("good.toml: ok (preset dawn"));
+    std::fs::write(dir.path().join("bad.toml"), "[camera]\nfov_y = 0.0\n").expect("write");
+    let out = firmament(dir.path(), &["check", "bad.toml"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("camera.fov_y = 0: must be in (0, 180) degrees"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn every_bad_input_fails_cleanly_and_writes_nothing() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    std::fs::write(d.join("broken.toml"), "[camera\nfov_y = 1").expect("write");
+    std::fs::write(d.join("unknown.toml"), "[camera]\nfovy = 40.0\n").expect("write");
+    std::fs::write(d.join("types.toml"), "[render]\nwidth = \"wide\"\n").expect("write");
+    std::fs::write(d.join("nan.toml"), "[camera]\nfov_y = nan\n").expect("write");
+    std::fs::write(d.join("a_file"), "not a folder").expect("write");
+    let before = files_in(d);
+    let cases: &[(&[&str], i32, &str)] = &[
+        (
+            &["render", "broken.toml", "-o", "o.png"],
+            1,
+            "broken.toml is not valid TOML",
+        ),
+        (
+            &["render", "unknown.toml", "-o", "o.png"],
+            1,
+            "camera.fovy: unknown key (did you mean `fov_y`?)",
+        ),
+        (&["render", "types.toml", "-o", "o.png"], 1, "render.width: "),
+        (
+            &["render", "nan.toml", "-o", "o.png"],
+            1,
+            "camera.fov_y = NaN: must be in (0, 180) degrees",
+        ),
+        (
+            &["render", "missing.toml", "-o", "o.png"],
+            1,
+            "cannot read scene file missing.toml",
+        ),
+        (
+            &["render", "--preset", "dwan", "-o", "o.png"],
+            1,
+            "unknown preset `dwan`; did you mean `dawn`?",
+        ),
+        (
+            &["render", "--width", "0", "-o", "o.png"],
+            1,
+            "render.width = 0: must be 1 to 16384 pixels",
+        ),
+        (
+            &["render", "--height", "99999", "-o", "o.png"],
+            1,
+            "render.height = 99999: must be 1 to 16384 pixels",
+        ),
+        (
+            &["render", "--width=-3", "-o", "o.png"],
+            2,
+            "invalid value '-3' for '--width <W>'",
+        ),
+        (
+            &["render", "--set", "camera.fov_y=180", "-o", "o.png"],
+            1,
+            "camera.fov_y = 180: must be in (0, 180) degrees",
+        ),
+        (
+            &["render", "--set", "camera.position=[0, 0, -10]", "-o", "o.png"],
+            1,
+            "the camera must be above the ground",
+        ),
+        (
+            &["render", "--set", "sun.angular_radius=-1", "-o", "o.png"],
+            1,
+            "sun.angular_radius = -1",
+        ),
+        (
+            &["render", "--set", "nonsense", "-o", "o.png"],
+            1,
+            "--set nonsense: expected key.path=value",
+        ),
+        (
+            &["render", "--time", "25:00", "-o", "o.png"],
+            1,
+            "time.time_of_day = \"25:00\": hours must be 0 to 24",
+        ),
+        (
+            &["render", "-o", "o.jpg"],
+            1,
+            "must end in .png (8-bit sRGB) or .exr (linear float)",
+        ),
+        (
+            &["render", "-o", "no_such_dir/o.png"],
+            1,
+            "the folder no_such_dir does not exist",
+        ),
+        (&["render", "-o", "a_file/o.png"], 1, "the folder a_file does not exist"),
+        (
+            &["render", "--backend", "glide", "-o", "o.png"],
+            2,
+            "invalid value 'glide'",
+        ),
+        (&["check", "unknown.toml"], 1, "did you mean `fov_y`"),
+        (&["frobnicate"], 2, "unrecognized subcommand"),
+    ];
+    for (args, code, expected) in cases {
+        let out = firmament(d, args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(*code), "{args:?}: {err}");
+        assert!(
+            err.contains(expected),
+            "{args:?}\n  got:      {err}\n  expected: {expected}"
+        );
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+        assert_eq!(files_in(d), before, "{args:?} left files behind");
+    }
+}
