@@ -246,3 +246,41 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
         assert_eq!(files_in(d), before, "{args:?} left files behind");
     }
 }
+
+/// Regression guard only (the independent checks are the GPU-vs-core tests): the presets, small,
+/// must stay within two code values of the committed images. `FIRMAMENT_BLESS=1` rewrites them.
+#[test]
+fn presets_match_their_golden_images() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let golden_dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    for name in ["default", "night", "dusk"] {
+        let file = format!("{name}-64x36.png");
+        let out = firmament(
+            dir.path(),
+            &[
+                "render", "--preset", name, "--width", "64", "--height", "36", "-o", &file,
+            ],
+        );
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        let golden = golden_dir.join(&file);
+        if std::env::var_os("FIRMAMENT_BLESS").is_some() {
+            std::fs::copy(dir.path().join(&file), &golden).expect("bless");
+            continue;
+        }
+        let got = image::open(dir.path().join(&file)).expect("rendered").to_rgb8();
+        let want = image::open(&golden)
+            .expect("golden image (FIRMAMENT_BLESS=1 makes it)")
+            .to_rgb8();
+        assert_eq!(got.dimensions(), want.dimensions());
+        let worst = got
+            .pixels()
+            .zip(want.pixels())
+            .flat_map(|(a, b)| (0..3).map(move |c| a.0[c].abs_diff(b.0[c])))
+            .max();
+        assert!(
+            worst <= Some(2),
+            "{name}: differs from {} by {worst:?} code values",
+            golden.display()
+        );
+    }
+}
