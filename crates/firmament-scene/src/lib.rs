@@ -52,12 +52,9 @@ pub enum SceneSource<'a> {
 /// `overrides` (each `key.path=value`, the value in TOML syntax or a bare string).
 pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
     let mut table = match source {
-        SceneSource::Preset(name) => presets::resolved_table(name)?,
+        SceneSource::Preset(name) => presets::resolved_table(preset.unwrap_or(name))?,
         SceneSource::Text { text, origin } => layers::layer_file(text, origin, preset)?,
     };
-    if let (SceneSource::Preset(_), Some(name)) = (source, preset) {
-        table = presets::resolved_table(name)?;
-    }
     for item in overrides {
         layers::apply_override(&mut table, item)?;
     }

@@ -31,3 +31,63 @@ pub(crate) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         count: None,
     }
 }
+
+/// What differs between firmament's full-screen-triangle pipelines.
+pub(crate) struct FullscreenPipeline<'a> {
+    /// The owner, for labels (`"GradientSkyPass"`).
+    pub(crate) owner: &'a str,
+    /// Composed WGSL with `vs_main` and `fs_main`.
+    pub(crate) source: &'a str,
+    /// The single bind group's layout entries.
+    pub(crate) entries: &'a [wgpu::BindGroupLayoutEntry],
+    /// Colour target format.
+    pub(crate) color: wgpu::TextureFormat,
+    /// Depth state, if the pass has a depth attachment.
+    pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
+}
+
+impl FullscreenPipeline<'_> {
+    /// Builds the pipeline and its bind group layout, labelled for the owner.
+    pub(crate) fn build(&self, device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+        let owner = self.owner;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&format!("firmament {owner} shader")),
+            source: wgpu::ShaderSource::Wgsl(self.source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&format!("firmament {owner} bind group layout")),
+            entries: self.entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&format!("firmament {owner} pipeline layout")),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&format!("firmament {owner} pipeline")),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: self.depth_stencil.clone(),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: self.color,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        (pipeline, layout)
+    }
+}

@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::{uniform_buffer, uniform_entry};
+use crate::passes::{FullscreenPipeline, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -28,29 +28,11 @@ impl GradientSkyPass {
 
     /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("firmament GradientSkyPass shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::SKY_GRADIENT.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("firmament GradientSkyPass bind group layout"),
+        let (pipeline, layout) = FullscreenPipeline {
+            owner: "GradientSkyPass",
+            source: shaders::SKY_GRADIENT,
             entries: &[uniform_entry(0)],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("firmament GradientSkyPass pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("firmament GradientSkyPass pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
+            color,
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: depth,
                 depth_write_enabled: Some(false),
@@ -58,20 +40,8 @@ impl GradientSkyPass {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: color,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        }
+        .build(device);
         let uniforms = uniform_buffer::<GradientSkyUniforms>(device, "firmament GradientSkyPass uniforms");
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("firmament GradientSkyPass bind group"),

@@ -3,7 +3,7 @@
 use firmament_core::display::DisplaySettings;
 
 use crate::gpu_types::TonemapUniforms;
-use crate::passes::{uniform_buffer, uniform_entry};
+use crate::passes::{FullscreenPipeline, uniform_buffer, uniform_entry};
 use crate::shaders;
 
 /// Turns the HDR target into a display image in any colour format (`*Srgb` formats are encoded
@@ -20,12 +20,9 @@ pub struct TonemapPass {
 impl TonemapPass {
     /// Builds the pipeline for output views of `output_format`.
     pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("firmament TonemapPass shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::TONEMAP.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("firmament TonemapPass bind group layout"),
+        let (pipeline, layout) = FullscreenPipeline {
+            owner: "TonemapPass",
+            source: shaders::TONEMAP,
             entries: &[
                 uniform_entry(0),
                 wgpu::BindGroupLayoutEntry {
@@ -39,37 +36,10 @@ impl TonemapPass {
                     count: None,
                 },
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("firmament TonemapPass pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("firmament TonemapPass pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
+            color: output_format,
             depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: output_format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        }
+        .build(device);
         let uniforms = uniform_buffer::<TonemapUniforms>(device, "firmament TonemapPass uniforms");
         Self {
             pipeline,
