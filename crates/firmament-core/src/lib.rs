@@ -18,6 +18,7 @@
 //! - **Colours** are linear RGB (not sRGB-encoded) unless a name says `srgb`.
 
 pub mod camera;
+pub mod classic;
 pub mod color;
 pub mod controller;
 pub mod display;
