@@ -61,6 +61,7 @@ impl HeadlessRenderer {
         width: u32,
         height: u32,
     ) -> Result<Image<u8>, RenderError> {
+        crate::readback::check_readback(ctx, width, height, LDR_FORMAT)?;
         self.render(ctx, frame, width, height)?;
         let output = self
             .output
@@ -82,6 +83,7 @@ impl HeadlessRenderer {
         width: u32,
         height: u32,
     ) -> Result<Image<f32>, RenderError> {
+        crate::readback::check_readback(ctx, width, height, crate::targets::HDR_FORMAT)?;
         self.render(ctx, frame, width, height)?;
         let targets = self
             .renderer

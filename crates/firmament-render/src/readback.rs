@@ -9,6 +9,29 @@ pub fn padded_bytes_per_row(width: u32, bytes_per_pixel: u32) -> u32 {
     unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
 }
 
+/// The staging-buffer size, bytes, to read back a `width` × `height` image of `format`, or an
+/// error naming the limit when the device cannot hold it (checked before rendering, so an absurd
+/// size fails at once instead of after a long render).
+pub fn check_readback(
+    ctx: &GpuContext,
+    width: u32,
+    height: u32,
+    format: wgpu::TextureFormat,
+) -> Result<u64, RenderError> {
+    let bytes_per_pixel = format
+        .block_copy_size(None)
+        .ok_or_else(|| RenderError::Readback(format!("cannot copy {format:?} textures")))?;
+    let size = u64::from(padded_bytes_per_row(width, bytes_per_pixel)) * u64::from(height);
+    let max = ctx.device.limits().max_buffer_size;
+    if size > max {
+        return Err(RenderError::Readback(format!(
+            "a {width}x{height} {format:?} image needs a {size}-byte buffer to read back; this GPU allows {max} bytes \
+             (render a smaller image, or PNG instead of EXR)"
+        )));
+    }
+    Ok(size)
+}
+
 /// Reads mip 0 of a 2D colour texture (with `COPY_SRC`) into tightly packed rows, top row first.
 pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>, RenderError> {
     let (width, height) = (texture.width(), texture.height());
@@ -17,9 +40,11 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
         .block_copy_size(None)
         .ok_or_else(|| RenderError::Readback(format!("cannot copy {:?} textures", texture.format())))?;
     let padded = padded_bytes_per_row(width, bytes_per_pixel);
+    let size = check_readback(ctx, width, height, texture.format())?;
+    let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
     let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("firmament readback staging buffer"),
-        size: u64::from(padded) * u64::from(height),
+        size,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
@@ -43,6 +68,9 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
         },
     );
     ctx.queue.submit([encoder.finish()]);
+    if let Some(error) = pollster::block_on(scope.pop()) {
+        return Err(RenderError::Readback(error.to_string()));
+    }
 
     let slice = buffer.slice(..);
     let (sender, receiver) = std::sync::mpsc::channel();

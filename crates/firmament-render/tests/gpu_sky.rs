@@ -283,4 +283,14 @@ fn too_large_images_are_refused_with_the_limit() {
     let err = renderer.render_ldr(ctx, &frame, max + 1, 4).expect_err("too large");
     assert!(err.to_string().contains(&max.to_string()), "{err}");
     assert!(renderer.render_ldr(ctx, &frame, 0, 4).is_err());
+    // The readback buffer is checked before rendering, against the device's own limit.
+    let side = max.min(16_384);
+    let needed = u64::from(firmament_render::readback::padded_bytes_per_row(side, 8)) * u64::from(side);
+    let result = firmament_render::readback::check_readback(ctx, side, side, firmament_render::HDR_FORMAT);
+    if needed > ctx.device.limits().max_buffer_size {
+        let err = result.expect_err("over the buffer limit");
+        assert!(err.to_string().contains("this GPU allows"), "{err}");
+    } else {
+        assert_eq!(result.ok(), Some(needed));
+    }
 }
