@@ -233,6 +233,15 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
         ),
         (&["check", "unknown.toml"], 1, "did you mean `fov_y`"),
         (&["frobnicate"], 2, "unrecognized subcommand"),
+        // Linux has no Metal: the no-adapter message must name the backend and the fix.
+        #[cfg(target_os = "linux")]
+        (
+            &["render", "--backend", "metal", "-o", "o.png"],
+            1,
+            "no GPU adapter found for backend `metal`",
+        ),
+        #[cfg(target_os = "linux")]
+        (&["render", "--backend", "metal", "-o", "o.png"], 1, "apt-get install"),
     ];
     for (args, code, expected) in cases {
         let out = firmament(d, args);
