@@ -148,3 +148,153 @@ mod tests {
         }
     }
 }
+
+/// Mirrors `ClassicLight` in `shaders/classic_lighting.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ClassicLightUniform {
+    /// `GL_AMBIENT`.
+    pub ambient: [f32; 4],
+    /// `GL_DIFFUSE`.
+    pub diffuse: [f32; 4],
+    /// `GL_SPECULAR`.
+    pub specular: [f32; 4],
+    /// `GL_POSITION`, eye space.
+    pub position: [f32; 4],
+    /// Spot direction (eye space); `w` = cos(cutoff), or −2 for no spot.
+    pub spot_direction: [f32; 4],
+    /// Spot exponent, constant, linear, quadratic attenuation.
+    pub spot_attenuation: [f32; 4],
+}
+
+/// Mirrors `ClassicMaterial` in `shaders/classic_lighting.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ClassicMaterialUniform {
+    /// `GL_AMBIENT`.
+    pub ambient: [f32; 4],
+    /// `GL_DIFFUSE`.
+    pub diffuse: [f32; 4],
+    /// `GL_SPECULAR`.
+    pub specular: [f32; 4],
+    /// `GL_EMISSION`.
+    pub emission: [f32; 4],
+    /// `x` = `GL_SHININESS`.
+    pub shininess: [f32; 4],
+}
+
+/// Most lights the classic pass takes (GL guarantees 8).
+pub const MAX_CLASSIC_LIGHTS: usize = 8;
+
+/// Per-vertex or per-fragment lighting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ClassicShading {
+    /// Lit per vertex in eye space, colours clamped and interpolated (GL's smooth shading).
+    #[default]
+    Gouraud,
+    /// The same equation per fragment with interpolated normals (SuperBible's Phong shading).
+    Phong,
+}
+
+/// Mirrors `ClassicFrame` in `shaders/classic_lighting.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct ClassicFrameUniforms {
+    /// Object → eye.
+    pub model_view: [[f32; 4]; 4],
+    /// GL's normal matrix (inverse transpose of the model-view's 3×3), columns padded to vec4.
+    pub normal_matrix: [[f32; 4]; 3],
+    /// Eye → clip (reversed-Z for firmament's depth buffer).
+    pub projection: [[f32; 4]; 4],
+    /// `GL_LIGHT_MODEL_AMBIENT`.
+    pub scene_ambient: [f32; 4],
+    /// Light count, local viewer, two-sided, separate specular.
+    pub model_flags: [u32; 4],
+    /// Shading (0 Gouraud, 1 Phong), specular model (0 Blinn, 1 Phong).
+    pub mode: [u32; 4],
+    /// Front material.
+    pub front: ClassicMaterialUniform,
+    /// Back material.
+    pub back: ClassicMaterialUniform,
+    /// Lights; only the first `model_flags[0]` are used.
+    pub lights: [ClassicLightUniform; MAX_CLASSIC_LIGHTS],
+}
+
+fn v4(v: glam::DVec4) -> [f32; 4] {
+    v.as_vec4().to_array()
+}
+
+fn material_uniform(m: &firmament_core::classic::lighting::Material) -> ClassicMaterialUniform {
+    ClassicMaterialUniform {
+        ambient: v4(m.ambient),
+        diffuse: v4(m.diffuse),
+        specular: v4(m.specular),
+        emission: v4(m.emission),
+        shininess: [m.shininess as f32, 0.0, 0.0, 0.0],
+    }
+}
+
+impl ClassicFrameUniforms {
+    /// Uniforms for `lighting` with object → eye `model_view` and eye → clip `projection`.
+    /// Lights past [`MAX_CLASSIC_LIGHTS`] are dropped (the caller validates counts).
+    pub fn new(
+        lighting: &firmament_core::classic::lighting::Lighting<'_>,
+        model_view: &DMat4,
+        projection: &DMat4,
+        shading: ClassicShading,
+    ) -> Self {
+        use firmament_core::classic::lighting::SpecularModel;
+        let normal = glam::DMat3::from_mat4(*model_view).inverse().transpose().as_mat3();
+        let pad = |c: glam::Vec3| [c.x, c.y, c.z, 0.0];
+        let mut lights = [ClassicLightUniform::zeroed(); MAX_CLASSIC_LIGHTS];
+        for (slot, l) in lights.iter_mut().zip(lighting.lights) {
+            let cos_cutoff = if l.spot_cutoff == 180.0 {
+                -2.0
+            } else {
+                l.spot_cutoff.to_radians().cos() as f32
+            };
+            let d = l.spot_direction.as_vec3();
+            *slot = ClassicLightUniform {
+                ambient: v4(l.ambient),
+                diffuse: v4(l.diffuse),
+                specular: v4(l.specular),
+                position: v4(l.position),
+                spot_direction: [d.x, d.y, d.z, cos_cutoff],
+                spot_attenuation: [
+                    l.spot_exponent as f32,
+                    l.constant_attenuation as f32,
+                    l.linear_attenuation as f32,
+                    l.quadratic_attenuation as f32,
+                ],
+            };
+        }
+        let m = &lighting.model;
+        Self {
+            model_view: model_view.as_mat4().to_cols_array_2d(),
+            normal_matrix: [pad(normal.x_axis), pad(normal.y_axis), pad(normal.z_axis)],
+            projection: projection.as_mat4().to_cols_array_2d(),
+            scene_ambient: v4(m.ambient),
+            model_flags: [
+                lighting.lights.len().min(MAX_CLASSIC_LIGHTS) as u32,
+                u32::from(m.local_viewer),
+                u32::from(m.two_side),
+                u32::from(m.separate_specular),
+            ],
+            mode: [
+                match shading {
+                    ClassicShading::Gouraud => 0,
+                    ClassicShading::Phong => 1,
+                },
+                match lighting.specular {
+                    SpecularModel::Blinn => 0,
+                    SpecularModel::Phong => 1,
+                },
+                0,
+                0,
+            ],
+            front: material_uniform(&lighting.front),
+            back: material_uniform(&lighting.back),
+            lights,
+        }
+    }
+}

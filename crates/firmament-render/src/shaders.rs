@@ -18,8 +18,15 @@ pub const TONEMAP: &str = concat!(
     include_str!("shaders/tonemap.wgsl")
 );
 
+/// The classic (fixed-function) lighting pass.
+pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
+
 /// Every composed shader by name, for validation and tooling.
-pub const ALL: &[(&str, &str)] = &[("sky_gradient", SKY_GRADIENT), ("tonemap", TONEMAP)];
+pub const ALL: &[(&str, &str)] = &[
+    ("sky_gradient", SKY_GRADIENT),
+    ("tonemap", TONEMAP),
+    ("classic_lighting", CLASSIC_LIGHTING),
+];
 
 /// The include files on their own (validated as modules too, so errors point at the right file).
 pub const INCLUDES: &[(&str, &str)] = &[("common/fullscreen", FULLSCREEN)];
@@ -27,7 +34,9 @@ pub const INCLUDES: &[(&str, &str)] = &[("common/fullscreen", FULLSCREEN)];
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gpu_types::{GradientSkyUniforms, TonemapUniforms};
+    use crate::gpu_types::{
+        ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, GradientSkyUniforms, TonemapUniforms,
+    };
 
     fn validate(name: &str, source: &str) -> naga::Module {
         let module =
@@ -104,6 +113,35 @@ mod tests {
             "Tonemap",
             TonemapUniforms,
             [exposure, curve, encode_srgb, _pad]
+        );
+        let classic = validate("classic_lighting", CLASSIC_LIGHTING);
+        assert_layout!(
+            classic,
+            "ClassicLight",
+            ClassicLightUniform,
+            [ambient, diffuse, specular, position, spot_direction, spot_attenuation]
+        );
+        assert_layout!(
+            classic,
+            "ClassicMaterial",
+            ClassicMaterialUniform,
+            [ambient, diffuse, specular, emission, shininess]
+        );
+        assert_layout!(
+            classic,
+            "ClassicFrame",
+            ClassicFrameUniforms,
+            [
+                model_view,
+                normal_matrix,
+                projection,
+                scene_ambient,
+                model_flags,
+                mode,
+                front,
+                back,
+                lights
+            ]
         );
     }
 }

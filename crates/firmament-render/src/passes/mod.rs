@@ -2,9 +2,11 @@
 //! `prepare` and encodes commands in `record` (into its own render pass) or `draw` (into one the
 //! caller already began).
 
+pub mod classic_mesh;
 pub mod sky_gradient;
 pub mod tonemap;
 
+pub use classic_mesh::{ClassicMeshPass, GpuMesh};
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
 

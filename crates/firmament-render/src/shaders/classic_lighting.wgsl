@@ -1,0 +1,157 @@
+// classic_lighting.wgsl — meshes lit by the OpenGL 2.1 fixed-function equations (seeds 001, 004).
+//
+// Conventions: every lighting vector is in GL *eye space* (camera at the origin looking down -z),
+// as the GL specification states the equations; `n` is the unit normal, `to_light` the unit
+// vector from the point to the light. Colours are GL RGBA, clamped to [0, 1] where GL clamps.
+// The f64 reference is `firmament_core::classic::lighting::Lighting::shade`; keep the two in step.
+// `shading`: 0 = Gouraud (lit per vertex, colours interpolated), 1 = Phong (lit per fragment).
+// Depth is firmament's reversed-Z: the projection maps near to 1.
+
+const MAX_LIGHTS: u32 = 8u;
+
+struct ClassicLight {
+    ambient: vec4<f32>,
+    diffuse: vec4<f32>,
+    specular: vec4<f32>,
+    position: vec4<f32>,       // eye space; w = 0 directional
+    spot_direction: vec4<f32>, // xyz eye space; w = cos(cutoff), or -2 for no spot (cutoff 180)
+    // x = spot exponent, y/z/w = constant/linear/quadratic attenuation
+    spot_attenuation: vec4<f32>,
+}
+
+struct ClassicMaterial {
+    ambient: vec4<f32>,
+    diffuse: vec4<f32>,
+    specular: vec4<f32>,
+    emission: vec4<f32>,
+    shininess: vec4<f32>, // x = shininess; yzw unused
+}
+
+struct ClassicFrame {
+    model_view: mat4x4<f32>,
+    // Inverse transpose of the model-view's upper 3×3, as three columns (GL's normal matrix).
+    normal_matrix: mat3x3<f32>,
+    projection: mat4x4<f32>,
+    scene_ambient: vec4<f32>,
+    // x = light count, y = local viewer, z = two-sided, w = separate specular
+    model_flags: vec4<u32>,
+    // x = shading (0 Gouraud, 1 Phong), y = specular model (0 Blinn, 1 Phong)
+    mode: vec4<u32>,
+    front: ClassicMaterial,
+    back: ClassicMaterial,
+    lights: array<ClassicLight, MAX_LIGHTS>,
+}
+
+@group(0) @binding(0) var<uniform> frame: ClassicFrame;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) eye_position: vec3<f32>,
+    @location(1) eye_normal: vec3<f32>,
+    // Gouraud: the lit colours of both sides (GL lights front and back per vertex).
+    @location(2) front_primary: vec4<f32>,
+    @location(3) front_secondary: vec4<f32>,
+    @location(4) back_primary: vec4<f32>,
+    @location(5) back_secondary: vec4<f32>,
+}
+
+struct Lit {
+    primary: vec4<f32>,
+    secondary: vec4<f32>,
+}
+
+fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
+    var m = frame.front;
+    var n = normalize(normal);
+    if back {
+        m = frame.back;
+        n = -n;
+    }
+    var color = m.emission + m.ambient * frame.scene_ambient;
+    var specular_sum = vec4<f32>(0.0);
+    let to_eye = normalize(-position);
+    let local_viewer = frame.model_flags.y != 0u;
+    let eye = select(vec3<f32>(0.0, 0.0, 1.0), to_eye, local_viewer);
+    let count = min(frame.model_flags.x, MAX_LIGHTS);
+    for (var i = 0u; i < count; i = i + 1u) {
+        let light = frame.lights[i];
+        var to_light: vec3<f32>;
+        var attenuation = 1.0;
+        if light.position.w == 0.0 {
+            to_light = normalize(light.position.xyz);
+        } else {
+            let d = light.position.xyz / light.position.w - position;
+            let dist = length(d);
+            to_light = d / dist;
+            let k = light.spot_attenuation.y + light.spot_attenuation.z * dist + light.spot_attenuation.w * dist * dist;
+            attenuation = select(0.0, 1.0 / k, k > 0.0);
+        }
+        var spot = 1.0;
+        if light.spot_direction.w > -1.5 {
+            let cos_angle = dot(-to_light, normalize(light.spot_direction.xyz));
+            spot = select(0.0, pow(max(cos_angle, 0.0), light.spot_attenuation.x), cos_angle >= light.spot_direction.w);
+        }
+        let factor = attenuation * spot;
+        let n_dot_l = max(dot(n, to_light), 0.0);
+        color = color + factor * (m.ambient * light.ambient + n_dot_l * m.diffuse * light.diffuse);
+        if n_dot_l != 0.0 {
+            var s: f32;
+            if frame.mode.y == 0u {
+                s = max(dot(n, normalize(to_light + eye)), 0.0);
+            } else {
+                s = max(dot(reflect(-to_light, n), eye), 0.0);
+            }
+            let power = select(pow(s, m.shininess.x), 1.0, m.shininess.x == 0.0);
+            specular_sum = specular_sum + factor * power * m.specular * light.specular;
+        }
+    }
+    let spec = vec4<f32>(specular_sum.rgb, 0.0);
+    var out: Lit;
+    if frame.model_flags.w != 0u {
+        out.primary = vec4<f32>(color.rgb, m.diffuse.a);
+        out.secondary = spec;
+    } else {
+        out.primary = vec4<f32>(color.rgb + spec.rgb, m.diffuse.a);
+        out.secondary = vec4<f32>(0.0);
+    }
+    out.primary = clamp(out.primary, vec4<f32>(0.0), vec4<f32>(1.0));
+    out.secondary = clamp(out.secondary, vec4<f32>(0.0), vec4<f32>(1.0));
+    return out;
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    let eye = frame.model_view * vec4<f32>(in.position, 1.0);
+    var out: VertexOut;
+    out.clip = frame.projection * eye;
+    out.eye_position = eye.xyz / eye.w;
+    out.eye_normal = frame.normal_matrix * in.normal;
+    if frame.mode.x == 0u {
+        let front = shade(out.eye_position, out.eye_normal, false);
+        let back = shade(out.eye_position, out.eye_normal, true);
+        out.front_primary = front.primary;
+        out.front_secondary = front.secondary;
+        out.back_primary = back.primary;
+        out.back_secondary = back.secondary;
+    }
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let back = frame.model_flags.z != 0u && !front_facing;
+    var lit: Lit;
+    if frame.mode.x == 0u {
+        lit.primary = select(in.front_primary, in.back_primary, back);
+        lit.secondary = select(in.front_secondary, in.back_secondary, back);
+    } else {
+        lit = shade(in.eye_position, in.eye_normal, back);
+    }
+    // GL's colour sum: secondary (separate specular) added after texturing, then clamped.
+    return clamp(vec4<f32>(lit.primary.rgb + lit.secondary.rgb, lit.primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
+}
