@@ -2,6 +2,8 @@
 //! every pixel inside the silhouette is recomputed on the CPU from the same mesh (ray-triangle
 //! barycentrics give the perspective-correct interpolation the rasterizer does).
 
+mod support;
+
 use firmament_core::classic::lighting::{Light, LightModel, Lighting, Material, SpecularModel};
 use firmament_core::projection::perspective_reverse_z;
 use firmament_render::gpu_types::{ClassicFrameUniforms, ClassicShading};
@@ -153,29 +155,7 @@ fn classic_lighting_matches_the_gl_equations_per_pixel() {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
-        {
-            let _clear = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("test clear"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &targets.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-        }
+        support::clear_targets(&mut encoder, &targets, wgpu::Color::TRANSPARENT, 0.0);
         pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view, &mesh);
         ctx.queue.submit([encoder.finish()]);
         let bytes = read_texture(&ctx, &targets.hdr).expect("readback");

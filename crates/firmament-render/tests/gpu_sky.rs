@@ -1,6 +1,8 @@
 //! GPU tests of the sky and tonemap passes against the f64 core, on whatever adapter the machine
 //! has (a software rasterizer on CI). They fail, never skip, when no adapter exists.
 
+mod support;
+
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use firmament_core::color::{LinearRgb, linear_to_srgb};
@@ -198,29 +200,7 @@ fn the_sky_stays_behind_everything_already_drawn() {
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
-        {
-            let _clear = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("test clear"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &targets.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(marker),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(depth),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-        }
+        support::clear_targets(&mut encoder, &targets, marker, depth);
         pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
         ctx.queue.submit([encoder.finish()]);
         let bytes = read_texture(ctx, &targets.hdr).expect("readback");

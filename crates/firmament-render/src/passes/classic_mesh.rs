@@ -7,7 +7,7 @@ use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 use crate::gpu_types::ClassicFrameUniforms;
-use crate::passes::{uniform_buffer, uniform_entry};
+use crate::passes::{begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -163,27 +163,7 @@ impl ClassicMeshPass {
         depth: &wgpu::TextureView,
         mesh: &GpuMesh,
     ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("firmament ClassicMeshPass"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: color,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            ..Default::default()
-        });
+        let mut pass = begin_load_pass(encoder, "firmament ClassicMeshPass", color, depth);
         self.draw(&mut pass, mesh);
     }
 }

@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::{FullscreenPipeline, uniform_buffer, uniform_entry};
+use crate::passes::{FullscreenPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -73,27 +73,7 @@ impl GradientSkyPass {
 
     /// Draws into `color` (loaded, not cleared) behind what `depth` already holds.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("firmament GradientSkyPass"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: color,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            ..Default::default()
-        });
+        let mut pass = begin_load_pass(encoder, "firmament GradientSkyPass", color, depth);
         self.draw(&mut pass);
     }
 }
