@@ -212,6 +212,12 @@ pub struct ClassicFrameUniforms {
     pub model_flags: [u32; 4],
     /// Shading (0 Gouraud, 1 Phong), specular model (0 Blinn, 1 Phong).
     pub mode: [u32; 4],
+    /// Fog equation (0 off, 1 linear, 2 exp, 3 exp2), coordinate (0 eye-plane depth, 1 distance).
+    pub fog_mode: [u32; 4],
+    /// Fog start, end, density.
+    pub fog_params: [f32; 4],
+    /// `GL_FOG_COLOR`.
+    pub fog_color: [f32; 4],
     /// Front material.
     pub front: ClassicMaterialUniform,
     /// Back material.
@@ -235,14 +241,17 @@ fn material_uniform(m: &firmament_core::classic::lighting::Material) -> ClassicM
 }
 
 impl ClassicFrameUniforms {
-    /// Uniforms for `lighting` with object → eye `model_view` and eye → clip `projection`.
-    /// Lights past [`MAX_CLASSIC_LIGHTS`] are dropped (the caller validates counts).
+    /// Uniforms for `lighting` with object → eye `model_view` and eye → clip `projection`,
+    /// fogged by `fog` if given. Lights past [`MAX_CLASSIC_LIGHTS`] are dropped (the caller
+    /// validates counts).
     pub fn new(
         lighting: &firmament_core::classic::lighting::Lighting<'_>,
         model_view: &DMat4,
         projection: &DMat4,
         shading: ClassicShading,
+        fog: Option<&firmament_core::classic::fog::Fog>,
     ) -> Self {
+        use firmament_core::classic::fog::{FogCoordinate, FogMode};
         use firmament_core::classic::lighting::SpecularModel;
         let normal = glam::DMat3::from_mat4(*model_view).inverse().transpose().as_mat3();
         let pad = |c: glam::Vec3| [c.x, c.y, c.z, 0.0];
@@ -292,6 +301,28 @@ impl ClassicFrameUniforms {
                 0,
                 0,
             ],
+            fog_mode: match fog {
+                None => [0; 4],
+                Some(f) => [
+                    match f.mode {
+                        FogMode::Linear { .. } => 1,
+                        FogMode::Exp { .. } => 2,
+                        FogMode::Exp2 { .. } => 3,
+                    },
+                    match f.coordinate {
+                        FogCoordinate::EyePlaneDepth => 0,
+                        FogCoordinate::EyeDistance => 1,
+                    },
+                    0,
+                    0,
+                ],
+            },
+            fog_params: match fog.map(|f| f.mode) {
+                Some(FogMode::Linear { start, end }) => [start as f32, end as f32, 0.0, 0.0],
+                Some(FogMode::Exp { density } | FogMode::Exp2 { density }) => [0.0, 0.0, density as f32, 0.0],
+                None => [0.0; 4],
+            },
+            fog_color: fog.map_or([0.0; 4], |f| v4(f.color)),
             front: material_uniform(&lighting.front),
             back: material_uniform(&lighting.back),
             lights,

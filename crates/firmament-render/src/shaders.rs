@@ -138,6 +138,9 @@ mod tests {
                 scene_ambient,
                 model_flags,
                 mode,
+                fog_mode,
+                fog_params,
+                fog_color,
                 front,
                 back,
                 lights

@@ -4,6 +4,7 @@
 
 mod support;
 
+use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode};
 use firmament_core::classic::lighting::{Light, LightModel, Lighting, Material, SpecularModel};
 use firmament_core::projection::perspective_reverse_z;
 use firmament_render::gpu_types::{ClassicFrameUniforms, ClassicShading};
@@ -96,37 +97,49 @@ fn classic_lighting_matches_the_gl_equations_per_pixel() {
     };
     let lights_a = [superbible_light];
     let lights_b = [superbible_light, spot];
+    let superbible_model = LightModel {
+        ambient: DVec4::ONE,
+        ..LightModel::default()
+    };
+    let spot_model = LightModel {
+        local_viewer: true,
+        separate_specular: true,
+        ..LightModel::default()
+    };
+    let linear_fog = Fog {
+        mode: FogMode::Linear { start: 3.2, end: 4.8 },
+        coordinate: FogCoordinate::EyePlaneDepth,
+        color: DVec4::new(0.7, 0.6, 0.5, 1.0),
+    };
+    let exp2_fog = Fog {
+        mode: FogMode::Exp2 { density: 0.3 },
+        coordinate: FogCoordinate::EyeDistance,
+        color: DVec4::new(0.2, 0.9, 0.3, 1.0),
+    };
     let cases = [
         (
             "superbible gouraud",
             &lights_a[..],
-            LightModel {
-                ambient: DVec4::ONE,
-                ..LightModel::default()
-            },
+            superbible_model,
             SpecularModel::Blinn,
             ClassicShading::Gouraud,
+            None,
         ),
         (
             "superbible phong",
             &lights_a[..],
-            LightModel {
-                ambient: DVec4::ONE,
-                ..LightModel::default()
-            },
+            superbible_model,
             SpecularModel::Blinn,
             ClassicShading::Phong,
+            None,
         ),
         (
-            "spot, local viewer, separate specular, phong model",
+            "spot, local viewer, separate specular",
             &lights_b[..],
-            LightModel {
-                local_viewer: true,
-                separate_specular: true,
-                ..LightModel::default()
-            },
+            spot_model,
             SpecularModel::Phong,
             ClassicShading::Phong,
+            None,
         ),
         (
             "spot gouraud",
@@ -134,13 +147,30 @@ fn classic_lighting_matches_the_gl_equations_per_pixel() {
             LightModel::default(),
             SpecularModel::Blinn,
             ClassicShading::Gouraud,
+            None,
+        ),
+        (
+            "linear fog, eye-plane depth",
+            &lights_a[..],
+            superbible_model,
+            SpecularModel::Blinn,
+            ClassicShading::Phong,
+            Some(linear_fog),
+        ),
+        (
+            "exp2 fog, eye distance",
+            &lights_b[..],
+            spot_model,
+            SpecularModel::Blinn,
+            ClassicShading::Gouraud,
+            Some(exp2_fog),
         ),
     ];
     let eye_vertices: Vec<DVec3> = positions.iter().map(|p| model_view.transform_point3(*p)).collect();
     let eye_normals: Vec<DVec3> = positions.iter().map(|n| (normal_matrix * *n).normalize()).collect();
     let inverse_projection = projection.inverse();
 
-    for (name, lights, model, specular, shading) in cases {
+    for (name, lights, model, specular, shading, fog) in cases {
         let lighting = Lighting {
             lights,
             model,
@@ -150,7 +180,7 @@ fn classic_lighting_matches_the_gl_equations_per_pixel() {
         };
         pass.prepare(
             &ctx.queue,
-            &ClassicFrameUniforms::new(&lighting, &model_view, &projection, shading),
+            &ClassicFrameUniforms::new(&lighting, &model_view, &projection, shading, fog.as_ref()),
         );
         let mut encoder = ctx
             .device
@@ -210,6 +240,18 @@ fn classic_lighting_matches_the_gl_equations_per_pixel() {
                             + lit[1].secondary * weights[1]
                             + lit[2].secondary * weights[2];
                         sum(primary, secondary)
+                    }
+                };
+                // GL computes the fog coordinate per vertex, interpolates it, and fogs per fragment.
+                let expected = match fog {
+                    None => expected,
+                    Some(fog) => {
+                        let coord: f64 = [a, b, c]
+                            .iter()
+                            .zip(weights)
+                            .map(|(&i, w)| fog.coordinate.of(eye_vertices[i]) * w)
+                            .sum();
+                        fog.mode.apply(expected.extend(1.0), fog.color, coord).truncate()
                     }
                 };
                 let got = at(x, y);

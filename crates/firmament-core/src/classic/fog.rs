@@ -74,6 +74,17 @@ impl FogMode {
     }
 }
 
+/// Fixed-function fog as a whole: equation, coordinate and colour (`glFog`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fog {
+    /// The equation and its parameters.
+    pub mode: FogMode,
+    /// Which distance feeds it.
+    pub coordinate: FogCoordinate,
+    /// `GL_FOG_COLOR`.
+    pub color: DVec4,
+}
+
 /// Fog whose density falls exponentially with height: `σ(h) = density · exp(−falloff · (h − base))`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeightFog {

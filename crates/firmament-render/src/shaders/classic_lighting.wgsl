@@ -37,6 +37,12 @@ struct ClassicFrame {
     model_flags: vec4<u32>,
     // x = shading (0 Gouraud, 1 Phong), y = specular model (0 Blinn, 1 Phong)
     mode: vec4<u32>,
+    // Fog (GL 2.1 §3.10): x = equation (0 off, 1 linear, 2 exp, 3 exp2),
+    // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance), computed per vertex and
+    // interpolated; the factor is computed per fragment, as GL implementations do.
+    fog_mode: vec4<u32>,
+    fog_params: vec4<f32>, // x = start, y = end, z = density
+    fog_color: vec4<f32>,
     front: ClassicMaterial,
     back: ClassicMaterial,
     lights: array<ClassicLight, MAX_LIGHTS>,
@@ -58,6 +64,7 @@ struct VertexOut {
     @location(3) front_secondary: vec4<f32>,
     @location(4) back_primary: vec4<f32>,
     @location(5) back_secondary: vec4<f32>,
+    @location(6) fog_coordinate: f32,
 }
 
 struct Lit {
@@ -131,6 +138,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.clip = frame.projection * eye;
     out.eye_position = eye.xyz / eye.w;
     out.eye_normal = frame.normal_matrix * in.normal;
+    out.fog_coordinate = select(abs(out.eye_position.z), length(out.eye_position), frame.fog_mode.y == 1u);
     if frame.mode.x == 0u {
         let front = shade(out.eye_position, out.eye_normal, false);
         let back = shade(out.eye_position, out.eye_normal, true);
@@ -153,5 +161,27 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
         lit = shade(in.eye_position, in.eye_normal, back);
     }
     // GL's colour sum: secondary (separate specular) added after texturing, then clamped.
-    return clamp(vec4<f32>(lit.primary.rgb + lit.secondary.rgb, lit.primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
+    let color = clamp(vec4<f32>(lit.primary.rgb + lit.secondary.rgb, lit.primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
+    return apply_fog(color, in.fog_coordinate);
+}
+
+// GL 2.1 eq. 3.16–3.18: f keeps the fragment colour; alpha is untouched.
+fn apply_fog(color: vec4<f32>, c: f32) -> vec4<f32> {
+    let mode = frame.fog_mode.x;
+    if mode == 0u {
+        return color;
+    }
+    let start = frame.fog_params.x;
+    let end = frame.fog_params.y;
+    let density = frame.fog_params.z;
+    var f: f32;
+    if mode == 1u {
+        f = select((end - c) / (end - start), select(0.0, 1.0, c < end), end == start);
+    } else if mode == 2u {
+        f = exp(-density * c);
+    } else {
+        f = exp(-(density * c) * (density * c));
+    }
+    f = clamp(f, 0.0, 1.0);
+    return vec4<f32>(mix(frame.fog_color.rgb, color.rgb, f), color.a);
 }
