@@ -7,7 +7,7 @@ use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 use crate::gpu_types::ClassicFrameUniforms;
-use crate::passes::{begin_load_pass, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -72,38 +72,11 @@ impl ClassicMeshPass {
 
     /// Builds the pipeline for other colour and depth formats.
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("firmament ClassicMeshPass shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::CLASSIC_LIGHTING.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("firmament ClassicMeshPass bind group layout"),
+        let (pipeline, layout) = PassPipeline {
+            owner: "ClassicMeshPass",
+            source: shaders::CLASSIC_LIGHTING,
             entries: &[uniform_entry(0)],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("firmament ClassicMeshPass pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("firmament ClassicMeshPass pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: VERTEX_STRIDE,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
-                })],
-            },
-            // No culling: two-sided lighting needs the back faces; GL's default front face is CCW.
-            primitive: wgpu::PrimitiveState {
-                front_face: wgpu::FrontFace::Ccw,
-                cull_mode: None,
-                ..Default::default()
-            },
+            color,
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: depth,
                 depth_write_enabled: Some(true),
@@ -111,20 +84,19 @@ impl ClassicMeshPass {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: color,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            vertex_buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: VERTEX_STRIDE,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+            })],
+            // No culling: two-sided lighting needs the back faces; GL's default front face is CCW.
+            primitive: wgpu::PrimitiveState {
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: None,
+                ..Default::default()
+            },
+        }
+        .build(device);
         let uniforms = uniform_buffer::<ClassicFrameUniforms>(device, "firmament ClassicMeshPass uniforms");
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("firmament ClassicMeshPass bind group"),

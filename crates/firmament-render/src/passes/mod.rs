@@ -65,8 +65,9 @@ pub(crate) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// What differs between firmament's full-screen-triangle pipelines.
-pub(crate) struct FullscreenPipeline<'a> {
+/// What differs between firmament's single-bind-group pipelines (full-screen triangles when
+/// `vertex_buffers` is empty, meshes otherwise).
+pub(crate) struct PassPipeline<'a> {
     /// The owner, for labels (`"GradientSkyPass"`).
     pub(crate) owner: &'a str,
     /// Composed WGSL with `vs_main` and `fs_main`.
@@ -77,9 +78,13 @@ pub(crate) struct FullscreenPipeline<'a> {
     pub(crate) color: wgpu::TextureFormat,
     /// Depth state, if the pass has a depth attachment.
     pub(crate) depth_stencil: Option<wgpu::DepthStencilState>,
+    /// Vertex buffer layouts (empty for a full-screen triangle made from the vertex index).
+    pub(crate) vertex_buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    /// Topology, winding and culling.
+    pub(crate) primitive: wgpu::PrimitiveState,
 }
 
-impl FullscreenPipeline<'_> {
+impl PassPipeline<'_> {
     /// Builds the pipeline and its bind group layout, labelled for the owner.
     pub(crate) fn build(&self, device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         let owner = self.owner;
@@ -103,9 +108,9 @@ impl FullscreenPipeline<'_> {
                 module: &module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
-                buffers: &[],
+                buffers: self.vertex_buffers,
             },
-            primitive: wgpu::PrimitiveState::default(),
+            primitive: self.primitive,
             depth_stencil: self.depth_stencil.clone(),
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {

@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::{FullscreenPipeline, begin_load_pass, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -28,7 +28,7 @@ impl GradientSkyPass {
 
     /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        let (pipeline, layout) = FullscreenPipeline {
+        let (pipeline, layout) = PassPipeline {
             owner: "GradientSkyPass",
             source: shaders::SKY_GRADIENT,
             entries: &[uniform_entry(0)],
@@ -40,6 +40,8 @@ impl GradientSkyPass {
                 stencil: wgpu::StencilState::default(),
                 bias: wgpu::DepthBiasState::default(),
             }),
+            vertex_buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
         }
         .build(device);
         let uniforms = uniform_buffer::<GradientSkyUniforms>(device, "firmament GradientSkyPass uniforms");

@@ -3,7 +3,7 @@
 use firmament_core::display::DisplaySettings;
 
 use crate::gpu_types::TonemapUniforms;
-use crate::passes::{FullscreenPipeline, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, uniform_buffer, uniform_entry};
 use crate::shaders;
 
 /// Turns the HDR target into a display image in any colour format (`*Srgb` formats are encoded
@@ -20,7 +20,7 @@ pub struct TonemapPass {
 impl TonemapPass {
     /// Builds the pipeline for output views of `output_format`.
     pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> Self {
-        let (pipeline, layout) = FullscreenPipeline {
+        let (pipeline, layout) = PassPipeline {
             owner: "TonemapPass",
             source: shaders::TONEMAP,
             entries: &[
@@ -38,6 +38,8 @@ impl TonemapPass {
             ],
             color: output_format,
             depth_stencil: None,
+            vertex_buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
         }
         .build(device);
         let uniforms = uniform_buffer::<TonemapUniforms>(device, "firmament TonemapPass uniforms");
