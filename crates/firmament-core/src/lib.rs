@@ -17,6 +17,7 @@
 //!   **heading** (azimuth) is measured from north (+y) clockwise towards east (+x).
 //! - **Colours** are linear RGB (not sRGB-encoded) unless a name says `srgb`.
 
+pub mod atmosphere;
 pub mod camera;
 pub mod classic;
 pub mod color;
@@ -27,6 +28,7 @@ pub mod frame;
 pub mod frustum;
 pub mod geometry;
 pub mod gradient_sky;
+pub mod mesh;
 pub mod projection;
 pub mod sun;
 pub mod time_of_day;

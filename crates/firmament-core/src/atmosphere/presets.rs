@@ -1,0 +1,131 @@
+//! Atmosphere and sun presets, each with its sources.
+
+use glam::DVec3;
+
+use crate::atmosphere::medium::{Absorber, DensityLayer, DensityProfile, Medium, Mie, MiePhase, Rayleigh};
+use crate::atmosphere::spectrum::{Spectrum, Wavelengths};
+use crate::atmosphere::{Atmosphere, Planet, Sun};
+
+/// WGS84 equatorial radius, m (NIMA TR8350.2, 2000).
+pub const WGS84_EQUATORIAL_RADIUS: f64 = 6_378_137.0;
+/// WGS84 polar radius, m (`a·(1 − f)`, `1/f = 298.257223563`).
+pub const WGS84_POLAR_RADIUS: f64 = 6_356_752.314_245_18;
+/// One astronomical unit, m (IAU 2012 Resolution B2).
+pub const ASTRONOMICAL_UNIT: f64 = 149_597_870_700.0;
+
+/// Earth: the constants Bruneton ("Precomputed Atmospheric Scattering: a New Implementation",
+/// 2017, `demo.cc`) and Hillaire ("A Scalable and Production Ready Sky and Atmosphere Rendering
+/// Technique", EGSR 2020) share, on the WGS84 ellipsoid instead of their 6360 km sphere:
+/// - Rayleigh scattering (5.802, 13.558, 33.100)·10⁻⁶ m⁻¹ at 680/550/440 nm, scale height 8 km;
+/// - Mie scattering 3.996·10⁻⁶ m⁻¹ and extinction 4.440·10⁻⁶ m⁻¹ (single-scattering albedo 0.9),
+///   scale height 1.2 km, Cornette–Shanks phase with g = 0.8;
+/// - ozone absorption (0.650, 1.881, 0.085)·10⁻⁶ m⁻¹ (Bruneton's cross-sections from Gorshelev
+///   et al. 2014 / Serdyuchenko et al. 2014 at 300 Dobson units) in a tent from 10 km to a peak
+///   at 25 km and back to 0 at 40 km;
+/// - top of the atmosphere 60 km above the surface, ground albedo 0.1.
+pub fn earth() -> Atmosphere {
+    Atmosphere {
+        planet: Planet::spheroid(WGS84_EQUATORIAL_RADIUS, WGS84_POLAR_RADIUS, 60_000.0),
+        medium: Medium {
+            rayleigh: Rayleigh {
+                scattering: Spectrum::new(5.802e-6, 13.558e-6, 33.100e-6),
+                density: DensityProfile::single(DensityLayer::exponential(8_000.0)),
+            },
+            mie: Mie {
+                scattering: Spectrum::splat(3.996e-6),
+                extinction: Spectrum::splat(4.440e-6),
+                density: DensityProfile::single(DensityLayer::exponential(1_200.0)),
+                phase: MiePhase::CornetteShanks { g: 0.8 },
+            },
+            absorber: Absorber {
+                absorption: Spectrum::new(0.650e-6, 1.881e-6, 0.085e-6),
+                density: DensityProfile::tent(10_000.0, 25_000.0, 40_000.0),
+            },
+            ground_albedo: Spectrum::splat(0.1),
+        },
+        wavelengths: Wavelengths::default(),
+    }
+}
+
+/// The Sun seen from Earth, towards `direction` (world frame): spectral irradiance
+/// (1.474, 1.8504, 1.91198) W·m⁻²·nm⁻¹ at 680/550/440 nm (Bruneton 2017's values from the ASTM
+/// G-173 extraterrestrial spectrum), angular radius 0.004675 rad, limb darkening 0.6.
+pub fn earth_sun(direction: DVec3) -> Sun {
+    Sun {
+        direction: direction.normalize_or_zero(),
+        angular_radius: 0.004675,
+        irradiance: Spectrum::new(1.474, 1.8504, 1.91198),
+        limb_darkening: 0.6,
+    }
+}
+
+/// Mars' mean distance from the Sun, AU (NASA Mars Fact Sheet, Williams 2024).
+pub const MARS_SEMI_MAJOR_AXIS_AU: f64 = 1.52366;
+
+/// Mars in a clear season, from published measurements:
+/// - shape: equatorial radius 3396.19 km, polar 3376.20 km (Archinal et al., "Report of the IAU
+///   Working Group on Cartographic Coordinates and Rotational Elements: 2015", Celest. Mech. Dyn.
+///   Astr. 130, 2018);
+/// - CO₂ Rayleigh scattering: Earth's air coefficients scaled by Mars' surface number density
+///   (610 Pa at 210 K: 2.1·10²³ m⁻³ against 2.55·10²⁵) and CO₂'s 2.45× larger cross-section
+///   (Sneep & Ubachs, JQSRT 92, 2005), scale height 11.1 km (NASA Mars Fact Sheet);
+/// - dust: visible optical depth 0.5 (Lemmon et al., Icarus 251, 2015, MER typical clear-season
+///   values) mixed with the gas' 11.1 km scale height; single-scattering albedo 0.974 / 0.954 /
+///   0.887 at 680/550/440 nm and Henyey–Greenstein g = 0.63 (Wolff et al., JGR 114, 2009; Tomasko
+///   et al., JGR 104, 1999) — the absorption in blue makes the butterscotch day sky and the blue
+///   sunset;
+/// - no ozone to speak of; top of the atmosphere 80 km; ground albedo 0.25 (Bond albedo).
+pub fn mars() -> Atmosphere {
+    let number_density_ratio = 2.1e23 / 2.55e25;
+    let co2_cross_section_ratio = 2.45;
+    let rayleigh = Spectrum::new(5.802e-6, 13.558e-6, 33.100e-6) * number_density_ratio * co2_cross_section_ratio;
+    let dust_extinction = 0.5 / 11_100.0;
+    let albedo = Spectrum::new(0.974, 0.954, 0.887);
+    Atmosphere {
+        planet: Planet::spheroid(3_396_190.0, 3_376_200.0, 80_000.0),
+        medium: Medium {
+            rayleigh: Rayleigh {
+                scattering: rayleigh,
+                density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
+            },
+            mie: Mie {
+                scattering: albedo * dust_extinction,
+                extinction: Spectrum::splat(dust_extinction),
+                density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
+                phase: MiePhase::HenyeyGreenstein { g: 0.63 },
+            },
+            absorber: Absorber {
+                absorption: Spectrum::ZERO,
+                density: DensityProfile::single(DensityLayer::EMPTY),
+            },
+            ground_albedo: Spectrum::splat(0.25),
+        },
+        wavelengths: Wavelengths::default(),
+    }
+}
+
+/// The Sun seen from Mars: Earth's solar irradiance divided by Mars' mean distance squared, and
+/// the angular radius divided by that distance.
+pub fn mars_sun(direction: DVec3) -> Sun {
+    let earth = earth_sun(direction);
+    Sun {
+        irradiance: earth.irradiance / (MARS_SEMI_MAJOR_AXIS_AU * MARS_SEMI_MAJOR_AXIS_AU),
+        angular_radius: earth.angular_radius / MARS_SEMI_MAJOR_AXIS_AU,
+        ..earth
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_are_valid() {
+        for atmosphere in [earth(), mars()] {
+            atmosphere.validate().unwrap();
+        }
+        earth_sun(DVec3::Z).validate().unwrap();
+        mars_sun(DVec3::Z).validate().unwrap();
+        assert!((earth().planet.flattening() - 1.0 / 298.257_223_563).abs() < 1e-12);
+    }
+}

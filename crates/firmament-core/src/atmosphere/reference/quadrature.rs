@@ -1,0 +1,75 @@
+//! Adaptive Simpson quadrature for spectrum-valued integrands.
+
+use crate::atmosphere::spectrum::Spectrum;
+
+/// `∫_a^b f(t) dt` to a relative accuracy of about `relative_tolerance` (on the largest
+/// component): 16 Simpson panels, each refined until its Richardson error estimate is below its
+/// share of the tolerance, or 24 halvings deep.
+pub(crate) fn adaptive_simpson(f: &impl Fn(f64) -> Spectrum, a: f64, b: f64, relative_tolerance: f64) -> Spectrum {
+    if b <= a {
+        return Spectrum::ZERO;
+    }
+    const PANELS: usize = 16;
+    let h = (b - a) / PANELS as f64;
+    let samples: Vec<Spectrum> = (0..=2 * PANELS).map(|i| f(a + 0.5 * h * i as f64)).collect();
+    let wholes: Vec<Spectrum> = (0..PANELS)
+        .map(|k| (samples[2 * k] + 4.0 * samples[2 * k + 1] + samples[2 * k + 2]) * (h / 6.0))
+        .collect();
+    let magnitude = wholes.iter().copied().sum::<Spectrum>().abs().max_element();
+    if magnitude == 0.0 || !magnitude.is_finite() {
+        return wholes.into_iter().sum();
+    }
+    let tolerance = relative_tolerance * magnitude / PANELS as f64;
+    (0..PANELS)
+        .map(|k| {
+            let x = a + h * k as f64;
+            let (fa, fm, fb) = (samples[2 * k], samples[2 * k + 1], samples[2 * k + 2]);
+            refine(f, x, x + h, fa, fm, fb, wholes[k], tolerance, 24)
+        })
+        .sum()
+}
+
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the recursion carries the panel's cached samples"
+)]
+fn refine(
+    f: &impl Fn(f64) -> Spectrum,
+    a: f64,
+    b: f64,
+    fa: Spectrum,
+    fm: Spectrum,
+    fb: Spectrum,
+    whole: Spectrum,
+    tolerance: f64,
+    depth: u32,
+) -> Spectrum {
+    let m = 0.5 * (a + b);
+    let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+    let (flm, frm) = (f(lm), f(rm));
+    let left = (fa + 4.0 * flm + fm) * ((m - a) / 6.0);
+    let right = (fm + 4.0 * frm + fb) * ((b - m) / 6.0);
+    let error = (left + right - whole).abs().max_element();
+    if depth == 0 || error <= 15.0 * tolerance {
+        return left + right + (left + right - whole) / 15.0;
+    }
+    refine(f, a, m, fa, flm, fm, left, 0.5 * tolerance, depth - 1)
+        + refine(f, m, b, fm, frm, fb, right, 0.5 * tolerance, depth - 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integrates_a_sharp_exponential() {
+        let f = |t: f64| Spectrum::new((-t / 1200.0).exp(), (-t / 8000.0).exp(), 1.0);
+        let got = adaptive_simpson(&f, 0.0, 60_000.0, 1e-11);
+        let want = Spectrum::new(
+            1200.0 * (1.0 - (-50.0_f64).exp()),
+            8000.0 * (1.0 - (-7.5_f64).exp()),
+            60_000.0,
+        );
+        assert!(((got - want) / want).abs().max_element() < 1e-10, "{got} {want}");
+    }
+}
