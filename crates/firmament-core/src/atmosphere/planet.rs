@@ -19,10 +19,10 @@
 //! axis (as in seed 000). On an oblate planet its geodetic height varies by a few metres from
 //! `atmosphere_height`; the density there is `e^-7` of its surface value or less for every preset.
 
-use glam::{DMat3, DQuat, DVec3};
+use glam::{DQuat, DVec3};
 
 use crate::error::CoreError;
-use crate::geometry::{Ellipsoid, Ray, RayHits};
+use crate::geometry::{Ellipsoid, Ray};
 
 /// A planet: an ellipsoid, where it is and how it is turned, and the height of its atmosphere.
 ///
@@ -121,11 +121,6 @@ impl Planet {
         }
     }
 
-    /// Rotation from the planet frame to the world frame, as a matrix.
-    pub fn rotation(&self) -> DMat3 {
-        DMat3::from_quat(self.orientation.normalize())
-    }
-
     /// A world-space point in the planet frame.
     pub fn to_planet_frame(&self, world: DVec3) -> DVec3 {
         self.orientation.normalize().inverse() * (world - self.center)
@@ -179,11 +174,6 @@ impl Planet {
     /// The outward geodetic "up" (the surface normal at the foot point) of a planet-frame point.
     pub fn up(&self, p: DVec3) -> DVec3 {
         self.surface().normal_at(self.surface_foot(p))
-    }
-
-    /// Where a planet-frame ray meets the surface and the atmosphere's top.
-    pub fn ray_hits(&self, ray: &Ray) -> (Option<RayHits>, Option<RayHits>) {
-        (self.surface().intersect(ray), self.atmosphere_top().intersect(ray))
     }
 
     /// The closest point on the surface to planet-frame point `p`.

@@ -1,7 +1,5 @@
 //! The reference against closed forms, published numbers and its own symmetries.
 
-use std::f64::consts::PI;
-
 use glam::DVec3;
 
 use super::*;
@@ -318,5 +316,4 @@ fn ground_irradiance_is_plausible_at_noon() {
     let ratio = irradiance.sky / irradiance.direct;
     assert!(ratio.z > ratio.y && ratio.y > ratio.x, "{ratio}");
     assert!((0.05..0.3).contains(&ratio.y), "{ratio}");
-    let _ = PI;
 }
