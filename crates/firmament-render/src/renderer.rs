@@ -5,13 +5,23 @@ use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{GradientSkyPass, TonemapPass};
+use crate::passes::{AtmospherePass, GradientSkyPass, TonemapPass};
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
+
+/// The sky passes a frame can use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SkyKind {
+    Gradient,
+    Atmosphere,
+}
 
 /// Renders [`Frame`]s into any texture view of the output format it was built for.
 #[derive(Debug)]
 pub struct Renderer {
     sky_gradient: GradientSkyPass,
+    atmosphere: AtmospherePass,
+    /// Which sky the last `prepare` chose.
+    sky: SkyKind,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
 }
@@ -21,6 +31,8 @@ impl Renderer {
     pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
         Self {
             sky_gradient: GradientSkyPass::new(&ctx.device),
+            atmosphere: AtmospherePass::new(&ctx.device),
+            sky: SkyKind::Gradient,
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
         }
@@ -38,7 +50,14 @@ impl Renderer {
             ..frame.camera
         };
         match &frame.sky {
-            Sky::Gradient(sky) => self.sky_gradient.prepare(&ctx.queue, sky, &camera),
+            Sky::Gradient(sky) => {
+                self.sky_gradient.prepare(&ctx.queue, sky, &camera);
+                self.sky = SkyKind::Gradient;
+            }
+            Sky::Atmosphere(sky) => {
+                self.atmosphere.prepare(&ctx.queue, sky, &camera);
+                self.sky = SkyKind::Atmosphere;
+            }
         }
         if let Some(targets) = &self.targets {
             self.tonemap
@@ -54,6 +73,9 @@ impl Renderer {
             tracing::warn!("Renderer::record before prepare: nothing drawn");
             return;
         };
+        if self.sky == SkyKind::Atmosphere {
+            self.atmosphere.record_luts(encoder);
+        }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("firmament Renderer main pass"),
@@ -77,7 +99,10 @@ impl Renderer {
                 ..Default::default()
             });
             // Opaque geometry goes here first; the sky then fills only what is left.
-            self.sky_gradient.draw(&mut pass);
+            match self.sky {
+                SkyKind::Gradient => self.sky_gradient.draw(&mut pass),
+                SkyKind::Atmosphere => self.atmosphere.draw(&mut pass),
+            }
         }
         self.tonemap.record(encoder, output);
     }

@@ -18,6 +18,30 @@ pub const TONEMAP: &str = concat!(
     include_str!("shaders/tonemap.wgsl")
 );
 
+/// Composes an atmosphere pass: the full-screen triangle, the atmosphere includes in dependency
+/// order (`common`, `luts`, `view`), then the entry file.
+macro_rules! atmosphere_shader {
+    ($($include:literal),* ; $entry:literal) => {
+        concat!(
+            include_str!("shaders/common/fullscreen.wgsl"),
+            "\n",
+            $(include_str!(concat!("shaders/atmosphere/", $include, ".wgsl")), "\n",)*
+            include_str!(concat!("shaders/atmosphere/", $entry, ".wgsl"))
+        )
+    };
+}
+
+/// The atmosphere's transmittance LUT pass.
+pub const ATMOSPHERE_TRANSMITTANCE_LUT: &str = atmosphere_shader!("common"; "transmittance_lut");
+/// The atmosphere's multiple-scattering LUT pass.
+pub const ATMOSPHERE_MULTISCATTERING_LUT: &str = atmosphere_shader!("common", "luts"; "multiscattering_lut");
+/// The atmosphere's sky irradiance LUT pass.
+pub const ATMOSPHERE_IRRADIANCE_LUT: &str = atmosphere_shader!("common", "luts"; "irradiance_lut");
+/// The atmosphere's sky-view LUT pass.
+pub const ATMOSPHERE_SKY_VIEW_LUT: &str = atmosphere_shader!("common", "luts", "view"; "sky_view_lut");
+/// The atmosphere's sky pass.
+pub const ATMOSPHERE_SKY: &str = atmosphere_shader!("common", "luts", "view"; "sky");
+
 /// The classic (fixed-function) lighting pass.
 pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
 
@@ -26,16 +50,44 @@ pub const ALL: &[(&str, &str)] = &[
     ("sky_gradient", SKY_GRADIENT),
     ("tonemap", TONEMAP),
     ("classic_lighting", CLASSIC_LIGHTING),
+    ("atmosphere/transmittance_lut", ATMOSPHERE_TRANSMITTANCE_LUT),
+    ("atmosphere/multiscattering_lut", ATMOSPHERE_MULTISCATTERING_LUT),
+    ("atmosphere/irradiance_lut", ATMOSPHERE_IRRADIANCE_LUT),
+    ("atmosphere/sky_view_lut", ATMOSPHERE_SKY_VIEW_LUT),
+    ("atmosphere/sky", ATMOSPHERE_SKY),
 ];
 
 /// The include files on their own (validated as modules too, so errors point at the right file).
-pub const INCLUDES: &[(&str, &str)] = &[("common/fullscreen", FULLSCREEN)];
+/// Each atmosphere include comes with the ones it needs before it.
+pub const INCLUDES: &[(&str, &str)] = &[
+    ("common/fullscreen", FULLSCREEN),
+    ("atmosphere/common", include_str!("shaders/atmosphere/common.wgsl")),
+    (
+        "atmosphere/luts",
+        concat!(
+            include_str!("shaders/atmosphere/common.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/luts.wgsl")
+        ),
+    ),
+    (
+        "atmosphere/view",
+        concat!(
+            include_str!("shaders/atmosphere/common.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/luts.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/view.wgsl")
+        ),
+    ),
+];
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::gpu_types::{
-        ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, GradientSkyUniforms, TonemapUniforms,
+        AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, ClassicFrameUniforms,
+        ClassicLightUniform, ClassicMaterialUniform, DensityProfileUniform, GradientSkyUniforms, TonemapUniforms,
     };
 
     fn validate(name: &str, source: &str) -> naga::Module {
@@ -144,6 +196,53 @@ mod tests {
                 front,
                 back,
                 lights
+            ]
+        );
+        let atmosphere = validate("atmosphere/sky", ATMOSPHERE_SKY);
+        assert_layout!(
+            atmosphere,
+            "DensityProfile",
+            DensityProfileUniform,
+            [layer0, layer1, width]
+        );
+        assert_layout!(
+            atmosphere,
+            "AtmosphereParams",
+            AtmosphereParamsUniforms,
+            [
+                radii,
+                lut,
+                rayleigh_scattering,
+                mie_scattering,
+                mie_extinction,
+                absorption,
+                ground_albedo,
+                rayleigh_density,
+                mie_density,
+                absorber_density
+            ]
+        );
+        assert_layout!(
+            atmosphere,
+            "AtmosphereSun",
+            AtmosphereSunUniform,
+            [direction, irradiance]
+        );
+        assert_layout!(
+            atmosphere,
+            "AtmosphereView",
+            AtmosphereViewUniforms,
+            [
+                view_to_planet,
+                camera,
+                camera_shape,
+                center,
+                local_up,
+                to_srgb0,
+                to_srgb1,
+                to_srgb2,
+                sun_count,
+                suns
             ]
         );
     }

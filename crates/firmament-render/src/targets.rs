@@ -1,7 +1,10 @@
 //! The HDR colour and depth textures a frame is drawn into before tone mapping.
 
-/// Format of the HDR colour target: linear radiance, half float.
+/// Format of the HDR colour target: linear radiance, half float (renderable everywhere, unlike
+/// Rgba32Float on GL). Passes clamp to [`HDR_MAX`]: a sun disc (~1.6·10⁹ cd/m²) does not fit.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The largest finite value of [`HDR_FORMAT`] (half float).
+pub const HDR_MAX: f32 = 65504.0;
 /// Format of the depth target. firmament uses reversed-Z: clear to 0, near is 1, test `Greater`.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// The depth buffer's clear value under reversed-Z: the far plane (infinity).

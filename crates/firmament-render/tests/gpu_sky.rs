@@ -3,7 +3,7 @@
 
 mod support;
 
-use std::sync::{Mutex, MutexGuard, OnceLock};
+use support::{Gpu, gpu};
 
 use firmament_core::color::{LinearRgb, linear_to_srgb};
 use firmament_core::display::{DisplaySettings, Exposure, ToneCurve};
@@ -11,29 +11,11 @@ use firmament_core::frame::Sky;
 use firmament_core::gradient_sky::{Blend, DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
 use firmament_core::sun::SunDisc;
 use firmament_core::{Camera, Frame, TimeOfDay};
-use firmament_render::headless::{HeadlessRenderer, Image};
+use firmament_render::FrameTargets;
+use firmament_render::headless::Image;
 use firmament_render::passes::GradientSkyPass;
 use firmament_render::readback::read_texture;
-use firmament_render::{Backend, FrameTargets, GpuContext};
 use glam::{DVec2, DVec3};
-
-struct Gpu {
-    ctx: GpuContext,
-    renderer: HeadlessRenderer,
-}
-
-/// One context for the whole test binary; tests take turns (software rasterizers fight).
-fn gpu() -> MutexGuard<'static, Gpu> {
-    static GPU: OnceLock<Mutex<Gpu>> = OnceLock::new();
-    GPU.get_or_init(|| {
-        let ctx = GpuContext::headless(Backend::Auto)
-            .unwrap_or_else(|e| panic!("GPU tests need an adapter and found none: {e}"));
-        let renderer = HeadlessRenderer::new(&ctx);
-        Mutex::new(Gpu { ctx, renderer })
-    })
-    .lock()
-    .unwrap_or_else(|poisoned| poisoned.into_inner())
-}
 
 fn rgb(r: f64, g: f64, b: f64) -> LinearRgb {
     LinearRgb::new(r, g, b)
@@ -98,7 +80,8 @@ fn max_hdr_error(image: &Image<f32>, frame: &Frame) -> (f64, (u32, u32)) {
         for x in 0..image.width {
             let reference = frame
                 .sky
-                .radiance(pixel_direction(&frame.camera, x, y, image.width, image.height));
+                .gradient_radiance(pixel_direction(&frame.camera, x, y, image.width, image.height))
+                .expect("a gradient sky");
             let err =
                 hdr_pixel(image, x, y).max_abs_diff(reference) / reference.r.max(reference.g).max(reference.b).max(1.0);
             if err > worst.0 {
@@ -239,7 +222,10 @@ fn odd_sizes_read_back_correctly_through_every_tone_curve() {
         let mut worst = 0i32;
         for y in (0..h).step_by(5) {
             for x in (0..w).step_by(7) {
-                let radiance = frame.sky.radiance(pixel_direction(&camera, x, y, w, h));
+                let radiance = frame
+                    .sky
+                    .gradient_radiance(pixel_direction(&camera, x, y, w, h))
+                    .expect("a gradient sky");
                 let display = display.display_linear(radiance);
                 let expected = display.to_array().map(|c| (linear_to_srgb(c) * 255.0).round() as i32);
                 let got = image.pixel(x, y).expect("inside");

@@ -49,7 +49,8 @@ pub(crate) fn layer_file(text: &str, origin: &str, preset_override: Option<&str>
 
 /// Applies one `key.path=value` override. The value is read as TOML (`3`, `true`, `[1, 2, 3]`,
 /// `"text"`); anything that is not valid TOML is taken as a bare string (`tone_curve=aces_fitted`).
-/// Array elements are addressed by index: `sky.gradient.keyframes.0.zenith=#ff0000`.
+/// Array elements are addressed by index: `sky.gradient.keyframes.0.zenith=#ff0000`; the index one
+/// past the end appends a new table to set keys in (`suns.1.azimuth=90` on a list of one sun).
 pub(crate) fn apply_override(table: &mut toml::Table, item: &str) -> Result<(), SceneError> {
     let bad = |rule: &str| SceneError::BadOverride {
         item: item.to_owned(),
@@ -79,7 +80,8 @@ fn parse_value(raw: &str) -> toml::Value {
         .unwrap_or_else(|| toml::Value::String(raw.to_owned()))
 }
 
-/// Sets `keys` under `node` to `value`, creating missing tables; numeric keys index arrays.
+/// Sets `keys` under `node` to `value`, creating missing tables; numeric keys index arrays (one
+/// past the end appends a table when there are keys left to set in it).
 fn assign(node: &mut toml::Value, keys: &[&str], value: toml::Value) -> Result<(), String> {
     let Some((key, rest)) = keys.split_first() else {
         *node = value;
@@ -93,10 +95,14 @@ fn assign(node: &mut toml::Value, keys: &[&str], value: toml::Value) -> Result<(
             let len = items.len();
             let index: usize = key
                 .parse()
-                .map_err(|_| format!("`{key}` must be an array index (0 to {})", len.saturating_sub(1)))?;
-            items
-                .get_mut(index)
-                .ok_or_else(|| format!("index {index} is past the end of an array of {len}"))?
+                .map_err(|_| format!("`{key}` must be an array index (0 to {len})"))?;
+            if index == len && !rest.is_empty() {
+                // One past the end, with keys to set inside: append a new table for them.
+                items.push(toml::Value::Table(toml::Table::new()));
+            }
+            items.get_mut(index).ok_or_else(|| {
+                format!("index {index} is past the end of an array of {len} (index {len} appends a table)")
+            })?
         }
         other => return Err(format!("cannot set `{key}` inside a {}", other.type_str())),
     };

@@ -6,28 +6,41 @@
 //! 3. the scene file's own keys,
 //! 4. `key.path=value` overrides.
 //!
-//! Tables merge key by key; any other value (arrays included) replaces what was there. The result
-//! is parsed strictly — unknown keys are errors with a "did you mean" — and every value is checked
-//! against its rule. Errors name the key path, the value and the rule.
+//! Tables merge key by key; any other value (arrays included) replaces what was there: a layer's
+//! `[[suns]]` (or `[[sky.gradient.keyframes]]`) list replaces the whole list below it, so a scene
+//! file that lists suns lists all of them. `--set` reaches into arrays by index
+//! (`suns.0.elevation=3`), and an index one past the end appends a new table (`suns.1.azimuth=90`
+//! then `suns.1.elevation=5` adds a second sun). The result is parsed strictly — unknown keys
+//! are errors with a "did you mean" — and every value is checked against its rule. Errors name
+//! the key path, the value and the rule.
 //!
 //! Scene files speak human units: angles in **degrees**, times as `"HH:MM"`, lengths in metres.
 //! Colours are `"#rrggbb"` (sRGB-encoded, as colour pickers give them) or `[r, g, b]` (linear).
+//!
+//! Two sky models: `sky.model = "gradient"` (the keyframed gradient, with `[time]` and `[sun]`)
+//! and `"atmosphere"` (a planet from `[planet]` with the medium of `[atmosphere]`, lit by
+//! `[[suns]]`; the world frame is East-North-Up at `planet.latitude`, `planet.longitude` on the
+//! surface). `[planet]`, `[atmosphere]` and `[[suns]]` are checked in every scene but used only by
+//! the atmosphere.
 
+mod atmosphere;
 mod color;
 mod error;
 mod layers;
 mod model;
 mod presets;
+mod spectrum;
 mod to_frame;
 mod validate;
 
 pub use color::SceneColor;
 pub use error::SceneError;
 pub use model::{
-    CameraSection, DisplaySection, GradientSection, KeyframeSection, RenderSection, Scene, SkyModelName, SkySection,
-    SunSection, TimeSection,
+    AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection, MiePhaseName,
+    PlanetSection, RenderSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
 };
 pub use presets::{PRESETS, Preset};
+pub use spectrum::SceneSpectrum;
 
 /// Largest image side the scene format accepts, pixels. The GPU's own limit may be lower; the
 /// renderer checks that one.

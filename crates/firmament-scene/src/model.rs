@@ -1,7 +1,10 @@
 //! The scene file's data model: plain serde structs, parsed strictly.
 
+mod atmosphere;
+
 use serde::Deserialize;
 
+pub use self::atmosphere::{AtmosphereSection, Body, MiePhaseName, PlanetSection, SunEntry};
 use crate::color::SceneColor;
 use crate::error::{SceneError, did_you_mean};
 
@@ -24,6 +27,15 @@ pub struct Scene {
     pub display: DisplaySection,
     /// The sky model.
     pub sky: SkySection,
+    /// The planet under the atmosphere (used by `sky.model = "atmosphere"`).
+    pub planet: PlanetSection,
+    /// Overrides of the body's atmosphere (used by `sky.model = "atmosphere"`).
+    #[serde(default)]
+    pub atmosphere: AtmosphereSection,
+    /// The suns lighting the atmosphere, 0 to 8 (used by `sky.model = "atmosphere"`). Like every
+    /// array, a layer's list replaces the one below it as a whole.
+    #[serde(default)]
+    pub suns: Vec<SunEntry>,
 }
 
 /// `[render]`: the image.
@@ -40,7 +52,8 @@ pub struct RenderSection {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
-    /// Eye position `[east, north, up]`, metres; `up` must be >= 0 (above the ground).
+    /// Eye position `[east, north, up]`, metres. Over the gradient sky `up` must be >= 0; over an
+    /// atmosphere the eye must be at a geodetic altitude >= 0 above the planet's (curved) surface.
     pub position: [f64; 3],
     /// Direction of view from north, clockwise towards east, degrees.
     pub heading: f64,
@@ -57,7 +70,7 @@ pub struct CameraSection {
     pub far: Option<f64>,
 }
 
-/// `[time]`.
+/// `[time]` (drives the gradient sky; the atmosphere's suns stand where `[[suns]]` puts them).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSection {
@@ -65,7 +78,8 @@ pub struct TimeSection {
     pub time_of_day: String,
 }
 
-/// `[sun]`: its path over the day and how its disc and glow look.
+/// `[sun]`: the gradient sky's sun, its path over the day and how its disc and glow look (the
+/// atmosphere's suns are `[[suns]]`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
@@ -104,6 +118,8 @@ pub struct DisplaySection {
 pub enum SkyModelName {
     /// The keyframed gradient sky (`[sky.gradient]`).
     Gradient,
+    /// The physically based atmosphere of `[planet]` and `[atmosphere]`, lit by `[[suns]]`.
+    Atmosphere,
 }
 
 /// `[sky]`.

@@ -41,6 +41,36 @@ pub const PRESETS: &[Preset] = &[
         summary: "midnight in the seed's night colours",
         toml: include_str!("presets/night.toml"),
     },
+    Preset {
+        name: "earth-noon",
+        summary: "atmosphere: Earth at noon, 45° N, looking south at the sky and the high Sun",
+        toml: include_str!("presets/earth-noon.toml"),
+    },
+    Preset {
+        name: "earth-sunset",
+        summary: "atmosphere: Earth, looking west at the Sun 2° above the horizon",
+        toml: include_str!("presets/earth-sunset.toml"),
+    },
+    Preset {
+        name: "earth-orbit",
+        summary: "atmosphere: Earth from 400 km up, looking at the limb",
+        toml: include_str!("presets/earth-orbit.toml"),
+    },
+    Preset {
+        name: "mars-noon",
+        summary: "atmosphere: Mars at noon on the equator, the butterscotch sky and the dust's glow",
+        toml: include_str!("presets/mars-noon.toml"),
+    },
+    Preset {
+        name: "binary-sunset",
+        summary: "atmosphere: two suns, 5800 K and 3600 K, setting together on an Earth-like world",
+        toml: include_str!("presets/binary-sunset.toml"),
+    },
+    Preset {
+        name: "saturn-orbit",
+        summary: "atmosphere: the oblate globe of Saturn from 180 000 km, lit at a gibbous phase",
+        toml: include_str!("presets/saturn-orbit.toml"),
+    },
 ];
 
 /// How many presets may build on each other before we call it a loop.

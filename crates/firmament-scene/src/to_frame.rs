@@ -2,7 +2,7 @@
 
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
-use firmament_core::frame::Sky;
+use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::gradient_sky::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
 use firmament_core::sun::{SolarPath, SunDisc};
 use firmament_core::{Camera, Frame, TimeOfDay};
@@ -93,7 +93,22 @@ impl Scene {
         }
     }
 
-    /// Everything needed to draw the scene at `time` (its own time when `None`).
+    /// The planet (posed so that the world frame is East-North-Up at `planet.latitude`,
+    /// `planet.longitude`), its atmosphere and the suns of `[[suns]]`: the body's values with the
+    /// scene's overrides.
+    pub fn atmosphere_sky(&self) -> Result<AtmosphereSky, SceneError> {
+        crate::atmosphere::sky(self)
+    }
+
+    /// The camera's geodetic altitude above the surface of the scene's planet, metres (negative
+    /// inside it); meaningful for atmosphere scenes.
+    pub fn camera_altitude(&self) -> Result<f64, SceneError> {
+        let planet = self.atmosphere_sky()?.atmosphere.planet;
+        Ok(planet.altitude(planet.to_planet_frame(DVec3::from_array(self.camera.position))))
+    }
+
+    /// Everything needed to draw the scene at `time` (its own time when `None`; the atmosphere's
+    /// suns do not move with it).
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
         let time = match time {
             Some(t) => t,
@@ -117,6 +132,7 @@ impl Scene {
                     sun,
                 })
             }
+            SkyModelName::Atmosphere => Sky::Atmosphere(self.atmosphere_sky()?),
         };
         Ok(Frame {
             camera: self.camera(),

@@ -4,10 +4,10 @@ use firmament_core::TimeOfDay;
 
 use crate::MAX_IMAGE_SIDE;
 use crate::error::SceneError;
-use crate::model::Scene;
+use crate::model::{Scene, SkyModelName};
 
 /// Checks `ok`, or fails with `key = value: rule`.
-fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
+pub(crate) fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
     if ok {
         Ok(())
     } else {
@@ -16,7 +16,7 @@ fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Resu
 }
 
 /// Checks that `value` is finite and inside `[lo, hi]`.
-fn in_range(key: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), SceneError> {
+pub(crate) fn in_range(key: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), SceneError> {
     check(
         value.is_finite() && (lo..=hi).contains(&value),
         key,
@@ -26,7 +26,7 @@ fn in_range(key: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), S
 }
 
 /// Checks that `value` is finite and > 0.
-fn positive(key: &str, value: f64, unit: &str) -> Result<(), SceneError> {
+pub(crate) fn positive(key: &str, value: f64, unit: &str) -> Result<(), SceneError> {
     check(
         value.is_finite() && value > 0.0,
         key,
@@ -36,7 +36,7 @@ fn positive(key: &str, value: f64, unit: &str) -> Result<(), SceneError> {
 }
 
 /// Checks that `value` is finite and >= 0.
-fn non_negative(key: &str, value: f64) -> Result<(), SceneError> {
+pub(crate) fn non_negative(key: &str, value: f64) -> Result<(), SceneError> {
     check(
         value.is_finite() && value >= 0.0,
         key,
@@ -75,8 +75,9 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         format!("[{e}, {n}, {u}]"),
         "every component must be a finite number of metres",
     )?;
+    // Over an atmosphere the ground is curved: the altitude rule below replaces this one.
     check(
-        u >= 0.0,
+        u >= 0.0 || scene.sky.model != SkyModelName::Gradient,
         "camera.position",
         format!("[{e}, {n}, {u}]"),
         "the camera must be above the ground (up >= 0)",
@@ -180,6 +181,11 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
             ));
         }
         seen.push((t, i));
+    }
+
+    let sky = crate::atmosphere::sky(scene)?;
+    if scene.sky.model == SkyModelName::Atmosphere {
+        crate::atmosphere::camera_above_surface(scene, &sky.atmosphere.planet)?;
     }
     Ok(())
 }

@@ -112,8 +112,11 @@ fn wrong_types_and_syntax_name_the_place() {
         "[sky.gradient]\nkeyframes = [{ time = \"01:00\", zenith = \"blue\" }]\n",
     ));
     assert!(msg.contains("keyframes[0].zenith") && msg.contains("#rrggbb"), "{msg}");
-    let msg = message(from_text("[sky]\nmodel = \"atmosphere\"\n"));
-    assert!(msg.starts_with("sky.model: ") && msg.contains("gradient"), "{msg}");
+    let msg = message(from_text("[sky]\nmodel = \"atmosfear\"\n"));
+    assert!(
+        msg.starts_with("sky.model: ") && msg.contains("gradient") && msg.contains("atmosphere"),
+        "{msg}"
+    );
     let msg = message(from_text("preset = 3\n"));
     assert!(msg.starts_with("preset: "), "{msg}");
 }
@@ -220,7 +223,9 @@ fn scene_converts_to_the_core_frame() {
     assert!((frame.camera.forward() - glam::DVec3::X).length() < 1e-12);
     assert!((frame.camera.aspect - 1280.0 / 720.0).abs() < 1e-12);
     // At 12:00 the colours are exactly the "day" keyframe's.
-    let firmament_core::frame::Sky::Gradient(sky) = frame.sky;
+    let firmament_core::frame::Sky::Gradient(sky) = frame.sky else {
+        panic!("the default scene has a gradient sky")
+    };
     let day = scene
         .sky
         .gradient

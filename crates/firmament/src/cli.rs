@@ -23,6 +23,7 @@ Examples:
   firmament render scene.toml --time 06:30 -o morning.exr
   firmament render --set camera.fov_y=90 --set display.tone_curve=aces_fitted
   firmament check scene.toml
+  firmament check --preset earth-noon --set planet.radius=6360000
   firmament presets
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
@@ -32,7 +33,7 @@ Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
 pub(crate) enum Command {
     /// Render a scene to a PNG or EXR file.
     Render(RenderArgs),
-    /// Validate a scene file and report the first problem.
+    /// Validate a scene file or preset and report the first problem.
     Check(CheckArgs),
     /// List the built-in presets.
     Presets,
@@ -76,8 +77,9 @@ pub(crate) struct RenderArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct CheckArgs {
-    /// The scene file to validate.
-    pub(crate) scene: PathBuf,
+    /// The scene file to validate. Without one, the preset (or the built-in default scene) is
+    /// checked.
+    pub(crate) scene: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) scene_args: SceneArgs,
 }

@@ -293,3 +293,68 @@ fn presets_match_their_golden_images() {
         );
     }
 }
+
+#[test]
+fn check_accepts_the_atmosphere_presets_and_presets_lists_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(dir.path(), &["presets"]);
+    assert!(out.status.success());
+    let listing = String::from_utf8_lossy(&out.stdout).into_owned();
+    for name in [
+        "earth-noon",
+        "earth-sunset",
+        "earth-orbit",
+        "mars-noon",
+        "binary-sunset",
+        "saturn-orbit",
+    ] {
+        assert!(
+            listing.lines().any(|l| l.starts_with(name)),
+            "{name} missing from:\n{listing}"
+        );
+        let out = firmament(dir.path(), &["check", "--preset", name]);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(
+            stdout.starts_with(&format!("preset `{name}`: ok (preset {name}, ")) && stdout.contains("atmosphere of "),
+            "{stdout}"
+        );
+    }
+    let out = firmament(
+        dir.path(),
+        &["check", "--preset", "earth-noon", "--set", "planet.radius=6360000"],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(files_in(dir.path()).is_empty(), "check wrote files");
+}
+
+#[test]
+fn check_refuses_a_camera_inside_the_planet_and_says_where_it_is() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(
+        dir.path().join("underground.toml"),
+        "preset = \"earth-noon\"\n[camera]\nposition = [0.0, 0.0, -100.0]\n",
+    )
+    .expect("write");
+    let out = firmament(dir.path(), &["check", "underground.toml"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("underground.toml is not a valid scene")
+            && err.contains("camera.position = [0, 0, -100]: the camera is inside the planet (earth)")
+            && err.contains("its altitude is -100 m")
+            && err.contains("the nearest point of the surface is at [0, 0, 0]"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    let out = firmament(
+        dir.path(),
+        &["check", "--preset", "mars-noon", "--set", "atmosphere.mie_g=1"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("atmosphere.mie_g = 1: must lie strictly between -1 and 1"),
+        "{}",
+        stderr(&out)
+    );
+}

@@ -121,6 +121,32 @@ impl Planet {
         }
     }
 
+    /// The planet-frame point of the surface whose outward normal has geodetic `latitude` and
+    /// `longitude` (radians): `x_i = a_i² n_i / |a n|`, exact for any ellipsoid.
+    pub fn surface_point(&self, latitude: f64, longitude: f64) -> DVec3 {
+        let n = geodetic_normal(latitude, longitude);
+        let a = self.radii;
+        a * a * n / (a * n).length()
+    }
+
+    /// This planet, posed so that the world frame is the local East-North-Up frame of the surface
+    /// point at geodetic `latitude` and `longitude` (radians): the world origin lies on the
+    /// surface, +Z along its normal, +Y towards the north pole (+X at a pole, where north is
+    /// undefined, is the planet frame's +Y direction turned into the tangent plane).
+    pub fn posed_at(self, latitude: f64, longitude: f64) -> Self {
+        let up = geodetic_normal(latitude, longitude);
+        let east = DVec3::Z.cross(up).try_normalize().unwrap_or(DVec3::Y);
+        let north = up.cross(east);
+        // Rows of the planet → world rotation are the ENU axes in planet coordinates.
+        let to_world = glam::DMat3::from_cols(east, north, up).transpose();
+        let orientation = DQuat::from_mat3(&to_world).normalize();
+        Self {
+            center: -(orientation * self.surface_point(latitude, longitude)),
+            orientation,
+            ..self
+        }
+    }
+
     /// A world-space point in the planet frame.
     pub fn to_planet_frame(&self, world: DVec3) -> DVec3 {
         self.orientation.normalize().inverse() * (world - self.center)
@@ -214,6 +240,15 @@ impl Planet {
     }
 }
 
+/// The unit outward normal at geodetic `latitude` and `longitude` (radians), planet frame.
+pub fn geodetic_normal(latitude: f64, longitude: f64) -> DVec3 {
+    DVec3::new(
+        latitude.cos() * longitude.cos(),
+        latitude.cos() * longitude.sin(),
+        latitude.sin(),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,16 +258,24 @@ mod tests {
     }
 
     fn on_normal(planet: &Planet, latitude: f64, longitude: f64, h: f64) -> DVec3 {
-        // Geodetic latitude: the normal has elevation `latitude` above the equatorial plane.
-        let n = DVec3::new(
-            latitude.cos() * longitude.cos(),
-            latitude.cos() * longitude.sin(),
-            latitude.sin(),
-        );
-        // The surface point with normal n: x_i = a_i² n_i / |a n|.
-        let a = planet.radii;
-        let foot = a * a * n / (a * n).length();
-        foot + n * h
+        planet.surface_point(latitude, longitude) + geodetic_normal(latitude, longitude) * h
+    }
+
+    #[test]
+    fn posed_planet_puts_the_world_origin_on_the_surface_with_enu_axes() {
+        for (lat, lon) in [(45.0_f64, 10.0_f64), (0.0, -120.0), (-89.0, 33.0), (90.0, 0.0)] {
+            let planet = saturn_like().posed_at(lat.to_radians(), lon.to_radians());
+            let origin = planet.to_planet_frame(DVec3::ZERO);
+            assert!(planet.altitude(origin).abs() < 1e-6, "{lat} {lon}");
+            let up = planet.direction_to_planet_frame(DVec3::Z);
+            assert!((up - planet.up(origin)).length() < 1e-9, "{lat} {lon}: {up}");
+            let above = planet.to_planet_frame(DVec3::new(0.0, 0.0, 1234.5));
+            assert!((planet.altitude(above) - 1234.5).abs() < 1e-6);
+            if lat.abs() < 90.0 {
+                // North (+Y) points towards the pole: its planet-frame z component is positive.
+                assert!(planet.direction_to_planet_frame(DVec3::Y).z > 0.0);
+            }
+        }
     }
 
     #[test]

@@ -115,17 +115,111 @@ pub fn mars_sun(direction: DVec3) -> Sun {
     }
 }
 
+/// Saturn's mean distance from the Sun, AU (NASA Saturn Fact Sheet, Williams 2024:
+/// 1433.53·10⁶ km).
+pub const SATURN_SEMI_MAJOR_AXIS_AU: f64 = 9.5826;
+
+/// Rayleigh scattering cross-section of molecular hydrogen at `nm` nanometres, m²: Dalgarno &
+/// Williams, "Rayleigh Scattering by Molecular Hydrogen", ApJ 136, 690 (1962),
+/// `σ = 8.14·10⁻¹³/λ⁴ + 1.28·10⁻⁶/λ⁶ + 1.61/λ⁸` cm² with λ in ångströms.
+pub fn h2_rayleigh_cross_section(nm: f64) -> f64 {
+    let angstrom = nm * 10.0;
+    let l2 = angstrom * angstrom;
+    let cm2 = 8.14e-13 / (l2 * l2) + 1.28e-6 / (l2 * l2 * l2) + 1.61 / (l2 * l2 * l2 * l2);
+    cm2 * 1e-4
+}
+
+/// Saturn above its visible cloud deck, the surface being the 1-bar level:
+/// - shape: equatorial radius 60268 km, polar 54364 km at 1 bar, flattening 0.098 (Archinal et
+///   al., "Report of the IAU Working Group on Cartographic Coordinates and Rotational Elements:
+///   2015", Celest. Mech. Dyn. Astr. 130, 2018; NASA Saturn Fact Sheet);
+/// - H₂ Rayleigh scattering: the number density at 1 bar and 134 K (NASA Saturn Fact Sheet),
+///   `n = p/(k_B·T) = 5.41·10²⁵ m⁻³`, times the H₂ mole fraction 0.963 (same sheet) and
+///   [`h2_rayleigh_cross_section`] — (2.05, 4.88, 12.28)·10⁻⁶ m⁻¹ at 680/550/440 nm; helium
+///   (3.25 %, polarisability a quarter of H₂'s) would add under 0.3 % and is left out; scale
+///   height 59.5 km (NASA Saturn Fact Sheet);
+/// - no aerosols or absorbing gas: the upper-tropospheric haze and methane bands are left out;
+/// - top of the atmosphere 600 km above the 1-bar level (about ten scale heights);
+/// - ground albedo (0.55, 0.45, 0.30) at 680/550/440 nm: a stand-in for the ammonia cloud deck,
+///   near Saturn's visual geometric albedo 0.47 (NASA Saturn Fact Sheet) and reddened towards
+///   the blue as the globe's spectrum is (Mallama & Pavlov, "The Geometric Magnitude and Albedo
+///   for the Globe of Saturn", arXiv:1701.00256, 2017, from Karkoschka, Icarus 133, 1998);
+///   approximate, not a measured Lambert albedo.
+pub fn saturn() -> Atmosphere {
+    // Boltzmann constant, J/K (SI 2019, exact).
+    const BOLTZMANN: f64 = 1.380_649e-23;
+    let wavelengths = Wavelengths::default();
+    let h2_number_density = 0.963 * 1.0e5 / (BOLTZMANN * 134.0);
+    let rayleigh = Spectrum::from_array(
+        wavelengths
+            .0
+            .map(|nm| h2_number_density * h2_rayleigh_cross_section(nm)),
+    );
+    Atmosphere {
+        planet: Planet::spheroid(60_268_000.0, 54_364_000.0, 600_000.0),
+        medium: Medium {
+            rayleigh: Rayleigh {
+                scattering: rayleigh,
+                density: DensityProfile::single(DensityLayer::exponential(59_500.0)),
+            },
+            mie: Mie {
+                scattering: Spectrum::ZERO,
+                extinction: Spectrum::ZERO,
+                density: DensityProfile::single(DensityLayer::EMPTY),
+                phase: MiePhase::HenyeyGreenstein { g: 0.0 },
+            },
+            absorber: Absorber {
+                absorption: Spectrum::ZERO,
+                density: DensityProfile::single(DensityLayer::EMPTY),
+            },
+            ground_albedo: Spectrum::new(0.55, 0.45, 0.30),
+        },
+        wavelengths,
+    }
+}
+
+/// The Sun seen from Saturn: Earth's solar irradiance divided by Saturn's mean distance squared
+/// (about 1/91.8), and the angular radius divided by that distance.
+pub fn saturn_sun(direction: DVec3) -> Sun {
+    let earth = earth_sun(direction);
+    Sun {
+        irradiance: earth.irradiance / (SATURN_SEMI_MAJOR_AXIS_AU * SATURN_SEMI_MAJOR_AXIS_AU),
+        angular_radius: earth.angular_radius / SATURN_SEMI_MAJOR_AXIS_AU,
+        ..earth
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn presets_are_valid() {
-        for atmosphere in [earth(), mars()] {
+        for atmosphere in [earth(), mars(), saturn()] {
             atmosphere.validate().unwrap();
         }
         earth_sun(DVec3::Z).validate().unwrap();
         mars_sun(DVec3::Z).validate().unwrap();
+        saturn_sun(DVec3::Z).validate().unwrap();
         assert!((earth().planet.flattening() - 1.0 / 298.257_223_563).abs() < 1e-12);
+    }
+
+    #[test]
+    fn saturn_matches_its_sources() {
+        let saturn = saturn();
+        // Flattening 0.098 (NASA Saturn Fact Sheet: 0.09796).
+        assert!((saturn.planet.flattening() - 0.09796).abs() < 1e-4);
+        // H₂ cross-section at 550 nm from Dalgarno & Williams, worked by hand: 9.38e-32 m².
+        assert!((h2_rayleigh_cross_section(550.0) / 9.377e-32 - 1.0).abs() < 1e-3);
+        // Rayleigh coefficients as documented, and blue-heavy like any Rayleigh atmosphere.
+        let rayleigh = saturn.medium.rayleigh.scattering;
+        for (got, want) in rayleigh.to_array().into_iter().zip([2.051e-6, 4.881e-6, 12.28e-6]) {
+            assert!((got / want - 1.0).abs() < 5e-3, "{rayleigh}");
+        }
+        // Vertical optical depth above 1 bar at 550 nm: σ·H ≈ 0.290.
+        assert!((rayleigh.y * 59_500.0 - 0.290).abs() < 2e-3);
+        // The Sun at 9.58 AU: irradiance 1/91.8 of Earth's.
+        let ratio = earth_sun(DVec3::Z).irradiance.y / saturn_sun(DVec3::Z).irradiance.y;
+        assert!((ratio - 91.83).abs() < 0.01, "{ratio}");
     }
 }

@@ -2,10 +2,12 @@
 //! `prepare` and encodes commands in `record` (into its own render pass) or `draw` (into one the
 //! caller already began).
 
+pub mod atmosphere;
 pub mod classic_mesh;
 pub mod sky_gradient;
 pub mod tonemap;
 
+pub use atmosphere::AtmospherePass;
 pub use classic_mesh::{ClassicMeshPass, GpuMesh};
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
@@ -39,6 +41,18 @@ pub(crate) fn begin_load_pass<'e>(
         }),
         ..Default::default()
     })
+}
+
+/// Depth state of a sky drawn at the far plane (reversed-Z depth 0): tested `GreaterEqual`
+/// without writes, so it fills exactly the pixels nothing nearer covered.
+pub(crate) fn far_plane_depth_state(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+        stencil: wgpu::StencilState::default(),
+        bias: wgpu::DepthBiasState::default(),
+    }
 }
 
 /// A uniform buffer of `T`'s size, labelled for its owner.

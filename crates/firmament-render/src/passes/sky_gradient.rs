@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -33,13 +33,7 @@ impl GradientSkyPass {
             source: shaders::SKY_GRADIENT,
             entries: &[uniform_entry(0)],
             color,
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: depth,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState::default(),
-            }),
+            depth_stencil: Some(far_plane_depth_state(depth)),
             vertex_buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
         }

@@ -1,6 +1,10 @@
 //! Helpers shared by the GPU test binaries.
 
 /// Clears `targets` to `color` and reversed-Z `depth` in a pass of its own.
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them clear targets"
+)]
 pub(crate) fn clear_targets(
     encoder: &mut wgpu::CommandEncoder,
     targets: &firmament_render::FrameTargets,
@@ -28,4 +32,29 @@ pub(crate) fn clear_targets(
         }),
         ..Default::default()
     });
+}
+
+/// A context and headless renderer shared by one test binary.
+#[allow(dead_code, reason = "each test binary compiles this module; not all of them render frames")]
+pub(crate) struct Gpu {
+    pub(crate) ctx: firmament_render::GpuContext,
+    pub(crate) renderer: firmament_render::headless::HeadlessRenderer,
+}
+
+/// One context for the whole test binary; tests take turns (software rasterizers fight).
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them render frames"
+)]
+pub(crate) fn gpu() -> std::sync::MutexGuard<'static, Gpu> {
+    use std::sync::{Mutex, OnceLock};
+    static GPU: OnceLock<Mutex<Gpu>> = OnceLock::new();
+    GPU.get_or_init(|| {
+        let ctx = firmament_render::GpuContext::headless(firmament_render::Backend::Auto)
+            .unwrap_or_else(|e| panic!("GPU tests need an adapter and found none: {e}"));
+        let renderer = firmament_render::headless::HeadlessRenderer::new(&ctx);
+        Mutex::new(Gpu { ctx, renderer })
+    })
+    .lock()
+    .unwrap_or_else(|poisoned| poisoned.into_inner())
 }

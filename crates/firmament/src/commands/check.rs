@@ -1,23 +1,44 @@
-//! `firmament check SCENE`.
+//! `firmament check [SCENE]`.
 
 use anyhow::{Context, Result};
+use firmament_scene::{Scene, SkyModelName};
 
 use crate::cli::CheckArgs;
 
-/// Validates a scene file and prints a one-line summary of what it describes.
+/// Validates a scene file (or a preset, or the default scene) and prints a one-line summary of
+/// what it describes.
 pub(crate) fn run(args: &CheckArgs) -> Result<()> {
-    let scene = super::load_scene(Some(&args.scene), &args.scene_args, Vec::new())
-        .with_context(|| format!("{} is not a valid scene", args.scene.display()))?;
+    let what = match (&args.scene, &args.scene_args.preset) {
+        (Some(path), _) => path.display().to_string(),
+        (None, Some(preset)) => format!("preset `{preset}`"),
+        (None, None) => "the default scene".to_owned(),
+    };
+    let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
+        .with_context(|| format!("{what} is not a valid scene"))?;
     println!(
-        "{}: ok (preset {}, {}x{}, {} at {})",
-        args.scene.display(),
+        "{what}: ok (preset {}, {}x{}, {})",
         scene.preset.as_deref().unwrap_or("default"),
         scene.render.width,
         scene.render.height,
-        match scene.sky.model {
-            firmament_scene::SkyModelName::Gradient => "gradient sky",
-        },
-        scene.time.time_of_day,
+        sky_summary(&scene),
     );
     Ok(())
+}
+
+/// `gradient sky at 17:45`, or `atmosphere of earth, 1 sun, camera at altitude 1.7 m`.
+fn sky_summary(scene: &Scene) -> String {
+    match scene.sky.model {
+        SkyModelName::Gradient => format!("gradient sky at {}", scene.time.time_of_day),
+        SkyModelName::Atmosphere => {
+            let suns = match scene.suns.len() {
+                1 => "1 sun".to_owned(),
+                n => format!("{n} suns"),
+            };
+            let altitude = scene
+                .camera_altitude()
+                .map(|h| format!(", camera at altitude {} m", (h * 10.0).round() / 10.0))
+                .unwrap_or_default();
+            format!("atmosphere of {}, {suns}{altitude}", scene.planet.body.name())
+        }
+    }
 }

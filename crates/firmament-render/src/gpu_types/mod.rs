@@ -13,6 +13,10 @@ use firmament_core::gradient_sky::{Blend, GradientSkyState};
 use firmament_core::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
 
+pub mod atmosphere;
+
+pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
+
 /// `vec4<f32>` of a colour, alpha `w`.
 fn rgbw(c: LinearRgb, w: f64) -> [f32; 4] {
     [c.r as f32, c.g as f32, c.b as f32, w as f32]

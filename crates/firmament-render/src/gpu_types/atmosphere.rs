@@ -1,0 +1,232 @@
+//! The atmosphere's GPU data: the medium (rebuilt LUTs when it changes) and the per-frame view.
+//!
+//! Everything is planet-relative and computed in `f64` before rounding: the camera's altitude
+//! and its ellipsoid terms `|o/a|² − 1` are exact, and a far camera is described by the planet
+//! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
+
+use bytemuck::{Pod, Zeroable};
+use firmament_core::Camera;
+use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
+use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
+use glam::{DMat3, DVec3};
+
+/// How far the camera must be, in top-of-atmosphere radii, before view rays start at their
+/// closest approach to the planet centre instead of at the camera.
+pub const FAR_CAMERA_RADII: f64 = 10.0;
+
+/// The altitude band, as fractions of the atmosphere height, over which the sky blends from the
+/// sky-view LUT (below) to the per-pixel march (above, and anywhere outside the atmosphere).
+pub const LUT_TO_MARCH_BAND: (f64, f64) = (0.9, 1.0);
+
+fn spectrum_w(s: Spectrum, w: f64) -> [f32; 4] {
+    [s.x as f32, s.y as f32, s.z as f32, w as f32]
+}
+
+fn vec3_w(v: DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// Mirrors `DensityProfile` in `atmosphere/common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct DensityProfileUniform {
+    /// Layer 0: exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term.
+    pub layer0: [f32; 4],
+    /// Layer 1, the same terms.
+    pub layer1: [f32; 4],
+    /// x = top of layer 0, metres.
+    pub width: [f32; 4],
+}
+
+impl DensityProfileUniform {
+    fn new(profile: &DensityProfile) -> Self {
+        let terms = |l: &DensityLayer| {
+            [
+                l.exp_term as f32,
+                l.exp_scale as f32,
+                l.linear_term as f32,
+                l.constant_term as f32,
+            ]
+        };
+        Self {
+            layer0: terms(&profile.layers[0]),
+            layer1: terms(&profile.layers[1]),
+            width: [profile.layers[0].width as f32, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// Mirrors `AtmosphereParams` in `atmosphere/common.wgsl`: everything the LUTs depend on.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct AtmosphereParamsUniforms {
+    /// Ellipsoid semi-axes (m); `w` = atmosphere height (m).
+    pub radii: [f32; 4],
+    /// Bottom and top radius of the LUT sphere (m), Mie g, Mie phase (0 CS, 1 HG).
+    pub lut: [f32; 4],
+    /// Rayleigh scattering at density 1, m⁻¹.
+    pub rayleigh_scattering: [f32; 4],
+    /// Mie scattering at density 1, m⁻¹.
+    pub mie_scattering: [f32; 4],
+    /// Mie extinction at density 1, m⁻¹.
+    pub mie_extinction: [f32; 4],
+    /// Absorber (ozone) absorption at density 1, m⁻¹.
+    pub absorption: [f32; 4],
+    /// Ground albedo.
+    pub ground_albedo: [f32; 4],
+    /// Rayleigh density profile.
+    pub rayleigh_density: DensityProfileUniform,
+    /// Mie density profile.
+    pub mie_density: DensityProfileUniform,
+    /// Absorber density profile.
+    pub absorber_density: DensityProfileUniform,
+}
+
+/// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
+/// planet's mean radius `(a·b·c)^⅓` (the radius itself for a sphere).
+pub fn lut_bottom_radius(atmosphere: &Atmosphere) -> f64 {
+    let r = atmosphere.planet.radii;
+    (r.x * r.y * r.z).cbrt()
+}
+
+impl AtmosphereParamsUniforms {
+    /// The medium and shape of `atmosphere`.
+    pub fn new(atmosphere: &Atmosphere) -> Self {
+        let planet = &atmosphere.planet;
+        let medium = &atmosphere.medium;
+        let bottom = lut_bottom_radius(atmosphere);
+        let (g, phase) = match medium.mie.phase {
+            MiePhase::CornetteShanks { g } => (g, 0.0),
+            MiePhase::HenyeyGreenstein { g } => (g, 1.0),
+        };
+        Self {
+            radii: vec3_w(planet.radii, planet.atmosphere_height),
+            lut: [
+                bottom as f32,
+                (bottom + planet.atmosphere_height) as f32,
+                g as f32,
+                phase,
+            ],
+            rayleigh_scattering: spectrum_w(medium.rayleigh.scattering, 0.0),
+            mie_scattering: spectrum_w(medium.mie.scattering, 0.0),
+            mie_extinction: spectrum_w(medium.mie.extinction, 0.0),
+            absorption: spectrum_w(medium.absorber.absorption, 0.0),
+            ground_albedo: spectrum_w(medium.ground_albedo, 0.0),
+            rayleigh_density: DensityProfileUniform::new(&medium.rayleigh.density),
+            mie_density: DensityProfileUniform::new(&medium.mie.density),
+            absorber_density: DensityProfileUniform::new(&medium.absorber.density),
+        }
+    }
+}
+
+/// Mirrors `AtmosphereSun` in `atmosphere/view.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct AtmosphereSunUniform {
+    /// Unit direction to the sun, planet frame; `w` = angular radius, radians.
+    pub direction: [f32; 4],
+    /// Spectral irradiance at the top of the atmosphere, W·m⁻²·nm⁻¹; `w` = limb darkening.
+    pub irradiance: [f32; 4],
+}
+
+/// Mirrors `AtmosphereView` in `atmosphere/view.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct AtmosphereViewUniforms {
+    /// View-space direction → planet frame rotation.
+    pub view_to_planet: [[f32; 4]; 4],
+    /// Camera position in the planet frame (m); `w` = its exact altitude (m).
+    pub camera: [f32; 4],
+    /// `|o/a|² − 1` against the surface and the top; tan of half the horizontal and vertical
+    /// fields of view.
+    pub camera_shape: [f32; 4],
+    /// Planet centre's view-space x, y over its depth; the depth (m); 1 for far-camera rays.
+    pub center: [f32; 4],
+    /// Geodetic up at the camera, planet frame; `w` = LUT (0) to march (1) blend.
+    pub local_up: [f32; 4],
+    /// First column of the spectral → linear sRGB (cd/m²) matrix.
+    pub to_srgb0: [f32; 4],
+    /// Second column.
+    pub to_srgb1: [f32; 4],
+    /// Third column.
+    pub to_srgb2: [f32; 4],
+    /// x = number of suns.
+    pub sun_count: [u32; 4],
+    /// The suns; the first `sun_count` are used.
+    pub suns: [AtmosphereSunUniform; MAX_SUNS],
+}
+
+/// `|o/a|² − 1`, in f64: its sign says inside or outside, and near the surface it is tiny, which
+/// f32 could not compute from a rounded position.
+fn ellipsoid_c(o: DVec3, radii: DVec3) -> f64 {
+    (o / radii).length_squared() - 1.0
+}
+
+fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+impl AtmosphereViewUniforms {
+    /// The view of `sky` by `camera` (whose aspect ratio is the target's).
+    pub fn new(sky: &AtmosphereSky, camera: &Camera) -> Self {
+        let atmosphere = &sky.atmosphere;
+        let planet = &atmosphere.planet;
+        let top_radii = planet.radii + DVec3::splat(planet.atmosphere_height);
+        let o = planet.to_planet_frame(camera.position);
+        let altitude = planet.altitude(o);
+        let up = planet.up(o);
+        let view_to_planet =
+            DMat3::from_quat(planet.orientation.normalize().inverse() * camera.orientation.normalize());
+
+        // The planet centre in view space, exactly: far cameras march from closest approaches.
+        let center_view = camera.orientation.normalize().inverse() * (planet.center - camera.position);
+        let depth = -center_view.z;
+        let far = depth > 0.0 && center_view.length() > FAR_CAMERA_RADII * top_radii.max_element();
+        let center = if far {
+            [
+                (center_view.x / depth) as f32,
+                (center_view.y / depth) as f32,
+                depth as f32,
+                1.0,
+            ]
+        } else {
+            [0.0, 0.0, depth as f32, 0.0]
+        };
+        let (band_low, band_high) = LUT_TO_MARCH_BAND;
+        let height = planet.atmosphere_height;
+        let blend = if far {
+            1.0
+        } else {
+            smoothstep(band_low * height, band_high * height, altitude)
+        };
+
+        let tan_y = (0.5 * camera.fov_y).tan();
+        let to_srgb = atmosphere.spectral_conversion().to_linear_srgb_matrix();
+        let mut suns = [AtmosphereSunUniform::zeroed(); MAX_SUNS];
+        for (slot, sun) in suns.iter_mut().zip(&sky.suns) {
+            let direction = planet.direction_to_planet_frame(sun.direction).normalize_or_zero();
+            *slot = AtmosphereSunUniform {
+                direction: vec3_w(direction, sun.angular_radius),
+                irradiance: spectrum_w(sun.irradiance, sun.limb_darkening),
+            };
+        }
+        Self {
+            view_to_planet: glam::DMat4::from_mat3(view_to_planet).as_mat4().to_cols_array_2d(),
+            camera: vec3_w(o, altitude),
+            camera_shape: [
+                ellipsoid_c(o, planet.radii) as f32,
+                ellipsoid_c(o, top_radii) as f32,
+                (tan_y * camera.aspect) as f32,
+                tan_y as f32,
+            ],
+            center,
+            local_up: vec3_w(up, blend),
+            to_srgb0: vec3_w(to_srgb.x_axis, 0.0),
+            to_srgb1: vec3_w(to_srgb.y_axis, 0.0),
+            to_srgb2: vec3_w(to_srgb.z_axis, 0.0),
+            sun_count: [sky.suns.len().min(MAX_SUNS) as u32, 0, 0, 0],
+            suns,
+        }
+    }
+}

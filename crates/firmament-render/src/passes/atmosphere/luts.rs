@@ -1,0 +1,115 @@
+//! The atmosphere's look-up tables: their sizes, formats and textures.
+//!
+//! | LUT | size | format | axes |
+//! |---|---|---|---|
+//! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
+//! | multiple scattering | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1], h ∈ [0, H] |
+//! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1], h ∈ [0, H] |
+//! | sky view | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
+//!
+//! The sizes are mirrored by constants in `atmosphere/common.wgsl`, `luts.wgsl` and `view.wgsl`.
+
+use firmament_core::frame::MAX_SUNS;
+
+/// Transmittance LUT size (texels): x_mu × x_r.
+pub const TRANSMITTANCE_SIZE: (u32, u32) = (256, 64);
+/// Transmittance LUT format: half floats would take half of the 0.1 % error budget. Written by a
+/// compute pass, since GL adapters cannot render to it.
+pub const TRANSMITTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Multiple-scattering LUT size (texels): mu_s × h.
+pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
+/// Multiple-scattering LUT format.
+pub const MULTISCATTERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// Sky irradiance LUT size (texels): mu_s × h.
+pub const IRRADIANCE_SIZE: (u32, u32) = (64, 16);
+/// Sky irradiance LUT format.
+pub const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// One sun's sky-view tile (texels): azimuth × zenith.
+pub const SKY_VIEW_TILE: (u32, u32) = (192, 108);
+/// Sky-view LUT format.
+pub const SKY_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// A LUT texture and its view.
+#[derive(Debug)]
+pub struct Lut {
+    /// The texture (also copyable, for tests and tools).
+    pub texture: wgpu::Texture,
+    /// Its one view.
+    pub view: wgpu::TextureView,
+}
+
+impl Lut {
+    fn new(
+        device: &wgpu::Device,
+        name: &str,
+        (width, height): (u32, u32),
+        format: wgpu::TextureFormat,
+        written_by: wgpu::TextureUsages,
+    ) -> Self {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(&format!("firmament AtmospherePass {name} LUT")),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: written_by | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        Self { texture, view }
+    }
+}
+
+/// Every LUT of the atmosphere pass.
+#[derive(Debug)]
+pub struct AtmosphereLuts {
+    /// Transmittance to the top of the atmosphere.
+    pub transmittance: Lut,
+    /// Hillaire's multiple-scattering Ψ_ms.
+    pub multiscattering: Lut,
+    /// Sky irradiance on a horizontal surface per unit sun irradiance.
+    pub irradiance: Lut,
+    /// Sky-view radiance, one tile per sun.
+    pub sky_view: Lut,
+}
+
+impl AtmosphereLuts {
+    /// Creates the textures (contents undefined until the pass renders them).
+    pub fn new(device: &wgpu::Device) -> Self {
+        Self {
+            transmittance: Lut::new(
+                device,
+                "transmittance",
+                TRANSMITTANCE_SIZE,
+                TRANSMITTANCE_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
+            ),
+            multiscattering: Lut::new(
+                device,
+                "multiple-scattering",
+                MULTISCATTERING_SIZE,
+                MULTISCATTERING_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            irradiance: Lut::new(
+                device,
+                "sky irradiance",
+                IRRADIANCE_SIZE,
+                IRRADIANCE_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            sky_view: Lut::new(
+                device,
+                "sky-view",
+                (SKY_VIEW_TILE.0 * MAX_SUNS as u32, SKY_VIEW_TILE.1),
+                SKY_VIEW_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+        }
+    }
+}

@@ -1,0 +1,212 @@
+// atmosphere/common.wgsl — shared include of every atmosphere pass: the medium, the phase
+// functions, ray intersections and the LUT parameterisations.
+//
+// Conventions (those of firmament_core::atmosphere):
+// - Planet frame: metres, centred on the planet, axes along the ellipsoid's semi-axes.
+// - `h`: altitude above the ellipsoid surface (m). `r`: distance from the centre of the *LUT
+//   sphere* (radius `lut.x`, m). `mu`: cosine of the view zenith angle, `mu_s`: of the sun zenith
+//   angle, `nu`: of the angle between the view and sun directions.
+// - Spectra are vec3: one value per model wavelength (x = the longest). Coefficients m⁻¹,
+//   radiance W·m⁻²·sr⁻¹·nm⁻¹, irradiance W·m⁻²·nm⁻¹.
+// - The transmittance and multiple-scattering LUTs are built for a sphere. On an ellipsoid a
+//   lookup takes the sample's true altitude and local up, `r = lut.x + h` (the LUT sphere
+//   touches the ellipsoid where the sample is; see passes/atmosphere/mod.rs for the error).
+// The f64 reference is firmament_core::atmosphere::reference; keep the models in step.
+
+const PI: f32 = 3.14159265358979;
+
+struct DensityProfile {
+    layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
+    layer1: vec4<f32>, // the same terms above width
+    width: vec4<f32>,  // x = top of layer 0 (m); yzw unused
+}
+
+struct AtmosphereParams {
+    radii: vec4<f32>,               // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
+    lut: vec4<f32>,                 // x, y = bottom and top radius of the LUT sphere (m); z = mie g;
+                                    // w = mie phase (0 Cornette–Shanks, 1 Henyey–Greenstein)
+    rayleigh_scattering: vec4<f32>, // rgb m⁻¹ at density 1
+    mie_scattering: vec4<f32>,
+    mie_extinction: vec4<f32>,
+    absorption: vec4<f32>,
+    ground_albedo: vec4<f32>,       // rgb, dimensionless
+    rayleigh_density: DensityProfile,
+    mie_density: DensityProfile,
+    absorber_density: DensityProfile,
+}
+
+@group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;
+
+fn layer_density(layer: vec4<f32>, h: f32) -> f32 {
+    return clamp(layer.x * exp(layer.y * h) + layer.z * h + layer.w, 0.0, 1.0);
+}
+
+fn profile_density(profile: DensityProfile, h: f32) -> f32 {
+    return select(layer_density(profile.layer1, h), layer_density(profile.layer0, h), h < profile.width.x);
+}
+
+// The local coefficients at altitude h: rayleigh scattering, mie scattering, extinction.
+struct Coefficients {
+    rayleigh: vec3<f32>,
+    mie: vec3<f32>,
+    extinction: vec3<f32>,
+}
+
+fn coefficients_at(h: f32) -> Coefficients {
+    let rayleigh = atmosphere.rayleigh_scattering.rgb * profile_density(atmosphere.rayleigh_density, h);
+    let mie_density = profile_density(atmosphere.mie_density, h);
+    var c: Coefficients;
+    c.rayleigh = rayleigh;
+    c.mie = atmosphere.mie_scattering.rgb * mie_density;
+    c.extinction = rayleigh + atmosphere.mie_extinction.rgb * mie_density
+        + atmosphere.absorption.rgb * profile_density(atmosphere.absorber_density, h);
+    return c;
+}
+
+fn rayleigh_phase(nu: f32) -> f32 {
+    return 3.0 / (16.0 * PI) * (1.0 + nu * nu);
+}
+
+fn mie_phase(nu: f32) -> f32 {
+    let g = atmosphere.lut.z;
+    let denominator = 1.0 + g * g - 2.0 * g * nu;
+    let hg = (1.0 - g * g) / (4.0 * PI * denominator * sqrt(denominator));
+    let cs = 3.0 / (8.0 * PI) * (1.0 - g * g) * (1.0 + nu * nu) / ((2.0 + g * g) * denominator * sqrt(denominator));
+    return select(cs, hg, atmosphere.lut.w > 0.5);
+}
+
+// σ_s·p for light travelling along the sun direction scattered into the view: nu = dot(view, sun).
+fn scattering_phase(c: Coefficients, nu: f32) -> vec3<f32> {
+    return c.rayleigh * rayleigh_phase(nu) + c.mie * mie_phase(nu);
+}
+
+// ---- Sphere geometry of the LUTs (Bruneton 2017, functions.glsl) ----
+
+fn safe_sqrt(x: f32) -> f32 {
+    return sqrt(max(x, 0.0));
+}
+
+// Distance from radius r along mu to the top of the LUT sphere (the ray starts inside).
+fn distance_to_top(r: f32, mu: f32) -> f32 {
+    let top = atmosphere.lut.y;
+    return max(-r * mu + safe_sqrt(r * r * (mu * mu - 1.0) + top * top), 0.0);
+}
+
+fn ray_hits_ground(r: f32, mu: f32) -> bool {
+    let bottom = atmosphere.lut.x;
+    return mu < 0.0 && r * r * (mu * mu - 1.0) + bottom * bottom >= 0.0;
+}
+
+// Texel-centre mapping of x in [0, 1] onto a texture of `size` texels, and back.
+fn unit_to_texel_coord(x: f32, size: f32) -> f32 {
+    return 0.5 / size + x * (1.0 - 1.0 / size);
+}
+
+fn texel_coord_to_unit(u: f32, size: f32) -> f32 {
+    return (u - 0.5 / size) / (1.0 - 1.0 / size);
+}
+
+const TRANSMITTANCE_LUT_SIZE: vec2<f32> = vec2<f32>(256.0, 64.0);
+
+// Bruneton's transmittance parameterisation: x_mu spreads the distance to the top between its
+// bounds, x_r = rho / H, so the horizon is resolved at every altitude.
+fn transmittance_lut_uv(r: f32, mu: f32) -> vec2<f32> {
+    let bottom = atmosphere.lut.x;
+    let top = atmosphere.lut.y;
+    let big_h = sqrt(top * top - bottom * bottom);
+    let rho = safe_sqrt(r * r - bottom * bottom);
+    let d = distance_to_top(r, mu);
+    let d_min = top - r;
+    let d_max = rho + big_h;
+    let x_mu = (d - d_min) / max(d_max - d_min, 1e-3);
+    let x_r = rho / big_h;
+    return vec2<f32>(unit_to_texel_coord(x_mu, TRANSMITTANCE_LUT_SIZE.x), unit_to_texel_coord(x_r, TRANSMITTANCE_LUT_SIZE.y));
+}
+
+fn transmittance_lut_r_mu(uv: vec2<f32>) -> vec2<f32> {
+    let bottom = atmosphere.lut.x;
+    let top = atmosphere.lut.y;
+    let x_mu = texel_coord_to_unit(uv.x, TRANSMITTANCE_LUT_SIZE.x);
+    let x_r = texel_coord_to_unit(uv.y, TRANSMITTANCE_LUT_SIZE.y);
+    let big_h = sqrt(top * top - bottom * bottom);
+    let rho = big_h * x_r;
+    let r = sqrt(rho * rho + bottom * bottom);
+    let d_min = top - r;
+    let d_max = rho + big_h;
+    let d = d_min + x_mu * (d_max - d_min);
+    var mu = 1.0;
+    if d > 0.0 {
+        mu = clamp((big_h * big_h - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+    }
+    return vec2<f32>(r, mu);
+}
+
+// ---- Ellipsoids ----
+
+// Altitude above the ellipsoid surface: f/|∇f| for f(p) = |p/a| − 1, refined once at the point
+// that distance down along ∇f (firmament_core Planet::approximate_altitude; < 2 mm below 100 km
+// at flattening 0.1). Returns the altitude and the outward unit normal (local up).
+struct AltitudeUp {
+    h: f32,
+    up: vec3<f32>,
+}
+
+fn first_order_altitude(p: vec3<f32>) -> AltitudeUp {
+    let a = atmosphere.radii.xyz;
+    let q = p / a;
+    let q_len = length(q);
+    let gradient = p / (a * a) / max(q_len, 1e-30);
+    let gradient_len = length(gradient);
+    var out: AltitudeUp;
+    out.h = (q_len - 1.0) / max(gradient_len, 1e-30);
+    out.up = gradient / max(gradient_len, 1e-30);
+    return out;
+}
+
+fn altitude_up(p: vec3<f32>) -> AltitudeUp {
+    let first = first_order_altitude(p);
+    let second = first_order_altitude(p - first.up * first.h);
+    var out: AltitudeUp;
+    out.h = first.h + second.h;
+    out.up = second.up;
+    return out;
+}
+
+// Entry and exit distances of the ray o + t·d (t may be negative) through the ellipsoid with
+// semi-axes `a`, or (1, 0) when it misses. `c` is |o/a|² − 1, passed in so callers can give a
+// value computed more exactly (the camera's, from f64).
+fn ellipsoid_hits(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, c: f32) -> vec2<f32> {
+    let os = o / a;
+    let ds = d / a;
+    let qa = dot(ds, ds);
+    let qb = dot(os, ds);
+    let disc = qb * qb - qa * c;
+    if disc < 0.0 {
+        return vec2<f32>(1.0, 0.0);
+    }
+    let s = sqrt(disc);
+    // The numerically stable pair of roots.
+    let q = -(qb + select(-s, s, qb >= 0.0));
+    if q == 0.0 {
+        return vec2<f32>(0.0, 0.0);
+    }
+    let t0 = q / qa;
+    let t1 = c / q;
+    return vec2<f32>(min(t0, t1), max(t0, t1));
+}
+
+fn ellipsoid_c(o: vec3<f32>, a: vec3<f32>) -> f32 {
+    let os = o / a;
+    return dot(os, os) - 1.0;
+}
+
+fn top_radii() -> vec3<f32> {
+    return atmosphere.radii.xyz + vec3<f32>(atmosphere.radii.w);
+}
+
+// Hillaire's energy-conserving step: ∫₀^dt S·e^(−σ_t·s) ds = S·(1 − T)/σ_t for a source S and
+// extinction σ_t constant over the step (T = e^(−σ_t·dt)); S·dt where σ_t vanishes.
+fn integrate_step(source: vec3<f32>, extinction: vec3<f32>, step_transmittance: vec3<f32>, dt: f32) -> vec3<f32> {
+    let thin = extinction * dt < vec3<f32>(1e-4);
+    return select((source - source * step_transmittance) / max(extinction, vec3<f32>(1e-30)), source * dt, thin);
+}

@@ -1,0 +1,61 @@
+// atmosphere/irradiance_lut.wgsl — sky irradiance on a horizontal surface, per unit sun
+// irradiance (the ground's sky light; Bruneton 2017's irradiance texture, computed in one pass
+// from single scattering plus Hillaire's multiple-scattering term).
+// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
+//
+// Texel (u, v) ↦ mu_s = 2u − 1, h = v · atmosphere height, on the LUT sphere (IRRADIANCE_LUT_SIZE).
+// For each it integrates the sky's radiance over the upper hemisphere, cosine-weighted, with
+// DIRECTIONS_SQRT² directions of STEPS samples. Light reflected by the ground below is left out
+// (second order in the albedo). rgb = irradiance / sun irradiance, dimensionless; a = 1.
+
+const DIRECTIONS_SQRT: i32 = 8;
+const STEPS: i32 = 16;
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
+    return fullscreen_vertex(index, FAR_DEPTH);
+}
+
+@fragment
+fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+    let uv = in.clip.xy / IRRADIANCE_LUT_SIZE;
+    let mu_s = texel_coord_to_unit(uv.x, IRRADIANCE_LUT_SIZE.x) * 2.0 - 1.0;
+    let h = texel_coord_to_unit(uv.y, IRRADIANCE_LUT_SIZE.y) * atmosphere.radii.w;
+    let r = atmosphere.lut.x + h;
+    let origin = vec3<f32>(0.0, 0.0, r);
+    let sun = vec3<f32>(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+
+    var irradiance = vec3<f32>(0.0);
+    for (var i = 0; i < DIRECTIONS_SQRT; i++) {
+        for (var j = 0; j < DIRECTIONS_SQRT; j++) {
+            // Cosine-weighted hemisphere: sin²θ uniform, so each direction carries π / N of
+            // the integral ∫ L cos θ dω.
+            let phi = 2.0 * PI * (f32(i) + 0.5) / f32(DIRECTIONS_SQRT);
+            let sin2 = (f32(j) + 0.5) / f32(DIRECTIONS_SQRT);
+            let mu = sqrt(1.0 - sin2);
+            let sin_theta = sqrt(sin2);
+            let dir = vec3<f32>(sin_theta * cos(phi), sin_theta * sin(phi), mu);
+            if ray_hits_ground(r, mu) {
+                continue;
+            }
+            let dt = distance_to_top(r, mu) / f32(STEPS);
+            let nu = dot(dir, sun);
+            var throughput = vec3<f32>(1.0);
+            var radiance = vec3<f32>(0.0);
+            for (var k = 0; k < STEPS; k++) {
+                let p = origin + dir * ((f32(k) + 0.5) * dt);
+                let r_t = length(p);
+                let h_t = r_t - atmosphere.lut.x;
+                let c = coefficients_at(h_t);
+                let mu_s_t = dot(p, sun) / r_t;
+                let direct = transmittance_to_sun(h_t, mu_s_t, 0.0) * scattering_phase(c, nu);
+                let source = direct + (c.rayleigh + c.mie) * multiscattering(h_t, mu_s_t);
+                let step_transmittance = exp(-c.extinction * dt);
+                radiance += throughput * integrate_step(source, c.extinction, step_transmittance, dt);
+                throughput *= step_transmittance;
+            }
+            irradiance += radiance;
+        }
+    }
+    return vec4<f32>(irradiance * PI / f32(DIRECTIONS_SQRT * DIRECTIONS_SQRT), 1.0);
+}

@@ -1,0 +1,138 @@
+// atmosphere/sky.wgsl — the atmosphere seen by the camera: sky, lit ground and sun discs, as
+// linear sRGB radiance (Y in cd/m²) into the HDR target, drawn at the far plane behind whatever
+// is already in the depth buffer.
+// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+//
+// Inside the atmosphere each pixel sums the sky-view LUT tiles of the suns; above it each pixel
+// marches its own ray (Hillaire 2020 does the same); across the top of the atmosphere the two
+// are blended by `view.local_up.w`, so crossing it does not pop.
+
+@group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
+
+const MARCH_STEPS: i32 = 64;
+const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
+    return fullscreen_vertex(index, FAR_DEPTH);
+}
+
+// A view ray in the planet frame, as the part of the line that lies in front of the camera.
+struct ViewRay {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+    near: f32,         // smallest t in front of the camera
+    c_surface: f32,    // |origin/a|² − 1 against the surface and the top
+    c_top: f32,
+}
+
+// Far from the planet the camera's own position is useless in f32 (at 100 AU its rounding is a
+// sizeable fraction of the planet), so the ray starts at its closest approach to the centre,
+// computed from the small, exact offset between the pixel and the centre on the image plane:
+// with dn = (x·tan_x, y·tan_y, −1), the centre at s·cn (s its depth, cn = (cx, cy, −1)) and
+// δ = dn − cn, the closest point is s·(δ − (δ·d̂)d̂) and the camera sits at t = −s·(|dn| − δ·d̂).
+fn view_ray(ndc: vec2<f32>) -> ViewRay {
+    let tangent = ndc * view.camera_shape.zw;
+    let dn = vec3<f32>(tangent, -1.0);
+    let d_view = normalize(dn);
+    let rotation = mat3x3<f32>(view.view_to_planet[0].xyz, view.view_to_planet[1].xyz, view.view_to_planet[2].xyz);
+    var ray: ViewRay;
+    ray.direction = normalize(rotation * d_view);
+    if view.center.w > 0.5 {
+        let delta = vec3<f32>(tangent - view.center.xy, 0.0);
+        let along = dot(delta, d_view);
+        ray.origin = rotation * (view.center.z * (delta - along * d_view));
+        ray.near = -view.center.z * (length(dn) - along);
+        ray.c_surface = ellipsoid_c(ray.origin, atmosphere.radii.xyz);
+        ray.c_top = ellipsoid_c(ray.origin, top_radii());
+    } else {
+        ray.origin = view.camera.xyz;
+        ray.near = 0.0;
+        ray.c_surface = view.camera_shape.x;
+        ray.c_top = view.camera_shape.y;
+    }
+    return ray;
+}
+
+struct SkySample {
+    radiance: vec3<f32>,     // scattered light and lit ground
+    transmittance: vec3<f32>, // to space along the ray (0 when it ends on the ground)
+}
+
+fn marched_sky(ray: ViewRay) -> SkySample {
+    var out: SkySample;
+    out.radiance = vec3<f32>(0.0);
+    out.transmittance = vec3<f32>(1.0);
+    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    if top.x > top.y || top.y <= ray.near {
+        return out; // misses the atmosphere
+    }
+    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+    let hits_ground = ground.x <= ground.y && ground.x > ray.near;
+    let t0 = max(top.x, ray.near);
+    let t1 = select(top.y, ground.x, hits_ground);
+    let inside = ray.near > top.x;
+    let result = march(ray.origin, ray.direction, t0, t1, hits_ground, 0u, view.sun_count.x, MARCH_STEPS, inside);
+    out.radiance = result.radiance;
+    out.transmittance = select(result.transmittance, vec3<f32>(0.0), hits_ground);
+    return out;
+}
+
+fn lut_sky(d: vec3<f32>) -> SkySample {
+    var out: SkySample;
+    out.radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let uv = sky_view_uv(d, sun_frame(i));
+        let atlas_uv = vec2<f32>((uv.x + f32(i)) / f32(MAX_SUNS), uv.y);
+        out.radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb;
+    }
+    let r = atmosphere.lut.x + max(view.camera.w, 0.0);
+    let mu = dot(d, view.local_up.xyz);
+    let ground = ellipsoid_hits(view.camera.xyz, d, atmosphere.radii.xyz, view.camera_shape.x);
+    let hits_ground = ground.x > 0.0 && ground.x <= ground.y;
+    out.transmittance = select(transmittance_to_top(r, mu), vec3<f32>(0.0), hits_ground);
+    return out;
+}
+
+// Every sun's limb-darkened disc seen along d, through `transmittance`.
+fn sun_discs(d: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let sun = view.suns[i];
+        let s = sun.direction.xyz;
+        let alpha = sun.direction.w;
+        // atan2 keeps the precision acos loses for small angles.
+        let angle = atan2(length(cross(d, s)), dot(d, s));
+        if angle < alpha {
+            let x = angle / alpha;
+            let mu = sqrt(max(1.0 - x * x, 0.0));
+            let u = sun.irradiance.w;
+            // 2π(1 − cos α), written so f32 keeps its precision for small discs.
+            let half = sin(0.5 * alpha);
+            let solid_angle = 4.0 * PI * half * half;
+            let center = sun.irradiance.rgb / (solid_angle * (1.0 - u / 3.0));
+            radiance += center * (1.0 - u * (1.0 - mu));
+        }
+    }
+    return radiance * transmittance;
+}
+
+@fragment
+fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+    let ray = view_ray(in.ndc);
+    let blend = view.local_up.w;
+    var sky: SkySample;
+    if blend <= 0.0 {
+        sky = lut_sky(ray.direction);
+    } else if blend >= 1.0 {
+        sky = marched_sky(ray);
+    } else {
+        let a = lut_sky(ray.direction);
+        let b = marched_sky(ray);
+        sky.radiance = mix(a.radiance, b.radiance, blend);
+        sky.transmittance = mix(a.transmittance, b.transmittance, blend);
+    }
+    let radiance = sky.radiance + sun_discs(ray.direction, sky.transmittance);
+    // The half-float HDR target ends at 65504; a sun disc in cd/m² is far beyond.
+    return vec4<f32>(min(to_linear_srgb(radiance), vec3<f32>(HDR_MAX)), 1.0);
+}

@@ -1,0 +1,162 @@
+// atmosphere/view.wgsl — shared include of the view-dependent atmosphere passes: the camera, the
+// suns, the sky-view LUT mapping and the ray march. Needs atmosphere/common.wgsl and luts.wgsl.
+//
+// Conventions: as atmosphere/common.wgsl; every position and direction is in the planet frame,
+// positions relative to the planet centre. The camera position is f32 (its altitude and its
+// ellipsoid terms come exactly from f64); a camera far away never appears in a position at all
+// (see `view_ray` in sky.wgsl).
+
+const MAX_SUNS: u32 = 8u;
+
+struct AtmosphereSun {
+    direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad)
+    irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
+}
+
+struct AtmosphereView {
+    view_to_planet: mat4x4<f32>, // rotation: view-space direction → planet frame
+    camera: vec4<f32>,           // xyz camera position (m); w = its altitude (m)
+    // x, y = |o/a|² − 1 of the camera against the surface and the top; z, w = tan of half the
+    // horizontal and vertical fields of view
+    camera_shape: vec4<f32>,
+    // xy = planet centre's view-space x, y divided by its depth; z = that depth (m); w = 1 to march
+    // from each ray's closest approach to the centre (camera far away), 0 from the camera
+    center: vec4<f32>,
+    local_up: vec4<f32>,         // xyz geodetic up at the camera; w = 0 sky-view LUT … 1 ray march
+    to_srgb0: vec4<f32>,         // columns of spectral radiance → linear sRGB (Y in cd/m²)
+    to_srgb1: vec4<f32>,
+    to_srgb2: vec4<f32>,
+    sun_count: vec4<u32>,        // x = number of suns; yzw unused
+    suns: array<AtmosphereSun, 8>,
+}
+
+@group(0) @binding(1) var<uniform> view: AtmosphereView;
+
+const SKY_VIEW_LUT_SIZE: vec2<f32> = vec2<f32>(192.0, 108.0);
+
+// The sky-view LUT's frame for sun `i` at the camera: up, towards the sun's azimuth, and across.
+struct SunFrame {
+    up: vec3<f32>,
+    toward: vec3<f32>,
+    across: vec3<f32>,
+}
+
+fn sun_frame(i: u32) -> SunFrame {
+    let up = view.local_up.xyz;
+    let s = view.suns[i].direction.xyz;
+    var toward = s - dot(s, up) * up;
+    if dot(toward, toward) < 1e-12 {
+        // The sun at the zenith or nadir: every azimuth is alike.
+        toward = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(up.x) > 0.9);
+        toward = toward - dot(toward, up) * up;
+    }
+    toward = normalize(toward);
+    var f: SunFrame;
+    f.up = up;
+    f.toward = toward;
+    f.across = cross(up, toward);
+    return f;
+}
+
+// The zenith angle of the horizon seen from the camera, on the LUT sphere.
+fn horizon_zenith_angle() -> vec2<f32> {
+    let r = atmosphere.lut.x + max(view.camera.w, 0.01);
+    let cos_beta = safe_sqrt(r * r - atmosphere.lut.x * atmosphere.lut.x) / r;
+    let beta = acos(clamp(cos_beta, -1.0, 1.0));
+    return vec2<f32>(PI - beta, beta); // (zenith angle of the horizon, angle below it to the nadir)
+}
+
+// Hillaire 2020's non-linear latitude mapping: v = 0.5 at the horizon, texels crowded there.
+// u = relative azimuth to the sun / π (the sky is mirror-symmetric about the sun's vertical).
+fn sky_view_uv(d: vec3<f32>, frame: SunFrame) -> vec2<f32> {
+    let horizon = horizon_zenith_angle();
+    let zenith = acos(clamp(dot(d, frame.up), -1.0, 1.0));
+    var v: f32;
+    if zenith < horizon.x {
+        v = (1.0 - sqrt(max(1.0 - zenith / horizon.x, 0.0))) * 0.5;
+    } else {
+        v = sqrt(clamp((zenith - horizon.x) / horizon.y, 0.0, 1.0)) * 0.5 + 0.5;
+    }
+    let azimuth = atan2(abs(dot(d, frame.across)), dot(d, frame.toward));
+    return vec2<f32>(unit_to_texel_coord(azimuth / PI, SKY_VIEW_LUT_SIZE.x), unit_to_texel_coord(v, SKY_VIEW_LUT_SIZE.y));
+}
+
+fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
+    let horizon = horizon_zenith_angle();
+    let u = texel_coord_to_unit(uv.x, SKY_VIEW_LUT_SIZE.x);
+    let v = texel_coord_to_unit(uv.y, SKY_VIEW_LUT_SIZE.y);
+    var zenith: f32;
+    if v < 0.5 {
+        let x = 1.0 - 2.0 * v;
+        zenith = horizon.x * (1.0 - x * x);
+    } else {
+        let x = 2.0 * v - 1.0;
+        zenith = horizon.x + horizon.y * x * x;
+    }
+    let azimuth = u * PI;
+    let horizontal = frame.toward * cos(azimuth) + frame.across * sin(azimuth);
+    return frame.up * cos(zenith) + horizontal * sin(zenith);
+}
+
+// The radiance of the lit ground at p (normal `up`) from suns [first, first + count): direct
+// sunlight and sky light (a Lambertian surface of the ground albedo).
+fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
+    var irradiance = vec3<f32>(0.0);
+    for (var i = first; i < first + count; i++) {
+        let sun = view.suns[i];
+        let mu_s = dot(up, sun.direction.xyz);
+        let direct = transmittance_to_sun(h, mu_s, sun.direction.w) * max(mu_s, 0.0);
+        irradiance += sun.irradiance.rgb * (direct + sky_irradiance(h, mu_s));
+    }
+    return atmosphere.ground_albedo.rgb / PI * irradiance;
+}
+
+struct MarchResult {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
+}
+
+// Light scattered towards the start of o + t·d over t in [t0, t1] from suns [first, first + count),
+// with `steps` midpoint samples (spread quadratically, denser at t0, when `dense_near`), plus the
+// lit ground at t1 when `ground`.
+fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32, count: u32, steps: i32, dense_near: bool) -> MarchResult {
+    var result: MarchResult;
+    result.radiance = vec3<f32>(0.0);
+    result.transmittance = vec3<f32>(1.0);
+    let span = max(t1 - t0, 0.0);
+    for (var k = 0; k < steps; k++) {
+        var a = f32(k) / f32(steps);
+        var b = f32(k + 1) / f32(steps);
+        if dense_near {
+            a = a * a;
+            b = b * b;
+        }
+        let dt = (b - a) * span;
+        let t = t0 + (a + b) * 0.5 * span;
+        let p = o + d * t;
+        let here = altitude_up(p);
+        let c = coefficients_at(here.h);
+        let scattering = c.rayleigh + c.mie;
+        var source = vec3<f32>(0.0);
+        for (var i = first; i < first + count; i++) {
+            let sun = view.suns[i];
+            let s = sun.direction.xyz;
+            let mu_s = dot(here.up, s);
+            let direct = transmittance_to_sun(here.h, mu_s, sun.direction.w) * scattering_phase(c, dot(d, s));
+            source += sun.irradiance.rgb * (direct + scattering * multiscattering(here.h, mu_s));
+        }
+        let step_transmittance = exp(-c.extinction * dt);
+        result.radiance += result.transmittance * integrate_step(source, c.extinction, step_transmittance, dt);
+        result.transmittance *= step_transmittance;
+    }
+    if ground {
+        let here = altitude_up(o + d * t1);
+        result.radiance += result.transmittance * ground_radiance(max(here.h, 0.0), here.up, first, count);
+    }
+    return result;
+}
+
+// Linear sRGB (Y in cd/m²) of a spectral radiance.
+fn to_linear_srgb(radiance: vec3<f32>) -> vec3<f32> {
+    return mat3x3<f32>(view.to_srgb0.xyz, view.to_srgb1.xyz, view.to_srgb2.xyz) * radiance;
+}

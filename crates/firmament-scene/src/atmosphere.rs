@@ -1,0 +1,105 @@
+//! From `[planet]`, `[atmosphere]` and `[[suns]]` to the core's [`AtmosphereSky`], checking every
+//! value on the way (each error names the scene key), and the rule that keeps the camera above
+//! the planet's surface.
+//!
+//! The body (`planet.body`) gives every value; each key a scene sets replaces the body's. The
+//! core's own checks run last, as a backstop, with their field names turned into scene keys.
+
+mod medium;
+mod planet;
+mod suns;
+
+use firmament_core::CoreError;
+use firmament_core::atmosphere::{Atmosphere, Planet};
+use firmament_core::frame::AtmosphereSky;
+use glam::DVec3;
+
+use crate::error::SceneError;
+use crate::model::Scene;
+
+/// How far below the surface the camera may be and still count as on it, metres (rounding in
+/// posing the planet is far smaller).
+const SURFACE_TOLERANCE: f64 = 1e-3;
+
+/// The scene's planet, atmosphere and suns, checked.
+pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
+    let body = scene.planet.body;
+    let planet = planet::planet(&scene.planet)?;
+    let (medium, wavelengths) = medium::medium(&scene.atmosphere, body)?;
+    let atmosphere = Atmosphere {
+        planet,
+        medium,
+        wavelengths,
+    };
+    atmosphere
+        .validate()
+        .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;
+    let suns = suns::suns(&scene.suns, body, &atmosphere)?;
+    let sky = AtmosphereSky { atmosphere, suns };
+    sky.validate()
+        .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;
+    Ok(sky)
+}
+
+/// Checks that the camera is not inside the planet: its geodetic altitude must be >= 0.
+pub(crate) fn camera_above_surface(scene: &Scene, planet: &Planet) -> Result<(), SceneError> {
+    let world = DVec3::from_array(scene.camera.position);
+    let p = planet.to_planet_frame(world);
+    let altitude = planet.altitude(p);
+    if altitude >= -SURFACE_TOLERANCE {
+        return Ok(());
+    }
+    // p = foot + altitude·up(foot): the nearest surface point, back in the world frame.
+    let foot = planet.center + planet.orientation.normalize() * (p - planet.up(p) * altitude);
+    let [e, n, u] = scene.camera.position;
+    let [fe, fn_, fu] = foot.to_array().map(metres);
+    Err(SceneError::invalid(
+        "camera.position",
+        format!("[{e}, {n}, {u}]"),
+        format!(
+            "the camera is inside the planet ({}): its altitude is {} m, and the nearest point of the \
+             surface is at [{fe}, {fn_}, {fu}] (east, north, up, metres); the camera must be at an \
+             altitude >= 0",
+            scene.planet.body.name(),
+            metres(altitude),
+        ),
+    ))
+}
+
+/// A length rounded to the millimetre for messages (without a negative zero).
+fn metres(value: f64) -> f64 {
+    (value * 1000.0).round() / 1000.0 + 0.0
+}
+
+/// A core validation error as a scene error, its field named by `key_of`.
+fn from_core(error: CoreError, key_of: impl Fn(&str) -> String) -> SceneError {
+    match error {
+        CoreError::Invalid { field, value, rule } => SceneError::invalid(key_of(field), value, rule),
+        other => SceneError::invalid("atmosphere", "(the whole atmosphere)", other.to_string()),
+    }
+}
+
+/// The scene key behind one of the core's field names.
+fn scene_key(field: &str, scene: &Scene) -> String {
+    let p = &scene.planet;
+    let sphere = p.radius.is_some();
+    let key = match field {
+        "planet.radii.x" | "planet.radii.y" if !sphere => "planet.equatorial_radius",
+        "planet.radii.z" if !sphere => "planet.polar_radius",
+        "planet.radii" if !sphere && p.polar_radius.is_some() => "planet.polar_radius",
+        "planet.radii" if !sphere => "planet.equatorial_radius",
+        "planet.radii.x" | "planet.radii.y" | "planet.radii.z" | "planet.radii" => "planet.radius",
+        "atmosphere.height" => "planet.atmosphere_height",
+        "planet.center" | "planet.orientation" => "planet.latitude",
+        "atmosphere.rayleigh.scattering" => "atmosphere.rayleigh_scattering",
+        "atmosphere.rayleigh.density" => "atmosphere.rayleigh_scale_height",
+        "atmosphere.mie.scattering" => "atmosphere.mie_scattering",
+        "atmosphere.mie.extinction" => "atmosphere.mie_extinction",
+        "atmosphere.mie.density" => "atmosphere.mie_scale_height",
+        "atmosphere.mie.g" => "atmosphere.mie_g",
+        "atmosphere.ozone.absorption" => "atmosphere.ozone_absorption",
+        "atmosphere.ozone.density" => "atmosphere.ozone_peak",
+        other => other,
+    };
+    key.to_owned()
+}

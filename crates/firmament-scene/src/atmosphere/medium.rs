@@ -1,0 +1,195 @@
+//! `[atmosphere]`: the body's medium with the scene's overrides.
+
+use firmament_core::atmosphere::{DensityLayer, DensityProfile, Medium, MiePhase, Spectrum, Wavelengths};
+
+use crate::error::SceneError;
+use crate::model::{AtmosphereSection, Body, MiePhaseName};
+use crate::spectrum::SceneSpectrum;
+use crate::validate::{check, non_negative, positive};
+
+/// The medium and the model wavelengths, every value checked.
+pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium, Wavelengths), SceneError> {
+    let base = body.atmosphere();
+    let mut medium = base.medium;
+    let a = section;
+
+    if let Some(s) = coefficient("atmosphere.rayleigh_scattering", a.rayleigh_scattering)? {
+        medium.rayleigh.scattering = s;
+    }
+    if let Some(h) = scale_height("atmosphere.rayleigh_scale_height", a.rayleigh_scale_height)? {
+        medium.rayleigh.density = h;
+    }
+    if let Some(s) = coefficient("atmosphere.mie_scattering", a.mie_scattering)? {
+        medium.mie.scattering = s;
+    }
+    if let Some(s) = coefficient("atmosphere.mie_extinction", a.mie_extinction)? {
+        medium.mie.extinction = s;
+    }
+    if (medium.mie.extinction - medium.mie.scattering).min_element() < 0.0 {
+        let (scattering, extinction) = (medium.mie.scattering.to_array(), medium.mie.extinction.to_array());
+        return Err(if a.mie_extinction.is_some() {
+            SceneError::invalid(
+                "atmosphere.mie_extinction",
+                SceneSpectrum(extinction),
+                format!(
+                    "must be >= atmosphere.mie_scattering ({}) at every wavelength (extinction is \
+                     scattering plus absorption)",
+                    SceneSpectrum(scattering)
+                ),
+            )
+        } else {
+            SceneError::invalid(
+                "atmosphere.mie_scattering",
+                SceneSpectrum(scattering),
+                format!(
+                    "must be <= the mie extinction ({} m⁻¹, {}'s; set atmosphere.mie_extinction too) \
+                     at every wavelength",
+                    SceneSpectrum(extinction),
+                    body.name()
+                ),
+            )
+        });
+    }
+    if let Some(h) = scale_height("atmosphere.mie_scale_height", a.mie_scale_height)? {
+        medium.mie.density = h;
+    }
+    let g = a.mie_g.unwrap_or(medium.mie.phase.g());
+    check(
+        g > -1.0 && g < 1.0,
+        "atmosphere.mie_g",
+        g,
+        "must lie strictly between -1 and 1",
+    )?;
+    let kind = a.mie_phase.unwrap_or(match medium.mie.phase {
+        MiePhase::CornetteShanks { .. } => MiePhaseName::CornetteShanks,
+        MiePhase::HenyeyGreenstein { .. } => MiePhaseName::HenyeyGreenstein,
+    });
+    medium.mie.phase = match kind {
+        MiePhaseName::CornetteShanks => MiePhase::CornetteShanks { g },
+        MiePhaseName::HenyeyGreenstein => MiePhase::HenyeyGreenstein { g },
+    };
+
+    if let Some(s) = coefficient("atmosphere.ozone_absorption", a.ozone_absorption)? {
+        medium.absorber.absorption = s;
+    }
+    if let Some(tent) = ozone_tent(a, body, &medium.absorber.density)? {
+        medium.absorber.density = tent;
+    }
+
+    if let Some(albedo) = a.ground_albedo {
+        check(
+            albedo.0.iter().all(|v| (0.0..=1.0).contains(v)),
+            "atmosphere.ground_albedo",
+            albedo,
+            "every value must lie in [0, 1]",
+        )?;
+        medium.ground_albedo = albedo.spectrum();
+    }
+
+    let wavelengths = match a.wavelengths {
+        Some(w) => {
+            let [x, y, z] = w;
+            check(
+                w.iter().all(|v| v.is_finite() && (360.0..=830.0).contains(v)) && x != y && y != z && x != z,
+                "atmosphere.wavelengths",
+                SceneSpectrum(w),
+                "needs three different wavelengths within [360, 830] nm",
+            )?;
+            Wavelengths(w)
+        }
+        None => base.wavelengths,
+    };
+    Ok((medium, wavelengths))
+}
+
+/// A coefficient in m⁻¹, if given: every value finite and >= 0.
+fn coefficient(key: &str, value: Option<SceneSpectrum>) -> Result<Option<Spectrum>, SceneError> {
+    let Some(value) = value else { return Ok(None) };
+    check(
+        value.is_finite_non_negative(),
+        key,
+        value,
+        "every value must be a finite number >= 0 (m⁻¹)",
+    )?;
+    Ok(Some(value.spectrum()))
+}
+
+/// An exponential profile `e^(−h/H)` for a scale height `H` in metres, if given.
+fn scale_height(key: &str, value: Option<f64>) -> Result<Option<DensityProfile>, SceneError> {
+    let Some(h) = value else { return Ok(None) };
+    positive(key, h, " metres")?;
+    Ok(Some(DensityProfile::single(DensityLayer::exponential(h))))
+}
+
+/// The ozone tent with the scene's corners, if it sets any: the ones it leaves out come from the
+/// body's tent (a body without one needs all three).
+fn ozone_tent(a: &AtmosphereSection, body: Body, base: &DensityProfile) -> Result<Option<DensityProfile>, SceneError> {
+    let given = [a.ozone_bottom, a.ozone_peak, a.ozone_top];
+    if given.iter().all(Option::is_none) {
+        return Ok(None);
+    }
+    let keys = [
+        "atmosphere.ozone_bottom",
+        "atmosphere.ozone_peak",
+        "atmosphere.ozone_top",
+    ];
+    let body_tent = tent_corners(base);
+    let mut corners = [0.0; 3];
+    for (i, slot) in corners.iter_mut().enumerate() {
+        *slot = match (given[i], body_tent) {
+            (Some(v), _) => {
+                non_negative(keys[i], v)?;
+                v
+            }
+            (None, Some(tent)) => tent[i],
+            (None, None) => {
+                return Err(SceneError::WrongType {
+                    key: keys[i].to_owned(),
+                    message: format!(
+                        "missing: {} has no ozone layer to take it from; give ozone_bottom, ozone_peak and \
+                         ozone_top together (metres)",
+                        body.name()
+                    ),
+                });
+            }
+        };
+    }
+    let [bottom, peak, top] = corners;
+    check(
+        peak > bottom,
+        keys[1],
+        peak,
+        &format!("must be above atmosphere.ozone_bottom ({bottom} m)"),
+    )?;
+    check(
+        top > peak,
+        keys[2],
+        top,
+        &format!("must be above atmosphere.ozone_peak ({peak} m)"),
+    )?;
+    Ok(Some(DensityProfile::tent(bottom, peak, top)))
+}
+
+/// Bottom, peak and top of a profile made by [`DensityProfile::tent`], or `None` for any other.
+fn tent_corners(profile: &DensityProfile) -> Option<[f64; 3]> {
+    let [rise, fall] = profile.layers;
+    if rise.linear_term > 0.0 && fall.linear_term < 0.0 {
+        let bottom = -rise.constant_term / rise.linear_term;
+        let top = -fall.constant_term / fall.linear_term;
+        Some([bottom, rise.width, top])
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tent_corners_invert_the_core_tent() {
+        let [bottom, peak, top] = tent_corners(&DensityProfile::tent(10_000.0, 25_000.0, 40_000.0)).expect("a tent");
+        assert!((bottom - 10_000.0).abs() < 1e-9 && peak == 25_000.0 && (top - 40_000.0).abs() < 1e-9);
+        assert_eq!(tent_corners(&DensityProfile::single(DensityLayer::EMPTY)), None);
+    }
+}

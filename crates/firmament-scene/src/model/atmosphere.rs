@@ -1,0 +1,172 @@
+//! `[planet]`, `[atmosphere]` and `[[suns]]`: the physically based sky (`sky.model =
+//! "atmosphere"`). Every key but `planet.body`, `planet.latitude` and `planet.longitude` is
+//! optional and, when given, overrides the body's value.
+
+use firmament_core::atmosphere::{Atmosphere, Sun, presets};
+use glam::DVec3;
+use serde::Deserialize;
+
+use crate::color::SceneColor;
+use crate::spectrum::SceneSpectrum;
+
+/// The bodies whose planet, atmosphere and sun the core has presets for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Body {
+    /// The Earth on the WGS84 ellipsoid ([`firmament_core::atmosphere::presets::earth`]).
+    Earth,
+    /// Mars in a clear season ([`firmament_core::atmosphere::presets::mars`]).
+    Mars,
+    /// Saturn above its cloud deck ([`firmament_core::atmosphere::presets::saturn`]).
+    Saturn,
+}
+
+impl Body {
+    /// The name as written in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Earth => "earth",
+            Self::Mars => "mars",
+            Self::Saturn => "saturn",
+        }
+    }
+
+    /// The body's planet (unposed, at the origin), medium and wavelengths from the core presets.
+    pub fn atmosphere(self) -> Atmosphere {
+        match self {
+            Self::Earth => presets::earth(),
+            Self::Mars => presets::mars(),
+            Self::Saturn => presets::saturn(),
+        }
+    }
+
+    /// The Sun as seen from this body, towards `direction` (world frame).
+    pub fn sun(self, direction: DVec3) -> Sun {
+        match self {
+            Self::Earth => presets::earth_sun(direction),
+            Self::Mars => presets::mars_sun(direction),
+            Self::Saturn => presets::saturn_sun(direction),
+        }
+    }
+}
+
+/// `[planet]`: which body, any changes to its shape, and where on it the world frame sits.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanetSection {
+    /// The body: `"earth"`, `"mars"` or `"saturn"`.
+    pub body: Body,
+    /// Equatorial radius, metres, > 0 (default: the body's).
+    #[serde(default)]
+    pub equatorial_radius: Option<f64>,
+    /// Polar radius, metres, > 0 and within 10× of the equatorial radius (default: the body's).
+    #[serde(default)]
+    pub polar_radius: Option<f64>,
+    /// Both radii at once (a sphere), metres, > 0; not together with the two above.
+    #[serde(default)]
+    pub radius: Option<f64>,
+    /// Height of the top of the atmosphere above the surface, metres, > 0 (default: the body's).
+    #[serde(default)]
+    pub atmosphere_height: Option<f64>,
+    /// Geodetic latitude of the world origin on the surface, degrees north, in [-90, 90]. The
+    /// world frame (and `camera.position`) is East-North-Up there.
+    pub latitude: f64,
+    /// Longitude of the world origin, degrees east, finite.
+    pub longitude: f64,
+}
+
+/// The aerosol phase functions a scene can choose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MiePhaseName {
+    /// Cornette & Shanks (1992), as Bruneton and Hillaire use.
+    CornetteShanks,
+    /// Henyey & Greenstein (1941).
+    HenyeyGreenstein,
+}
+
+/// `[atmosphere]`: overrides of the body's medium, all optional. Spectral values are a number
+/// (the same at every wavelength) or `[a, b, c]` in the order of `wavelengths`. Coefficients are
+/// at density 1, i.e. at the surface for exponential profiles and at the peak for ozone.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereSection {
+    /// Rayleigh (molecular) scattering coefficient, m⁻¹, >= 0.
+    #[serde(default)]
+    pub rayleigh_scattering: Option<SceneSpectrum>,
+    /// Rayleigh scale height, metres, > 0 (the profile becomes `e^(−h/H)`).
+    #[serde(default)]
+    pub rayleigh_scale_height: Option<f64>,
+    /// Aerosol (Mie) scattering coefficient, m⁻¹, >= 0 and <= `mie_extinction`.
+    #[serde(default)]
+    pub mie_scattering: Option<SceneSpectrum>,
+    /// Aerosol extinction coefficient (scattering + absorption), m⁻¹, >= `mie_scattering`.
+    #[serde(default)]
+    pub mie_extinction: Option<SceneSpectrum>,
+    /// Aerosol scale height, metres, > 0 (the profile becomes `e^(−h/H)`).
+    #[serde(default)]
+    pub mie_scale_height: Option<f64>,
+    /// Aerosol asymmetry parameter `g`, in (−1, 1).
+    #[serde(default)]
+    pub mie_g: Option<f64>,
+    /// Aerosol phase function: `"cornette_shanks"` or `"henyey_greenstein"`.
+    #[serde(default)]
+    pub mie_phase: Option<MiePhaseName>,
+    /// Ozone (absorbing gas) absorption coefficient at the peak of its tent, m⁻¹, >= 0.
+    #[serde(default)]
+    pub ozone_absorption: Option<SceneSpectrum>,
+    /// Altitude where the ozone tent starts rising from 0, metres, >= 0.
+    #[serde(default)]
+    pub ozone_bottom: Option<f64>,
+    /// Altitude of the ozone tent's peak (density 1), metres, > `ozone_bottom`.
+    #[serde(default)]
+    pub ozone_peak: Option<f64>,
+    /// Altitude where the ozone tent is back to 0, metres, > `ozone_peak`.
+    #[serde(default)]
+    pub ozone_top: Option<f64>,
+    /// Lambertian ground albedo, in [0, 1].
+    #[serde(default)]
+    pub ground_albedo: Option<SceneSpectrum>,
+    /// The three model wavelengths, nanometres, distinct, in [360, 830] (default 680, 550, 440).
+    #[serde(default)]
+    pub wavelengths: Option<[f64; 3]>,
+}
+
+/// One `[[suns]]` entry: a distant star lighting the atmosphere. Its direction is given either
+/// by `azimuth` and `elevation` or by `position`, never both.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SunEntry {
+    /// A label for people (`"primary"`); not used by the renderer.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Direction from north, clockwise towards east, degrees, in the world (East-North-Up) frame.
+    #[serde(default)]
+    pub azimuth: Option<f64>,
+    /// Elevation above the world frame's horizontal plane, degrees, in [-90, 90].
+    #[serde(default)]
+    pub elevation: Option<f64>,
+    /// Where the sun is, `[east, north, up]` metres in the world frame; its direction is the one
+    /// from the planet's centre to this point, which must lie above the atmosphere.
+    #[serde(default)]
+    pub position: Option<[f64; 3]>,
+    /// Angular radius of the disc, degrees, in (0, 90) (default: the body's sun, e.g. 0.2679°
+    /// seen from Earth).
+    #[serde(default)]
+    pub angular_radius: Option<f64>,
+    /// Colour as a black-body temperature, kelvin, in [500, 1000000]; not with `color`.
+    #[serde(default)]
+    pub temperature: Option<f64>,
+    /// Colour as `"#rrggbb"` (sRGB) or `[r, g, b]` (linear), read as relative spectral irradiance
+    /// at the three model wavelengths (red at the first); green must be > 0. Not with
+    /// `temperature`. Neither: the body's solar spectrum.
+    #[serde(default)]
+    pub color: Option<SceneColor>,
+    /// Spectral irradiance at the top of the atmosphere at the middle model wavelength (550 nm),
+    /// W·m⁻²·nm⁻¹, >= 0 (default: the body's sun, 1.8504 at Earth).
+    #[serde(default)]
+    pub irradiance: Option<f64>,
+    /// Linear limb-darkening coefficient, in [0, 1] (default: the body's sun, 0.6).
+    #[serde(default)]
+    pub limb_darkening: Option<f64>,
+}
