@@ -35,7 +35,10 @@ pub(crate) fn clear_targets(
 }
 
 /// A context and headless renderer shared by one test binary.
-#[allow(dead_code, reason = "each test binary compiles this module; not all of them render frames")]
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them render frames"
+)]
 pub(crate) struct Gpu {
     pub(crate) ctx: firmament_render::GpuContext,
     pub(crate) renderer: firmament_render::headless::HeadlessRenderer,
