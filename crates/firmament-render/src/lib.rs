@@ -9,6 +9,7 @@
 //! reversed-Z depth, then the tonemap pass into the caller's output view. [`headless`] renders to
 //! memory for files and tests.
 
+pub mod bench;
 pub mod context;
 pub mod error;
 pub mod gpu_types;

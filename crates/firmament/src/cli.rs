@@ -25,6 +25,7 @@ Examples:
   firmament check scene.toml
   firmament check --preset earth-noon --set planet.radius=6360000
   firmament presets
+  firmament bench --preset earth-sunset --width 1280 --height 720 --frames 5
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
 Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
@@ -37,6 +38,8 @@ pub(crate) enum Command {
     Check(CheckArgs),
     /// List the built-in presets.
     Presets,
+    /// Time the atmosphere's GPU passes, and the LUT path against the brute-force ray march.
+    Bench(BenchArgs),
 }
 
 /// Where a scene comes from and what overrides it.
@@ -82,6 +85,29 @@ pub(crate) struct CheckArgs {
     pub(crate) scene: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) scene_args: SceneArgs,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct BenchArgs {
+    /// An atmosphere scene file (TOML). Without one, the preset (default `earth-noon`) is used.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// Image width in pixels.
+    #[arg(long, value_name = "W", default_value_t = 1280)]
+    pub(crate) width: u32,
+    /// Image height in pixels.
+    #[arg(long, value_name = "H", default_value_t = 720)]
+    pub(crate) height: u32,
+    /// Frames timed per figure (the median is reported), 1 to 1000.
+    #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub(crate) frames: u32,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Graphics API to run on.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
 }
 
 /// `--backend` values.

@@ -358,3 +358,63 @@ fn check_refuses_a_camera_inside_the_planet_and_says_where_it_is() {
         stderr(&out)
     );
 }
+
+#[test]
+fn atmosphere_exr_holds_luminance_in_candela_per_square_metre() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(
+        dir.path(),
+        &[
+            "render",
+            "--preset",
+            "earth-noon",
+            "--width",
+            "8",
+            "--height",
+            "6",
+            "--set",
+            "camera.pitch=60",
+            "-o",
+            "sky.exr",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let image = image::open(dir.path().join("sky.exr")).expect("an EXR").to_rgba32f();
+    for p in image.pixels() {
+        // Linear sRGB with Y in cd/m²: a clear noon sky 60° up is thousands of cd/m², bluish.
+        let luminance = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        assert!((1_000.0..20_000.0).contains(&luminance), "{p:?}");
+        assert!(p[2] > p[0], "{p:?}");
+    }
+}
+
+#[test]
+fn bench_reports_every_pass_as_json() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(
+        dir.path(),
+        &[
+            "bench", "--width", "16", "--height", "9", "--frames", "1", "--json", "-q",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for key in [
+        "medium_luts_ms",
+        "sky_view_lut_ms",
+        "sky_ms",
+        "lut_frame_ms",
+        "march_frame_ms",
+        "difference_median",
+    ] {
+        assert!(stdout.contains(&format!("\"{key}\":")), "{key} missing from {stdout}");
+    }
+}
+
+#[test]
+fn bench_of_a_gradient_sky_says_it_needs_an_atmosphere() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(dir.path(), &["bench", "--preset", "noon", "--frames", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("sky.model = \"atmosphere\""), "{}", stderr(&out));
+}

@@ -7,7 +7,7 @@ pub mod classic_mesh;
 pub mod sky_gradient;
 pub mod tonemap;
 
-pub use atmosphere::AtmospherePass;
+pub use atmosphere::{AtmospherePass, SkyMethod};
 pub use classic_mesh::{ClassicMeshPass, GpuMesh};
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;

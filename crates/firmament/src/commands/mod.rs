@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod bench;
 mod check;
 mod presets;
 mod render;
@@ -14,6 +15,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
     match command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),
+        Command::Bench(args) => bench::run(&args),
         Command::Presets => {
             presets::run();
             Ok(())

@@ -29,7 +29,7 @@ use firmament_core::Camera;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
-use crate::passes::{PassPipeline, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -198,6 +198,16 @@ impl TransmittanceStage {
     }
 }
 
+/// How the sky pass finds each pixel's scattered light inside the atmosphere.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SkyMethod {
+    /// From the sky-view LUT (the fast path; the per-pixel march above the atmosphere).
+    #[default]
+    Lut,
+    /// A ray march per pixel everywhere: the brute-force baseline for benchmarks and checks.
+    March,
+}
+
 /// The atmosphere: LUTs and the sky they feed. Build once; `prepare` every frame.
 #[derive(Debug)]
 pub struct AtmospherePass {
@@ -214,6 +224,7 @@ pub struct AtmospherePass {
     /// Set by `prepare` when the medium changed; cleared once `record_luts` encoded the rebuild.
     medium_changed: Cell<bool>,
     sun_count: u32,
+    method: SkyMethod,
 }
 
 impl AtmospherePass {
@@ -350,6 +361,7 @@ impl AtmospherePass {
             uploaded: None,
             medium_changed: Cell::new(false),
             sun_count: 0,
+            method: SkyMethod::Lut,
         }
     }
 
@@ -361,29 +373,49 @@ impl AtmospherePass {
             self.uploaded = Some(params);
             self.medium_changed.set(true);
         }
-        let view = AtmosphereViewUniforms::new(sky, camera);
+        let mut view = AtmosphereViewUniforms::new(sky, camera);
+        if self.method == SkyMethod::March {
+            view.local_up[3] = 1.0;
+        }
         self.sun_count = view.sun_count[0];
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
     }
 
-    /// Encodes the LUT rebuilds: transmittance and multiple scattering when the medium changed,
-    /// the sky-view tiles of the suns always.
+    /// Chooses how the sky is computed from the next `prepare` on.
+    pub fn set_method(&mut self, method: SkyMethod) {
+        self.method = method;
+    }
+
+    /// Encodes the LUT rebuilds: the medium's LUTs when it changed, the sky-view tiles of the
+    /// suns always (unless the method is [`SkyMethod::March`]).
     pub fn record_luts(&self, encoder: &mut wgpu::CommandEncoder) {
         if self.medium_changed.replace(false) {
-            self.transmittance.record(encoder);
-            self.multiscattering.render(
-                encoder,
-                "firmament AtmospherePass multiple-scattering LUT",
-                &self.luts.multiscattering.view,
-                None,
-            );
-            self.irradiance.render(
-                encoder,
-                "firmament AtmospherePass sky irradiance LUT",
-                &self.luts.irradiance.view,
-                None,
-            );
+            self.record_medium_luts(encoder);
         }
+        if self.method == SkyMethod::Lut {
+            self.record_sky_view_lut(encoder);
+        }
+    }
+
+    /// Encodes the transmittance, multiple-scattering and sky-irradiance LUTs unconditionally.
+    pub fn record_medium_luts(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.transmittance.record(encoder);
+        self.multiscattering.render(
+            encoder,
+            "firmament AtmospherePass multiple-scattering LUT",
+            &self.luts.multiscattering.view,
+            None,
+        );
+        self.irradiance.render(
+            encoder,
+            "firmament AtmospherePass sky irradiance LUT",
+            &self.luts.irradiance.view,
+            None,
+        );
+    }
+
+    /// Encodes the sky-view LUT tiles of this frame's suns.
+    pub fn record_sky_view_lut(&self, encoder: &mut wgpu::CommandEncoder) {
         if self.sun_count > 0 {
             self.sky_view.render(
                 encoder,
@@ -400,6 +432,12 @@ impl AtmospherePass {
         pass.set_pipeline(&self.sky.pipeline);
         pass.set_bind_group(0, &self.sky.bind_group, &[]);
         pass.draw(0..3, 0..1);
+    }
+
+    /// Draws the sky into `color` (loaded, not cleared) behind what `depth` already holds.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
+        let mut pass = begin_load_pass(encoder, "firmament AtmospherePass sky", color, depth);
+        self.draw(&mut pass);
     }
 
     /// The LUTs (for tests and tools).

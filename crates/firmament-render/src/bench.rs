@@ -1,0 +1,130 @@
+//! Benchmarks of the atmosphere pass: per-pass wall time with full synchronisation (each pass
+//! submitted alone and waited for), and the LUT path against the brute-force per-pixel march.
+//!
+//! Wall time includes submission and the wait, so on a real GPU it overstates sub-millisecond
+//! passes; compare figures taken side by side in one run.
+
+use std::time::Instant;
+
+use firmament_core::Camera;
+use firmament_core::frame::AtmosphereSky;
+
+use crate::context::GpuContext;
+use crate::error::RenderError;
+use crate::passes::{AtmospherePass, SkyMethod};
+use crate::readback::read_texture;
+use crate::targets::FrameTargets;
+
+/// Median milliseconds per pass, and how far the LUT path is from the brute-force march.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AtmosphereBench {
+    /// Adapter name and backend.
+    pub adapter: String,
+    /// Image size, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Frames timed per figure (the median is reported).
+    pub frames: u32,
+    /// Number of suns in the scene.
+    pub suns: usize,
+    /// Transmittance, multiple-scattering and irradiance LUTs (rebuilt when the medium changes).
+    pub medium_luts_ms: f64,
+    /// The sky-view LUT tiles.
+    pub sky_view_lut_ms: f64,
+    /// The sky pass reading the sky-view LUT.
+    pub sky_ms: f64,
+    /// A whole LUT-path frame: sky-view LUT and sky.
+    pub lut_frame_ms: f64,
+    /// A brute-force frame: every pixel marches its ray.
+    pub march_frame_ms: f64,
+    /// Median and largest relative difference between the two images (largest channel
+    /// difference over the march's largest channel, pixels above 1 cd/m²).
+    pub difference: (f64, f64),
+}
+
+fn median_ms(ctx: &GpuContext, frames: u32, mut encode: impl FnMut(&mut wgpu::CommandEncoder)) -> f64 {
+    let mut times: Vec<f64> = (0..frames.max(1))
+        .map(|_| {
+            let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("firmament bench encoder"),
+            });
+            encode(&mut encoder);
+            let start = Instant::now();
+            ctx.queue.submit([encoder.finish()]);
+            // Errors here are device loss, which the readback afterwards reports.
+            let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
+fn hdr_pixels(ctx: &GpuContext, targets: &FrameTargets) -> Result<Vec<f32>, RenderError> {
+    Ok(read_texture(ctx, &targets.hdr)?
+        .chunks_exact(2)
+        .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
+        .collect())
+}
+
+/// Times the atmosphere pass on `sky` seen by `camera` at `width` × `height`.
+pub fn bench_atmosphere(
+    ctx: &GpuContext,
+    sky: &AtmosphereSky,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+    frames: u32,
+) -> Result<AtmosphereBench, RenderError> {
+    ctx.check_image_size(width, height)?;
+    let camera = Camera {
+        aspect: f64::from(width) / f64::from(height),
+        ..*camera
+    };
+    let targets = FrameTargets::new(&ctx.device, width, height);
+    let mut pass = AtmospherePass::new(&ctx.device);
+    pass.prepare(&ctx.queue, sky, &camera);
+    let medium_luts_ms = median_ms(ctx, frames, |e| pass.record_medium_luts(e));
+    let sky_view_lut_ms = median_ms(ctx, frames, |e| pass.record_sky_view_lut(e));
+    let sky_ms = median_ms(ctx, frames, |e| pass.record(e, &targets.hdr_view, &targets.depth_view));
+    let lut_frame_ms = median_ms(ctx, frames, |e| {
+        pass.record_sky_view_lut(e);
+        pass.record(e, &targets.hdr_view, &targets.depth_view);
+    });
+    let lut_image = hdr_pixels(ctx, &targets)?;
+    pass.set_method(SkyMethod::March);
+    pass.prepare(&ctx.queue, sky, &camera);
+    let march_frame_ms = median_ms(ctx, frames, |e| pass.record(e, &targets.hdr_view, &targets.depth_view));
+    let march_image = hdr_pixels(ctx, &targets)?;
+    let mut differences: Vec<f64> = lut_image
+        .chunks_exact(4)
+        .zip(march_image.chunks_exact(4))
+        .filter_map(|(a, b)| {
+            let reference = b[..3].iter().fold(0f32, |m, v| m.max(*v));
+            (reference > 1.0).then(|| {
+                let diff = (0..3).fold(0f32, |m, i| m.max((a[i] - b[i]).abs()));
+                f64::from(diff / reference)
+            })
+        })
+        .collect();
+    differences.sort_by(f64::total_cmp);
+    let difference = match differences.last() {
+        Some(worst) => (differences[differences.len() / 2], *worst),
+        None => (0.0, 0.0),
+    };
+    let info = ctx.adapter.get_info();
+    Ok(AtmosphereBench {
+        adapter: format!("{} ({:?})", info.name, info.backend),
+        width,
+        height,
+        frames,
+        suns: sky.suns.len(),
+        medium_luts_ms,
+        sky_view_lut_ms,
+        sky_ms,
+        lut_frame_ms,
+        march_frame_ms,
+        difference,
+    })
+}

@@ -1,0 +1,81 @@
+//! `firmament bench`: the atmosphere's per-pass times on this machine's adapter.
+
+use anyhow::{Context, Result, bail};
+use firmament_core::frame::Sky;
+use firmament_render::GpuContext;
+use firmament_render::bench::{AtmosphereBench, bench_atmosphere};
+
+use crate::cli::{BenchArgs, SceneArgs};
+
+/// Loads the scene (an atmosphere preset by default), times the passes and prints the figures.
+pub(crate) fn run(args: &BenchArgs) -> Result<()> {
+    let scene_args = SceneArgs {
+        preset: args
+            .scene_args
+            .preset
+            .clone()
+            .or_else(|| args.scene.is_none().then(|| "earth-noon".to_owned())),
+        overrides: args.scene_args.overrides.clone(),
+    };
+    let extra = vec![
+        format!("render.width={}", args.width),
+        format!("render.height={}", args.height),
+    ];
+    let scene = super::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
+    let frame = scene.frame_at(None)?;
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        bail!("bench times the atmosphere passes: the scene needs sky.model = \"atmosphere\"");
+    };
+    let ctx = GpuContext::headless(args.backend.into())?;
+    let result = bench_atmosphere(&ctx, sky, &frame.camera, args.width, args.height, args.frames)?;
+    if args.json {
+        println!("{}", json(&result));
+    } else {
+        print_table(&result);
+    }
+    Ok(())
+}
+
+fn print_table(b: &AtmosphereBench) {
+    println!(
+        "{} — {}x{}, {} sun(s), median of {} frames, wall time with full synchronisation",
+        b.adapter, b.width, b.height, b.suns, b.frames
+    );
+    for (name, ms) in [
+        (
+            "medium LUTs (transmittance, multiple scattering, irradiance)",
+            b.medium_luts_ms,
+        ),
+        ("sky-view LUT", b.sky_view_lut_ms),
+        ("sky pass", b.sky_ms),
+        ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
+        ("brute-force frame (per-pixel march)", b.march_frame_ms),
+    ] {
+        println!("  {name:<62} {ms:>10.3} ms");
+    }
+    println!(
+        "  brute force / LUT path: {:.1}x; LUT vs march: median {:.2} %, worst {:.2} %",
+        b.march_frame_ms / b.lut_frame_ms,
+        b.difference.0 * 100.0,
+        b.difference.1 * 100.0
+    );
+}
+
+fn json(b: &AtmosphereBench) -> String {
+    serde_json::json!({
+        "adapter": b.adapter,
+        "width": b.width,
+        "height": b.height,
+        "suns": b.suns,
+        "frames": b.frames,
+        "timing": "wall time, full synchronisation",
+        "medium_luts_ms": b.medium_luts_ms,
+        "sky_view_lut_ms": b.sky_view_lut_ms,
+        "sky_ms": b.sky_ms,
+        "lut_frame_ms": b.lut_frame_ms,
+        "march_frame_ms": b.march_frame_ms,
+        "difference_median": b.difference.0,
+        "difference_worst": b.difference.1,
+    })
+    .to_string()
+}
