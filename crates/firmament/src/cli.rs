@@ -76,6 +76,13 @@ pub(crate) struct RenderArgs {
     /// Graphics API to render with.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+    /// Render an atmosphere scene with the f64 reference integrator instead of the GPU: slow
+    /// (seconds per pixel at high path counts) but the truth the GPU is checked against.
+    #[arg(long)]
+    pub(crate) reference: bool,
+    /// Monte Carlo paths per pixel for `--reference`'s multiple scattering, 1 to 1000000.
+    #[arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    pub(crate) paths: u64,
 }
 
 #[derive(Debug, Args)]

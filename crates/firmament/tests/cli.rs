@@ -418,3 +418,48 @@ fn bench_of_a_gradient_sky_says_it_needs_an_atmosphere() {
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("sky.model = \"atmosphere\""), "{}", stderr(&out));
 }
+
+#[test]
+fn reference_render_agrees_with_the_gpu() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let common = [
+        "render",
+        "--preset",
+        "earth-noon",
+        "--width",
+        "4",
+        "--height",
+        "2",
+        "--set",
+        "camera.pitch=20",
+    ];
+    let gpu = firmament(dir.path(), &[&common[..], &["-o", "gpu.exr"]].concat());
+    assert!(gpu.status.success(), "{}", stderr(&gpu));
+    let reference = firmament(
+        dir.path(),
+        &[&common[..], &["--reference", "--paths", "256", "-o", "reference.exr"]].concat(),
+    );
+    assert!(reference.status.success(), "{}", stderr(&reference));
+    let read = |name: &str| image::open(dir.path().join(name)).expect("an EXR").to_rgba32f();
+    let (gpu, reference) = (read("gpu.exr"), read("reference.exr"));
+    for (g, r) in gpu.pixels().zip(reference.pixels()) {
+        let difference = (0..3).map(|i| (g[i] - r[i]).abs()).fold(0.0, f32::max);
+        let scale = r[0].max(r[1]).max(r[2]);
+        // Hillaire's multiple-scattering approximation (docs/ATMOSPHERE.md) and the noise of
+        // 256 paths (about 3 % of the multiple-scattered part).
+        assert!(difference < 0.12 * scale, "gpu {g:?} reference {r:?}");
+    }
+}
+
+#[test]
+fn reference_render_of_a_gradient_sky_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(dir.path(), &["render", "--reference", "-o", "x.png"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("--reference renders the atmosphere"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(files_in(dir.path()).is_empty());
+}

@@ -1,8 +1,13 @@
 //! `firmament render`.
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
+use firmament_core::Frame;
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::color::{LinearRgb, linear_to_srgb};
+use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use firmament_render::headless::HeadlessRenderer;
+use firmament_render::headless::Image;
 
 use crate::cli::RenderArgs;
 use crate::output::{OutputFormat, write_exr, write_png};
@@ -34,6 +39,32 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let frame = scene.frame_at(None)?;
     let (width, height) = (scene.render.width, scene.render.height);
 
+    if args.reference {
+        let Sky::Atmosphere(sky) = &frame.sky else {
+            bail!("--reference renders the atmosphere: the scene needs sky.model = \"atmosphere\"");
+        };
+        tracing::info!(
+            "rendering {what} with the f64 reference at {width}x{height}, {} paths per pixel",
+            args.paths
+        );
+        let settings = ReferenceSettings {
+            paths: args.paths as usize,
+            ..ReferenceSettings::default()
+        };
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
+        let conversion = sky.atmosphere.spectral_conversion();
+        let radiance: Vec<LinearRgb> = reference
+            .image(&frame.camera, width, height)
+            .into_iter()
+            .map(|s| conversion.linear_srgb(s))
+            .collect();
+        match format {
+            OutputFormat::Png => write_png(&args.output, &reference_ldr(&radiance, &frame, width, height))?,
+            OutputFormat::Exr => write_exr(&args.output, &reference_hdr(&radiance, width, height))?,
+        }
+        tracing::info!("wrote {}", args.output.display());
+        return Ok(());
+    }
     let ctx = GpuContext::headless(args.backend.into())?;
     tracing::info!("rendering {what} at {width}x{height}, {}", scene.time.time_of_day);
     let mut renderer = HeadlessRenderer::new(&ctx);
@@ -43,4 +74,33 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     }
     tracing::info!("wrote {}", args.output.display());
     Ok(())
+}
+
+/// The reference's linear sRGB as the HDR image the GPU would give (RGBA f32).
+fn reference_hdr(radiance: &[LinearRgb], width: u32, height: u32) -> Image<f32> {
+    Image {
+        width,
+        height,
+        pixels: radiance
+            .iter()
+            .flat_map(|c| [c.r as f32, c.g as f32, c.b as f32, 1.0])
+            .collect(),
+    }
+}
+
+/// The reference through the scene's exposure and tone curve, sRGB-encoded like the GPU's
+/// tonemap pass (the core's display model is what that pass is tested against).
+fn reference_ldr(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32) -> Image<u8> {
+    let encode = |v: f64| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+    Image {
+        width,
+        height,
+        pixels: radiance
+            .iter()
+            .flat_map(|c| {
+                let d = frame.display.display_linear(*c);
+                [encode(d.r), encode(d.g), encode(d.b), 255]
+            })
+            .collect(),
+    }
 }

@@ -24,6 +24,7 @@ use glam::DVec3;
 
 use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Planet, Sun};
+use crate::camera::Camera;
 use crate::geometry::Ray;
 use quadrature::adaptive_simpson;
 
@@ -149,6 +150,34 @@ impl Reference {
             suns,
             settings,
         }
+    }
+
+    /// A whole image seen by `camera` (its aspect ratio replaced by `width / height`): the total
+    /// spectral radiance through each pixel's centre, row-major, top row first. Rows run in
+    /// parallel; each pixel's Monte Carlo estimate is seeded by its ray, so the image does not
+    /// depend on the thread count.
+    pub fn image(&self, camera: &Camera, width: u32, height: u32) -> Vec<Spectrum> {
+        use rayon::prelude::*;
+        let camera = Camera {
+            aspect: f64::from(width) / f64::from(height),
+            ..*camera
+        };
+        (0..height)
+            .into_par_iter()
+            .flat_map_iter(|y| {
+                (0..width).map(move |x| {
+                    let ndc = glam::DVec2::new(
+                        (f64::from(x) + 0.5) / f64::from(width) * 2.0 - 1.0,
+                        1.0 - (f64::from(y) + 0.5) / f64::from(height) * 2.0,
+                    );
+                    self.radiance(&Ray {
+                        origin: camera.position,
+                        direction: camera.view_direction(ndc),
+                    })
+                    .total()
+                })
+            })
+            .collect()
     }
 
     /// The atmosphere.
