@@ -15,6 +15,7 @@ pub mod error;
 pub mod gpu_types;
 pub mod headless;
 pub mod passes;
+pub mod probe;
 pub mod readback;
 pub mod renderer;
 pub mod shaders;

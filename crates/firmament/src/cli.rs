@@ -25,6 +25,7 @@ Examples:
   firmament check scene.toml
   firmament check --preset earth-noon --set planet.radius=6360000
   firmament presets
+  firmament sky-sample --altitude 0 --sun-zenith 60 --view-zenith 80 --view-azimuth 90
   firmament bench --preset earth-sunset --width 1280 --height 720 --frames 5
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
@@ -38,6 +39,9 @@ pub(crate) enum Command {
     Check(CheckArgs),
     /// List the built-in presets.
     Presets,
+    /// Print the atmosphere's radiance, transmittance and ground irradiance for one view and sun
+    /// direction, from the f64 reference and the GPU path.
+    SkySample(SkySampleArgs),
     /// Time the atmosphere's GPU passes, and the LUT path against the brute-force ray march.
     Bench(BenchArgs),
 }
@@ -115,6 +119,51 @@ pub(crate) struct BenchArgs {
     /// Graphics API to run on.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct SkySampleArgs {
+    /// An atmosphere scene file (TOML): its planet, medium and first sun (whose direction is
+    /// replaced). Without one, the preset (default `earth-noon`) is used.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// Eye altitude above the surface, metres (>= 0).
+    #[arg(long, value_name = "M", value_parser = finite, allow_negative_numbers = true)]
+    pub(crate) altitude: f64,
+    /// Sun zenith angle, degrees, [0, 180].
+    #[arg(long, value_name = "DEG", value_parser = finite, allow_negative_numbers = true)]
+    pub(crate) sun_zenith: f64,
+    /// View zenith angle, degrees, [0, 180].
+    #[arg(long, value_name = "DEG", value_parser = finite, allow_negative_numbers = true)]
+    pub(crate) view_zenith: f64,
+    /// View azimuth measured from the sun's azimuth, degrees.
+    #[arg(long, value_name = "DEG", value_parser = finite, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub(crate) view_azimuth: f64,
+    /// Only the f64 reference.
+    #[arg(long, conflicts_with = "gpu")]
+    pub(crate) reference: bool,
+    /// Only the GPU path.
+    #[arg(long)]
+    pub(crate) gpu: bool,
+    /// Monte Carlo paths for the reference's multiple scattering, 1 to 10000000.
+    #[arg(long, value_name = "N", default_value_t = 4096, value_parser = clap::value_parser!(u64).range(1..=10_000_000))]
+    pub(crate) paths: u64,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Graphics API for the GPU path.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
+}
+
+/// A finite number (clap's own f64 parser accepts `NaN` and `inf`).
+fn finite(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(_) => Err("must be a finite number".to_owned()),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 /// `--backend` values.

@@ -463,3 +463,60 @@ fn reference_render_of_a_gradient_sky_is_refused() {
     );
     assert!(files_in(dir.path()).is_empty());
 }
+
+#[test]
+fn sky_sample_prints_both_methods_as_json() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(
+        dir.path(),
+        &[
+            "sky-sample",
+            "--altitude",
+            "0",
+            "--sun-zenith",
+            "60",
+            "--view-zenith",
+            "80",
+            "--view-azimuth",
+            "90",
+            "--paths",
+            "64",
+            "--json",
+            "-q",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for key in [
+        "\"reference\":{",
+        "\"gpu\":{",
+        "\"luminance\":",
+        "\"transmittance\":",
+        "\"sky_irradiance\":",
+    ] {
+        assert!(stdout.contains(key), "{key} missing from {stdout}");
+    }
+}
+
+#[test]
+fn sky_sample_rejects_bad_angles_and_altitudes() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (args, message) in [
+        (
+            ["--altitude", "-5", "--sun-zenith", "30", "--view-zenith", "30"],
+            "--altitude = -5",
+        ),
+        (
+            ["--altitude", "0", "--sun-zenith", "200", "--view-zenith", "30"],
+            "--sun-zenith = 200",
+        ),
+        (
+            ["--altitude", "NaN", "--sun-zenith", "30", "--view-zenith", "30"],
+            "must be a finite number",
+        ),
+    ] {
+        let out = firmament(dir.path(), &[&["sky-sample", "--reference"][..], &args[..]].concat());
+        assert_ne!(out.status.code(), Some(0), "{args:?}");
+        assert!(stderr(&out).contains(message), "{args:?}: {}", stderr(&out));
+    }
+}

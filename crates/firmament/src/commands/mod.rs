@@ -4,6 +4,7 @@ mod bench;
 mod check;
 mod presets;
 mod render;
+mod sky_sample;
 
 use anyhow::Result;
 use firmament_scene::{Scene, SceneSource};
@@ -16,6 +17,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::SkySample(args) => sky_sample::run(&args),
         Command::Presets => {
             presets::run();
             Ok(())

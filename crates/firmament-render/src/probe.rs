@@ -1,0 +1,177 @@
+//! What the GPU path gives for one view ray, in the reference's terms: spectral radiance,
+//! transmittance to space and ground irradiance (for `firmament sky-sample` and checks).
+//!
+//! The radiance is a 1 × 1 render converted back from linear sRGB to the model wavelengths; the
+//! transmittance and irradiances are read from the pass's own LUTs with the shaders' mappings
+//! (mirrored here in `f64`, `atmosphere/common.wgsl` and `luts.wgsl` being the originals).
+
+use firmament_core::atmosphere::Spectrum;
+use firmament_core::display::DisplaySettings;
+use firmament_core::frame::{AtmosphereSky, Sky};
+use firmament_core::{Camera, Frame};
+use glam::DVec3;
+
+use crate::context::GpuContext;
+use crate::error::RenderError;
+use crate::gpu_types::atmosphere::lut_bottom_radius;
+use crate::headless::HeadlessRenderer;
+use crate::passes::AtmospherePass;
+use crate::passes::atmosphere::luts::{IRRADIANCE_SIZE, TRANSMITTANCE_SIZE};
+use crate::readback::read_texture;
+
+/// The GPU path's answer for one view ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GpuSkySample {
+    /// Spectral radiance along the view, W·m⁻²·sr⁻¹·nm⁻¹ (sun discs included).
+    pub radiance: Spectrum,
+    /// Transmittance from the eye along the view to space (0 when the view meets the ground).
+    pub transmittance: Spectrum,
+    /// Sky irradiance on the horizontal ground below the eye, W·m⁻²·nm⁻¹.
+    pub sky_irradiance: Spectrum,
+    /// Direct sun irradiance on the horizontal ground below the eye, W·m⁻²·nm⁻¹.
+    pub sun_irradiance: Spectrum,
+}
+
+/// A LUT read back as RGBA `f64` texels, sampled bilinearly like `load_bilinear`.
+struct CpuLut {
+    size: (u32, u32),
+    texels: Vec<[f64; 4]>,
+}
+
+impl CpuLut {
+    fn read(ctx: &GpuContext, texture: &wgpu::Texture, size: (u32, u32)) -> Result<Self, RenderError> {
+        let bytes = read_texture(ctx, texture)?;
+        let channels: Vec<f64> = match texture.format() {
+            wgpu::TextureFormat::Rgba32Float => bytes
+                .chunks_exact(4)
+                .map(|b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+                .collect(),
+            _ => bytes
+                .chunks_exact(2)
+                .map(|b| f64::from(half::f16::from_le_bytes([b[0], b[1]]).to_f32()))
+                .collect(),
+        };
+        let texels = channels.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+        Ok(Self { size, texels })
+    }
+
+    fn sample(&self, u: f64, v: f64) -> Spectrum {
+        let (w, h) = (f64::from(self.size.0), f64::from(self.size.1));
+        let x = (u * w - 0.5).clamp(0.0, w - 1.0);
+        let y = (v * h - 0.5).clamp(0.0, h - 1.0);
+        let (i, j) = (x.floor() as u32, y.floor() as u32);
+        let (fx, fy) = (x - x.floor(), y - y.floor());
+        let (i1, j1) = ((i + 1).min(self.size.0 - 1), (j + 1).min(self.size.1 - 1));
+        let at = |i: u32, j: u32| {
+            let t = self.texels[(j * self.size.0 + i) as usize];
+            Spectrum::new(t[0], t[1], t[2])
+        };
+        let top = at(i, j).lerp(at(i1, j), fx);
+        let bottom = at(i, j1).lerp(at(i1, j1), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+fn unit_to_texel(x: f64, size: u32) -> f64 {
+    let n = f64::from(size);
+    0.5 / n + x * (1.0 - 1.0 / n)
+}
+
+/// The LUT sphere: bottom and top radius, metres.
+struct LutSphere {
+    bottom: f64,
+    top: f64,
+}
+
+impl LutSphere {
+    fn hits_ground(&self, r: f64, mu: f64) -> bool {
+        mu < 0.0 && r * r * (mu * mu - 1.0) + self.bottom * self.bottom >= 0.0
+    }
+
+    /// Bruneton's transmittance-LUT coordinates of (r, mu).
+    fn transmittance_uv(&self, r: f64, mu: f64) -> (f64, f64) {
+        let big_h = (self.top * self.top - self.bottom * self.bottom).sqrt();
+        let rho = (r * r - self.bottom * self.bottom).max(0.0).sqrt();
+        let d = (-r * mu + (r * r * (mu * mu - 1.0) + self.top * self.top).max(0.0).sqrt()).max(0.0);
+        let (d_min, d_max) = (self.top - r, rho + big_h);
+        let x_mu = (d - d_min) / (d_max - d_min).max(1e-3);
+        (
+            unit_to_texel(x_mu, TRANSMITTANCE_SIZE.0),
+            unit_to_texel(rho / big_h, TRANSMITTANCE_SIZE.1),
+        )
+    }
+}
+
+/// Samples the GPU path for the view ray from world `position` along `view` (unit, world),
+/// with the ground irradiances taken at `ground` (a world point on the surface).
+pub fn sample_sky(
+    ctx: &GpuContext,
+    sky: &AtmosphereSky,
+    position: DVec3,
+    view: DVec3,
+    ground: DVec3,
+) -> Result<GpuSkySample, RenderError> {
+    let camera = Camera::looking_at(position, position + view, DVec3::Z)
+        .or_else(|| Camera::looking_at(position, position + view, DVec3::Y))
+        .ok_or_else(|| RenderError::Readback("the view direction must be finite and non-zero".into()))?;
+    let camera = Camera {
+        fov_y: 0.01f64.to_radians(),
+        ..camera
+    };
+    let frame = Frame {
+        camera,
+        sky: Sky::Atmosphere(sky.clone()),
+        display: DisplaySettings::default(),
+    };
+    let image = HeadlessRenderer::new(ctx).render_hdr(ctx, &frame, 1, 1)?;
+    let rgb = DVec3::new(
+        f64::from(image.pixels[0]),
+        f64::from(image.pixels[1]),
+        f64::from(image.pixels[2]),
+    );
+    let atmosphere = &sky.atmosphere;
+    let radiance = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse() * rgb;
+
+    let mut pass = AtmospherePass::new(&ctx.device);
+    pass.prepare(&ctx.queue, sky, &camera);
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("firmament sample_sky encoder"),
+    });
+    pass.record_medium_luts(&mut encoder);
+    ctx.queue.submit([encoder.finish()]);
+    let transmittance_lut = CpuLut::read(ctx, &pass.luts().transmittance.texture, TRANSMITTANCE_SIZE)?;
+    let irradiance_lut = CpuLut::read(ctx, &pass.luts().irradiance.texture, IRRADIANCE_SIZE)?;
+
+    let planet = &atmosphere.planet;
+    let sphere = LutSphere {
+        bottom: lut_bottom_radius(atmosphere),
+        top: lut_bottom_radius(atmosphere) + planet.atmosphere_height,
+    };
+    let transmittance_to_top = |h: f64, mu: f64| {
+        let r = sphere.bottom + h.max(0.0);
+        if sphere.hits_ground(r, mu) {
+            return Spectrum::ZERO;
+        }
+        let (u, v) = sphere.transmittance_uv(r, mu);
+        transmittance_lut.sample(u, v)
+    };
+    let eye = planet.to_planet_frame(position);
+    let eye_up = planet.up(eye);
+    let transmittance = transmittance_to_top(planet.altitude(eye), planet.direction_to_planet_frame(view).dot(eye_up));
+
+    let foot = planet.to_planet_frame(ground);
+    let up = planet.up(foot);
+    let (mut sky_irradiance, mut sun_irradiance) = (Spectrum::ZERO, Spectrum::ZERO);
+    for sun in &sky.suns {
+        let mu_s = planet.direction_to_planet_frame(sun.direction).normalize().dot(up);
+        let u = unit_to_texel(mu_s * 0.5 + 0.5, IRRADIANCE_SIZE.0);
+        sky_irradiance += sun.irradiance * irradiance_lut.sample(u, unit_to_texel(0.0, IRRADIANCE_SIZE.1));
+        sun_irradiance += sun.irradiance * transmittance_to_top(0.0, mu_s) * mu_s.max(0.0);
+    }
+    Ok(GpuSkySample {
+        radiance,
+        transmittance,
+        sky_irradiance,
+        sun_irradiance,
+    })
+}

@@ -1,0 +1,180 @@
+//! `firmament sky-sample`: one view ray through the atmosphere, by the reference and the GPU.
+
+use anyhow::{Context, Result, bail};
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::atmosphere::{Spectrum, presets};
+use firmament_core::frame::{AtmosphereSky, Sky};
+use firmament_core::geometry::Ray;
+use firmament_render::GpuContext;
+use firmament_render::probe::sample_sky;
+use glam::DVec3;
+
+use crate::cli::{SceneArgs, SkySampleArgs};
+
+/// Everything sky-sample reports, for one method.
+struct Sample {
+    radiance: Spectrum,
+    transmittance: Spectrum,
+    sky_irradiance: Spectrum,
+    sun_irradiance: Spectrum,
+}
+
+/// A unit ENU direction at `zenith` degrees from up and `azimuth` degrees from north, clockwise.
+fn enu(zenith: f64, azimuth: f64) -> DVec3 {
+    let (z, a) = (zenith.to_radians(), azimuth.to_radians());
+    DVec3::new(z.sin() * a.sin(), z.sin() * a.cos(), z.cos())
+}
+
+/// Builds the single-sun sky, samples it by the requested methods and prints the result.
+pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
+    if args.altitude < 0.0 {
+        bail!(
+            "--altitude = {}: must be >= 0 metres (above the surface)",
+            args.altitude
+        );
+    }
+    for (name, value) in [("--sun-zenith", args.sun_zenith), ("--view-zenith", args.view_zenith)] {
+        if !(0.0..=180.0).contains(&value) {
+            bail!("{name} = {value}: must lie in [0, 180] degrees");
+        }
+    }
+    let scene_args = SceneArgs {
+        preset: args
+            .scene_args
+            .preset
+            .clone()
+            .or_else(|| args.scene.is_none().then(|| "earth-noon".to_owned())),
+        overrides: args.scene_args.overrides.clone(),
+    };
+    let scene = super::load_scene(args.scene.as_deref(), &scene_args, Vec::new()).context("cannot build the scene")?;
+    let frame = scene.frame_at(None)?;
+    let Sky::Atmosphere(scene_sky) = frame.sky else {
+        bail!("sky-sample samples the atmosphere: the scene needs sky.model = \"atmosphere\"");
+    };
+    // The sun stands north of the eye; the view azimuth is measured from it.
+    let template = scene_sky
+        .suns
+        .first()
+        .copied()
+        .unwrap_or_else(|| presets::earth_sun(DVec3::Z));
+    let sun = firmament_core::atmosphere::Sun {
+        direction: enu(args.sun_zenith, 0.0),
+        ..template
+    };
+    let sky = AtmosphereSky {
+        atmosphere: scene_sky.atmosphere,
+        suns: vec![sun],
+    };
+    let eye = DVec3::new(0.0, 0.0, args.altitude);
+    let view = enu(args.view_zenith, args.view_azimuth);
+
+    let reference = (!args.gpu).then(|| reference_sample(&sky, eye, view, args.paths as usize));
+    let gpu = if args.reference {
+        None
+    } else {
+        let ctx = GpuContext::headless(args.backend.into())?;
+        let s = sample_sky(&ctx, &sky, eye, view, DVec3::ZERO)?;
+        Some(Sample {
+            radiance: s.radiance,
+            transmittance: s.transmittance,
+            sky_irradiance: s.sky_irradiance,
+            sun_irradiance: s.sun_irradiance,
+        })
+    };
+    let conversion = sky.atmosphere.spectral_conversion();
+    let wavelengths = sky.atmosphere.wavelengths.0;
+    if args.json {
+        let describe = |s: &Sample| {
+            let rgb = conversion.linear_srgb(s.radiance);
+            serde_json::json!({
+                "radiance": s.radiance.to_array(),
+                "luminance": conversion.luminance(s.radiance),
+                "linear_srgb": [rgb.r, rgb.g, rgb.b],
+                "transmittance": s.transmittance.to_array(),
+                "sky_irradiance": s.sky_irradiance.to_array(),
+                "sun_irradiance": s.sun_irradiance.to_array(),
+            })
+        };
+        let out = serde_json::json!({
+            "wavelengths_nm": wavelengths,
+            "units": {"radiance": "W/(m^2 sr nm)", "luminance": "cd/m^2", "irradiance": "W/(m^2 nm)"},
+            "altitude_m": args.altitude,
+            "sun_zenith_deg": args.sun_zenith,
+            "view_zenith_deg": args.view_zenith,
+            "view_azimuth_deg": args.view_azimuth,
+            "reference": reference.as_ref().map(describe),
+            "gpu": gpu.as_ref().map(describe),
+        });
+        println!("{out}");
+        return Ok(());
+    }
+    println!(
+        "altitude {} m, sun zenith {}°, view zenith {}°, view azimuth {}° from the sun",
+        args.altitude, args.sun_zenith, args.view_zenith, args.view_azimuth
+    );
+    println!("{:<34} {:>14} {:>14} {:>10}", "", "reference", "gpu", "gpu/ref−1");
+    let row = |name: String, r: Option<f64>, g: Option<f64>| {
+        let cell = |v: Option<f64>| v.map_or("—".to_owned(), |v| format!("{v:.6e}"));
+        let diff = match (r, g) {
+            (Some(r), Some(g)) if r != 0.0 => format!("{:+.2} %", (g / r - 1.0) * 100.0),
+            _ => String::new(),
+        };
+        println!("{name:<34} {:>14} {:>14} {diff:>10}", cell(r), cell(g));
+    };
+    let pick = |f: &dyn Fn(&Sample) -> Spectrum, i: usize| {
+        (reference.as_ref().map(|s| f(s)[i]), gpu.as_ref().map(|s| f(s)[i]))
+    };
+    for (i, nm) in wavelengths.iter().enumerate() {
+        let (r, g) = pick(&|s| s.radiance, i);
+        row(format!("radiance {nm} nm, W/(m² sr nm)"), r, g);
+    }
+    let luminance = |s: &Sample| conversion.luminance(s.radiance);
+    row(
+        "luminance, cd/m²".to_owned(),
+        reference.as_ref().map(luminance),
+        gpu.as_ref().map(luminance),
+    );
+    for (i, channel) in ["r", "g", "b"].iter().enumerate() {
+        let srgb = |s: &Sample| conversion.linear_srgb(s.radiance).to_array()[i];
+        row(
+            format!("linear sRGB {channel}, cd/m² scale"),
+            reference.as_ref().map(srgb),
+            gpu.as_ref().map(srgb),
+        );
+    }
+    for (label, f) in [
+        (
+            "transmittance to space",
+            (|s: &Sample| s.transmittance) as fn(&Sample) -> Spectrum,
+        ),
+        ("sky irradiance on the ground", |s: &Sample| s.sky_irradiance),
+        ("sun irradiance on the ground", |s: &Sample| s.sun_irradiance),
+    ] {
+        for (i, nm) in wavelengths.iter().enumerate() {
+            let (r, g) = pick(&f, i);
+            row(format!("{label} {nm} nm"), r, g);
+        }
+    }
+    Ok(())
+}
+
+fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, paths: usize) -> Sample {
+    let settings = ReferenceSettings {
+        paths,
+        ..ReferenceSettings::default()
+    };
+    let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
+    let planet = &sky.atmosphere.planet;
+    let parts = reference.radiance(&Ray {
+        origin: eye,
+        direction: view,
+    });
+    let ground = reference.ground_irradiance(DVec3::ZERO);
+    Sample {
+        radiance: parts.total(),
+        transmittance: reference
+            .transmittance_to_space(planet.to_planet_frame(eye), planet.direction_to_planet_frame(view)),
+        sky_irradiance: ground.sky,
+        sun_irradiance: ground.direct,
+    }
+}
