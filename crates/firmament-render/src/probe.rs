@@ -164,7 +164,8 @@ pub fn sample_sky(
     let (mut sky_irradiance, mut sun_irradiance) = (Spectrum::ZERO, Spectrum::ZERO);
     for sun in &sky.suns {
         let mu_s = planet.direction_to_planet_frame(sun.direction).normalize().dot(up);
-        let u = unit_to_texel(mu_s * 0.5 + 0.5, IRRADIANCE_SIZE.0);
+        // The shaders' `mu_s_to_unit`.
+        let u = unit_to_texel(0.5 + 0.5 * mu_s.signum() * mu_s.abs().sqrt(), IRRADIANCE_SIZE.0);
         sky_irradiance += sun.irradiance * irradiance_lut.sample(u, unit_to_texel(0.0, IRRADIANCE_SIZE.1));
         sun_irradiance += sun.irradiance * transmittance_to_top(0.0, mu_s) * mu_s.max(0.0);
     }

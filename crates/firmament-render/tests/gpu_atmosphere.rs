@@ -184,6 +184,34 @@ fn sky_from_the_ground_matches_the_reference() {
     assert!(median < 0.05 && worst < 0.10, "median {median}, worst {worst}");
 }
 
+/// The sun 3° above the horizon: the sunset budget is 10 %.
+#[test]
+fn sunset_sky_matches_the_reference() {
+    let mut gpu = gpu();
+    let atmosphere = earth_sphere();
+    let sun = presets::earth_sun(direction(270.0, 3.0));
+    let sky = AtmosphereSky {
+        atmosphere,
+        suns: vec![sun],
+    };
+    let settings = ReferenceSettings {
+        paths: 1024,
+        ..ReferenceSettings::default()
+    };
+    let reference = Reference::new(atmosphere, &[sun], settings);
+    let position = DVec3::new(0.0, 0.0, 1.7);
+    let mut worst: f64 = 0.0;
+    for (azimuth, elevation) in [(0.0, 90.0), (250.0, 4.0), (270.0, 20.0), (90.0, 5.0), (180.0, 30.0)] {
+        let view = direction(azimuth, elevation);
+        let g = gpu_radiance(&mut gpu, &sky, position, view);
+        let r = reference_radiance(&reference, position, view);
+        let e = relative_difference(g, r);
+        println!("azimuth {azimuth:5.1} elevation {elevation:5.1}: gpu {g:.1} reference {r:.1} relative {e:.4}");
+        worst = worst.max(e);
+    }
+    assert!(worst < 0.10, "worst {worst}");
+}
+
 #[test]
 fn several_suns_add_up() {
     let mut gpu = gpu();

@@ -3,8 +3,8 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1], h ∈ [0, H] |
-//! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1], h ∈ [0, H] |
+//! | multiple scattering | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
+//! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //!
 //! The sizes are mirrored by constants in `atmosphere/common.wgsl`, `luts.wgsl` and `view.wgsl`.

@@ -106,6 +106,17 @@ fn texel_coord_to_unit(u: f32, size: f32) -> f32 {
     return (u - 0.5 / size) / (1.0 - 1.0 / size);
 }
 
+// The mu_s axis of the multiple-scattering and irradiance LUTs: u = (1 + sign(mu_s)·√|mu_s|) / 2,
+// so texels crowd around the horizon (mu_s = 0), where twilight changes fastest.
+fn mu_s_to_unit(mu_s: f32) -> f32 {
+    return 0.5 + 0.5 * sign(mu_s) * sqrt(abs(mu_s));
+}
+
+fn unit_to_mu_s(u: f32) -> f32 {
+    let x = 2.0 * u - 1.0;
+    return sign(x) * x * x;
+}
+
 const TRANSMITTANCE_LUT_SIZE: vec2<f32> = vec2<f32>(256.0, 64.0);
 
 // Bruneton's transmittance parameterisation: x_mu spreads the distance to the top between its

@@ -3,7 +3,8 @@
 // from single scattering plus Hillaire's multiple-scattering term).
 // Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
-// Texel (u, v) ↦ mu_s = 2u − 1, h = v · atmosphere height, on the LUT sphere (IRRADIANCE_LUT_SIZE).
+// Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
+// on the LUT sphere (IRRADIANCE_LUT_SIZE).
 // For each it integrates the sky's radiance over the upper hemisphere, cosine-weighted, with
 // DIRECTIONS_SQRT² directions of STEPS samples. Light reflected by the ground below is left out
 // (second order in the albedo). rgb = irradiance / sun irradiance, dimensionless; a = 1.
@@ -19,7 +20,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let uv = in.clip.xy / IRRADIANCE_LUT_SIZE;
-    let mu_s = texel_coord_to_unit(uv.x, IRRADIANCE_LUT_SIZE.x) * 2.0 - 1.0;
+    let mu_s = unit_to_mu_s(texel_coord_to_unit(uv.x, IRRADIANCE_LUT_SIZE.x));
     let h = texel_coord_to_unit(uv.y, IRRADIANCE_LUT_SIZE.y) * atmosphere.radii.w;
     let r = atmosphere.lut.x + h;
     let origin = vec3<f32>(0.0, 0.0, r);

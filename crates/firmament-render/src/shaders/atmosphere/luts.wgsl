@@ -49,7 +49,7 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 // irradiance, to be multiplied by the total scattering coefficient.
 fn multiscattering(h: f32, mu_s: f32) -> vec3<f32> {
     let uv = vec2<f32>(
-        unit_to_texel_coord(mu_s * 0.5 + 0.5, MULTISCATTERING_LUT_SIZE.x),
+        unit_to_texel_coord(mu_s_to_unit(mu_s), MULTISCATTERING_LUT_SIZE.x),
         unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), MULTISCATTERING_LUT_SIZE.y),
     );
     return textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb;
@@ -61,7 +61,7 @@ const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);
 // W·m⁻²·nm⁻¹ of sun).
 fn sky_irradiance(h: f32, mu_s: f32) -> vec3<f32> {
     let uv = vec2<f32>(
-        unit_to_texel_coord(mu_s * 0.5 + 0.5, IRRADIANCE_LUT_SIZE.x),
+        unit_to_texel_coord(mu_s_to_unit(mu_s), IRRADIANCE_LUT_SIZE.x),
         unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), IRRADIANCE_LUT_SIZE.y),
     );
     return textureSampleLevel(irradiance_lut, lut_sampler, uv, 0.0).rgb;

@@ -2,8 +2,8 @@
 // Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020, section 5.2).
 // Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
-// Texel (u, v) ↦ mu_s = 2u − 1, h = v · atmosphere height, on the LUT sphere. For a unit sun,
-// it integrates second-order light L₂ and the transfer f_ms over 64 directions with the isotropic
+// Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
+// on the LUT sphere. For a unit sun it integrates second-order light L₂ and the transfer f_ms over 64 directions with the isotropic
 // phase, ground bounce included, and stores Ψ_ms = L₂ / (1 − f_ms): the sum of every order ≥ 2
 // under Hillaire's assumption that the light arriving at a point is isotropic beyond order 2.
 
@@ -19,7 +19,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let uv = in.clip.xy / MULTISCATTERING_LUT_SIZE;
-    let mu_s = texel_coord_to_unit(uv.x, MULTISCATTERING_LUT_SIZE.x) * 2.0 - 1.0;
+    let mu_s = unit_to_mu_s(texel_coord_to_unit(uv.x, MULTISCATTERING_LUT_SIZE.x));
     let h = texel_coord_to_unit(uv.y, MULTISCATTERING_LUT_SIZE.y) * atmosphere.radii.w;
     let r = atmosphere.lut.x + h;
     let origin = vec3<f32>(0.0, 0.0, r);
