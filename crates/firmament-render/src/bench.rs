@@ -4,6 +4,8 @@
 //! Wall time includes submission and the wait, so on a real GPU it overstates sub-millisecond
 //! passes; compare figures taken side by side in one run.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use firmament_core::Camera;
@@ -43,18 +45,59 @@ pub struct AtmosphereBench {
     pub difference: (f64, f64),
 }
 
-fn median_ms(ctx: &GpuContext, frames: u32, mut encode: impl FnMut(&mut wgpu::CommandEncoder)) -> f64 {
+/// Median wall time of `frames` submissions of `encode`, each ending with a copy of one texel of
+/// `written` (a texture the work writes) that is then mapped: GL fences give up after 2³¹ ns, but
+/// reading the copy back waits for the work itself.
+fn median_ms(
+    ctx: &GpuContext,
+    frames: u32,
+    written: &wgpu::Texture,
+    mut encode: impl FnMut(&mut wgpu::CommandEncoder),
+) -> f64 {
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("firmament bench sync buffer"),
+        size: 256,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
     let mut times: Vec<f64> = (0..frames.max(1))
         .map(|_| {
             let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("firmament bench encoder"),
             });
             encode(&mut encoder);
+            encoder.copy_texture_to_buffer(
+                written.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &staging,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: None,
+                        rows_per_image: None,
+                    },
+                },
+                wgpu::Extent3d {
+                    width: 1,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+            );
+            let mapped = Arc::new(AtomicBool::new(false));
+            let signal = Arc::clone(&mapped);
             let start = Instant::now();
             ctx.queue.submit([encoder.finish()]);
+            staging
+                .slice(..)
+                .map_async(wgpu::MapMode::Read, move |_| signal.store(true, Ordering::Release));
             // Errors here are device loss, which the readback afterwards reports.
-            let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
-            start.elapsed().as_secs_f64() * 1e3
+            while !mapped.load(Ordering::Acquire) {
+                if ctx.device.poll(wgpu::PollType::wait_indefinitely()).is_err() {
+                    break;
+                }
+            }
+            let elapsed = start.elapsed().as_secs_f64() * 1e3;
+            staging.unmap();
+            elapsed
         })
         .collect();
     times.sort_by(f64::total_cmp);
@@ -85,17 +128,22 @@ pub fn bench_atmosphere(
     let targets = FrameTargets::new(&ctx.device, width, height);
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, sky, &camera);
-    let medium_luts_ms = median_ms(ctx, frames, |e| pass.record_medium_luts(e));
-    let sky_view_lut_ms = median_ms(ctx, frames, |e| pass.record_sky_view_lut(e));
-    let sky_ms = median_ms(ctx, frames, |e| pass.record(e, &targets.hdr_view, &targets.depth_view));
-    let lut_frame_ms = median_ms(ctx, frames, |e| {
+    let luts = pass.luts();
+    let medium_luts_ms = median_ms(ctx, frames, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
+    let sky_view_lut_ms = median_ms(ctx, frames, &luts.sky_view.texture, |e| pass.record_sky_view_lut(e));
+    let sky_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        pass.record(e, &targets.hdr_view, &targets.depth_view)
+    });
+    let lut_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         pass.record_sky_view_lut(e);
         pass.record(e, &targets.hdr_view, &targets.depth_view);
     });
     let lut_image = hdr_pixels(ctx, &targets)?;
     pass.set_method(SkyMethod::March);
     pass.prepare(&ctx.queue, sky, &camera);
-    let march_frame_ms = median_ms(ctx, frames, |e| pass.record(e, &targets.hdr_view, &targets.depth_view));
+    let march_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        pass.record(e, &targets.hdr_view, &targets.depth_view)
+    });
     let march_image = hdr_pixels(ctx, &targets)?;
     let mut differences: Vec<f64> = lut_image
         .chunks_exact(4)

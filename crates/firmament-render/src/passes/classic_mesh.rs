@@ -95,6 +95,7 @@ impl ClassicMeshPass {
                 cull_mode: None,
                 ..Default::default()
             },
+            constants: &[],
         }
         .build(device);
         let uniforms = uniform_buffer::<ClassicFrameUniforms>(device, "firmament ClassicMeshPass uniforms");

@@ -96,6 +96,8 @@ pub(crate) struct PassPipeline<'a> {
     pub(crate) vertex_buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     /// Topology, winding and culling.
     pub(crate) primitive: wgpu::PrimitiveState,
+    /// Values of the shader's pipeline-overridable constants (`override` in WGSL).
+    pub(crate) constants: &'a [(&'a str, f64)],
 }
 
 impl PassPipeline<'_> {
@@ -121,7 +123,10 @@ impl PassPipeline<'_> {
             vertex: wgpu::VertexState {
                 module: &module,
                 entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: self.constants,
+                    ..Default::default()
+                },
                 buffers: self.vertex_buffers,
             },
             primitive: self.primitive,
@@ -130,7 +135,10 @@ impl PassPipeline<'_> {
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: self.constants,
+                    ..Default::default()
+                },
                 targets: &[Some(wgpu::ColorTargetState {
                     format: self.color,
                     blend: None,

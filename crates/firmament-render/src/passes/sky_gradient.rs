@@ -36,6 +36,7 @@ impl GradientSkyPass {
             depth_stencil: Some(far_plane_depth_state(depth)),
             vertex_buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
+            constants: &[],
         }
         .build(device);
         let uniforms = uniform_buffer::<GradientSkyUniforms>(device, "firmament GradientSkyPass uniforms");

@@ -40,6 +40,7 @@ impl TonemapPass {
             depth_stencil: None,
             vertex_buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
+            constants: &[],
         }
         .build(device);
         let uniforms = uniform_buffer::<TonemapUniforms>(device, "firmament TonemapPass uniforms");

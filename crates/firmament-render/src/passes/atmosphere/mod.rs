@@ -208,6 +208,24 @@ pub enum SkyMethod {
     March,
 }
 
+/// The sky pass's variants (the `SKY_MODE` override of `atmosphere/sky.wgsl`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SkyMode {
+    Lut = 0,
+    March = 1,
+    Blend = 2,
+}
+
+impl SkyMode {
+    fn owner(self) -> &'static str {
+        match self {
+            Self::Lut => "AtmospherePass sky (sky-view LUT)",
+            Self::March => "AtmospherePass sky (ray march)",
+            Self::Blend => "AtmospherePass sky (blend)",
+        }
+    }
+}
+
 /// The atmosphere: LUTs and the sky they feed. Build once; `prepare` every frame.
 #[derive(Debug)]
 pub struct AtmospherePass {
@@ -218,7 +236,10 @@ pub struct AtmospherePass {
     multiscattering: Stage,
     irradiance: Stage,
     sky_view: Stage,
-    sky: Stage,
+    /// The sky pipelines, indexed by [`SkyMode`].
+    sky: [Stage; 3],
+    /// Which sky pipeline this frame uses.
+    sky_mode: SkyMode,
     /// The medium the LUTs hold, to rebuild them only when it changes.
     uploaded: Option<AtmosphereParamsUniforms>,
     /// Set by `prepare` when the medium changed; cleared once `record_luts` encoded the rebuild.
@@ -254,6 +275,7 @@ impl AtmospherePass {
             depth_stencil: None,
             vertex_buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
+            constants: &[],
         };
         let multiscattering_entries = [
             uniform_entry(binding::PARAMS),
@@ -336,19 +358,25 @@ impl AtmospherePass {
                 .cloned()
                 .collect::<Vec<_>>(),
         );
-        let sky = Stage::new(
-            device,
-            PassPipeline {
-                owner: "AtmospherePass sky",
-                source: shaders::ATMOSPHERE_SKY,
-                entries: &view_entries,
-                color,
-                depth_stencil: Some(far_plane_depth_state(depth)),
-                vertex_buffers: &[],
-                primitive: wgpu::PrimitiveState::default(),
-            },
-            &view_resources,
-        );
+        // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
+        // rasterizers run both sides of a branch they cannot prove uniform).
+        let sky_stage = |mode: SkyMode| {
+            Stage::new(
+                device,
+                PassPipeline {
+                    owner: mode.owner(),
+                    source: shaders::ATMOSPHERE_SKY,
+                    entries: &view_entries,
+                    color,
+                    depth_stencil: Some(far_plane_depth_state(depth)),
+                    vertex_buffers: &[],
+                    primitive: wgpu::PrimitiveState::default(),
+                    constants: &[("SKY_MODE", f64::from(mode as u32))],
+                },
+                &view_resources,
+            )
+        };
+        let sky = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(sky_stage);
         Self {
             luts,
             params,
@@ -362,6 +390,7 @@ impl AtmospherePass {
             medium_changed: Cell::new(false),
             sun_count: 0,
             method: SkyMethod::Lut,
+            sky_mode: SkyMode::Lut,
         }
     }
 
@@ -377,6 +406,11 @@ impl AtmospherePass {
         if self.method == SkyMethod::March {
             view.local_up[3] = 1.0;
         }
+        self.sky_mode = match view.local_up[3] {
+            b if b <= 0.0 => SkyMode::Lut,
+            b if b >= 1.0 => SkyMode::March,
+            _ => SkyMode::Blend,
+        };
         self.sun_count = view.sun_count[0];
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
     }
@@ -429,8 +463,9 @@ impl AtmospherePass {
     /// Draws the sky into a render pass the caller already began (after `record_luts` was
     /// encoded earlier in the same submission).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.sky.pipeline);
-        pass.set_bind_group(0, &self.sky.bind_group, &[]);
+        let sky = &self.sky[self.sky_mode as usize];
+        pass.set_pipeline(&sky.pipeline);
+        pass.set_bind_group(0, &sky.bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
 

@@ -5,9 +5,13 @@
 //
 // Inside the atmosphere each pixel sums the sky-view LUT tiles of the suns; above it each pixel
 // marches its own ray (Hillaire 2020 does the same); across the top of the atmosphere the two
-// are blended by `view.local_up.w`, so crossing it does not pop.
+// are blended by `view.local_up.w`, so crossing it does not pop. `SKY_MODE` picks the path.
 
 @group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
+
+// 0: sky-view LUT only, 1: per-pixel march only, 2: blend by `view.local_up.w`. A pipeline
+// constant, so each pipeline holds only the path it takes.
+override SKY_MODE: u32 = 2u;
 
 const MARCH_STEPS: i32 = 64;
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
@@ -78,24 +82,28 @@ fn marched_sky(ray: ViewRay) -> SkySample {
     return out;
 }
 
-fn lut_sky(d: vec3<f32>) -> SkySample {
-    var out: SkySample;
-    out.radiance = vec3<f32>(0.0);
+fn lut_radiance(d: vec3<f32>) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
     for (var i = 0u; i < view.sun_count.x; i++) {
         let uv = sky_view_uv(d, sun_frame(i));
         let atlas_uv = vec2<f32>((uv.x + f32(i)) / f32(MAX_SUNS), uv.y);
-        out.radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb;
+        radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb;
     }
-    let r = atmosphere.lut.x + max(view.camera.w, 0.0);
-    let mu = dot(d, view.local_up.xyz);
-    let ground = ellipsoid_hits(view.camera.xyz, d, atmosphere.radii.xyz, view.camera_shape.x);
-    let hits_ground = ground.x > 0.0 && ground.x <= ground.y;
-    out.transmittance = select(transmittance_to_top(r, mu), vec3<f32>(0.0), hits_ground);
-    return out;
+    return radiance;
 }
 
-// Every sun's limb-darkened disc seen along d, through `transmittance`.
-fn sun_discs(d: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {
+// Transmittance from the camera along d to space, from the transmittance LUT.
+fn lut_transmittance(d: vec3<f32>) -> vec3<f32> {
+    let ground = ellipsoid_hits(view.camera.xyz, d, atmosphere.radii.xyz, view.camera_shape.x);
+    if ground.x > 0.0 && ground.x <= ground.y {
+        return vec3<f32>(0.0);
+    }
+    let r = atmosphere.lut.x + max(view.camera.w, 0.0);
+    return transmittance_to_top(r, dot(d, view.local_up.xyz));
+}
+
+// Every sun's limb-darkened disc seen along d, above the atmosphere (zero off the discs).
+fn sun_discs(d: vec3<f32>) -> vec3<f32> {
     var radiance = vec3<f32>(0.0);
     for (var i = 0u; i < view.sun_count.x; i++) {
         let sun = view.suns[i];
@@ -114,25 +122,32 @@ fn sun_discs(d: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {
             radiance += center * (1.0 - u * (1.0 - mu));
         }
     }
-    return radiance * transmittance;
+    return radiance;
 }
 
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let ray = view_ray(in.ndc);
-    let blend = view.local_up.w;
-    var sky: SkySample;
-    if blend <= 0.0 {
-        sky = lut_sky(ray.direction);
-    } else if blend >= 1.0 {
-        sky = marched_sky(ray);
+    let discs = sun_discs(ray.direction);
+    let on_a_disc = any(discs > vec3<f32>(0.0));
+    var radiance: vec3<f32>;
+    if SKY_MODE == 0u {
+        radiance = lut_radiance(ray.direction);
+        // The transmittance only matters on a disc: most pixels skip its lookups.
+        if on_a_disc {
+            radiance += discs * lut_transmittance(ray.direction);
+        }
+    } else if SKY_MODE == 1u {
+        let marched = marched_sky(ray);
+        radiance = marched.radiance + discs * marched.transmittance;
     } else {
-        let a = lut_sky(ray.direction);
-        let b = marched_sky(ray);
-        sky.radiance = mix(a.radiance, b.radiance, blend);
-        sky.transmittance = mix(a.transmittance, b.transmittance, blend);
+        let blend = view.local_up.w;
+        let marched = marched_sky(ray);
+        radiance = mix(lut_radiance(ray.direction), marched.radiance, blend);
+        if on_a_disc {
+            radiance += discs * mix(lut_transmittance(ray.direction), marched.transmittance, blend);
+        }
     }
-    let radiance = sky.radiance + sun_discs(ray.direction, sky.transmittance);
     // The half-float HDR target ends at 65504; a sun disc in cd/m² is far beyond.
     return vec4<f32>(min(to_linear_srgb(radiance), vec3<f32>(HDR_MAX)), 1.0);
 }

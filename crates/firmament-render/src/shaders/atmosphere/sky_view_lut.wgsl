@@ -7,7 +7,7 @@
 // first `sun_count` tiles are drawn (the viewport is narrowed on the Rust side). rgb = spectral
 // radiance; a = 1.
 
-const STEPS: i32 = 40;
+const STEPS: i32 = 32;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
