@@ -15,6 +15,7 @@ pub mod medium;
 pub mod planet;
 pub mod presets;
 pub mod reference;
+pub mod seed;
 pub mod spectrum;
 pub mod star;
 
