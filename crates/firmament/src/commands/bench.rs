@@ -5,18 +5,11 @@ use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use firmament_render::bench::{AtmosphereBench, bench_atmosphere};
 
-use crate::cli::{BenchArgs, SceneArgs};
+use crate::cli::BenchArgs;
 
 /// Loads the scene (an atmosphere preset by default), times the passes and prints the figures.
 pub(crate) fn run(args: &BenchArgs) -> Result<()> {
-    let scene_args = SceneArgs {
-        preset: args
-            .scene_args
-            .preset
-            .clone()
-            .or_else(|| args.scene.is_none().then(|| "earth-noon".to_owned())),
-        overrides: args.scene_args.overrides.clone(),
-    };
+    let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
     let extra = vec![
         format!("render.width={}", args.width),
         format!("render.height={}", args.height),

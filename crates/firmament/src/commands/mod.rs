@@ -40,3 +40,15 @@ pub(crate) fn load_scene(file: Option<&std::path::Path>, args: &SceneArgs, extra
     };
     Ok(scene?)
 }
+
+/// `args`, with `preset` as the preset when neither a scene file nor a preset was given (for the
+/// commands that need an atmosphere scene by default).
+pub(crate) fn with_default_preset(args: &SceneArgs, scene: Option<&std::path::Path>, preset: &str) -> SceneArgs {
+    SceneArgs {
+        preset: args
+            .preset
+            .clone()
+            .or_else(|| scene.is_none().then(|| preset.to_owned())),
+        overrides: args.overrides.clone(),
+    }
+}

@@ -9,7 +9,7 @@ use firmament_render::GpuContext;
 use firmament_render::probe::sample_sky;
 use glam::DVec3;
 
-use crate::cli::{SceneArgs, SkySampleArgs};
+use crate::cli::SkySampleArgs;
 
 /// Everything sky-sample reports, for one method.
 struct Sample {
@@ -38,14 +38,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             bail!("{name} = {value}: must lie in [0, 180] degrees");
         }
     }
-    let scene_args = SceneArgs {
-        preset: args
-            .scene_args
-            .preset
-            .clone()
-            .or_else(|| args.scene.is_none().then(|| "earth-noon".to_owned())),
-        overrides: args.scene_args.overrides.clone(),
-    };
+    let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
     let scene = super::load_scene(args.scene.as_deref(), &scene_args, Vec::new()).context("cannot build the scene")?;
     let frame = scene.frame_at(None)?;
     let Sky::Atmosphere(scene_sky) = frame.sky else {
