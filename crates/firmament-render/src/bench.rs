@@ -14,7 +14,7 @@ use firmament_core::frame::AtmosphereSky;
 use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::passes::{AtmospherePass, SkyMethod};
-use crate::readback::read_texture;
+use crate::readback::{decode_f16, read_texture};
 use crate::targets::FrameTargets;
 
 /// Median milliseconds per pass, and how far the LUT path is from the brute-force march.
@@ -105,10 +105,7 @@ fn median_ms(
 }
 
 fn hdr_pixels(ctx: &GpuContext, targets: &FrameTargets) -> Result<Vec<f32>, RenderError> {
-    Ok(read_texture(ctx, &targets.hdr)?
-        .chunks_exact(2)
-        .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
-        .collect())
+    Ok(decode_f16(&read_texture(ctx, &targets.hdr)?))
 }
 
 /// Times the atmosphere pass on `sky` seen by `camera` at `width` × `height`.

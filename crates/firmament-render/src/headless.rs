@@ -90,10 +90,7 @@ impl HeadlessRenderer {
             .targets()
             .ok_or_else(|| RenderError::Readback("no HDR target".into()))?;
         let bytes = read_texture(ctx, &targets.hdr)?;
-        let pixels = bytes
-            .chunks_exact(2)
-            .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
-            .collect();
+        let pixels = crate::readback::decode_f16(&bytes);
         Ok(Image { width, height, pixels })
     }
 

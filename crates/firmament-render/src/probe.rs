@@ -1,23 +1,22 @@
 //! What the GPU path gives for one view ray, in the reference's terms: spectral radiance,
 //! transmittance to space and ground irradiance (for `firmament sky-sample` and checks).
 //!
-//! The radiance is a 1 × 1 render converted back from linear sRGB to the model wavelengths; the
+//! The radiance is a 1 × 1 render of the atmosphere pass converted back from linear sRGB to the model wavelengths; the
 //! transmittance and irradiances are read from the pass's own LUTs with the shaders' mappings
 //! (mirrored here in `f64`, `atmosphere/common.wgsl` and `luts.wgsl` being the originals).
 
+use firmament_core::Camera;
 use firmament_core::atmosphere::Spectrum;
-use firmament_core::display::DisplaySettings;
-use firmament_core::frame::{AtmosphereSky, Sky};
-use firmament_core::{Camera, Frame};
+use firmament_core::frame::AtmosphereSky;
 use glam::DVec3;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::gpu_types::atmosphere::lut_bottom_radius;
-use crate::headless::HeadlessRenderer;
 use crate::passes::AtmospherePass;
 use crate::passes::atmosphere::luts::{IRRADIANCE_SIZE, TRANSMITTANCE_SIZE};
-use crate::readback::read_texture;
+use crate::readback::{decode_f16, read_texture};
+use crate::targets::FrameTargets;
 
 /// The GPU path's answer for one view ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,10 +45,7 @@ impl CpuLut {
                 .chunks_exact(4)
                 .map(|b| f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]])))
                 .collect(),
-            _ => bytes
-                .chunks_exact(2)
-                .map(|b| f64::from(half::f16::from_le_bytes([b[0], b[1]]).to_f32()))
-                .collect(),
+            _ => decode_f16(&bytes).into_iter().map(f64::from).collect(),
         };
         let texels = channels.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
         Ok(Self { size, texels })
@@ -118,27 +114,23 @@ pub fn sample_sky(
         fov_y: 0.01f64.to_radians(),
         ..camera
     };
-    let frame = Frame {
-        camera,
-        sky: Sky::Atmosphere(sky.clone()),
-        display: DisplaySettings::default(),
-    };
-    let image = HeadlessRenderer::new(ctx).render_hdr(ctx, &frame, 1, 1)?;
-    let rgb = DVec3::new(
-        f64::from(image.pixels[0]),
-        f64::from(image.pixels[1]),
-        f64::from(image.pixels[2]),
-    );
-    let atmosphere = &sky.atmosphere;
-    let radiance = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse() * rgb;
-
+    // One pass renders the pixel and holds the LUTs read below: the tables are built once.
+    let camera = Camera { aspect: 1.0, ..camera };
+    let targets = FrameTargets::new(&ctx.device, 1, 1);
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, sky, &camera);
     let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("firmament sample_sky encoder"),
     });
-    pass.record_medium_luts(&mut encoder);
+    // New textures start zeroed: black, and depth at the far plane, so the sky fills the pixel.
+    pass.record_luts(&mut encoder);
+    pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
     ctx.queue.submit([encoder.finish()]);
+    let pixel = decode_f16(&read_texture(ctx, &targets.hdr)?);
+    let rgb = DVec3::new(f64::from(pixel[0]), f64::from(pixel[1]), f64::from(pixel[2]));
+    let atmosphere = &sky.atmosphere;
+    let radiance = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse() * rgb;
+
     let transmittance_lut = CpuLut::read(ctx, &pass.luts().transmittance.texture, TRANSMITTANCE_SIZE)?;
     let irradiance_lut = CpuLut::read(ctx, &pass.luts().irradiance.texture, IRRADIANCE_SIZE)?;
 

@@ -99,6 +99,14 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
     Ok(out)
 }
 
+/// RGBA half-float texels (as [`read_texture`] returns an Rgba16Float texture) widened to `f32`.
+pub fn decode_f16(bytes: &[u8]) -> Vec<f32> {
+    bytes
+        .chunks_exact(2)
+        .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -117,6 +117,22 @@ fn unit_to_mu_s(u: f32) -> f32 {
     return sign(x) * x * x;
 }
 
+// The (mu_s, h) tables (multiple scattering, irradiance): texel coordinates of a lookup, and the
+// (mu_s, h) a texel at `uv` stands for, on a table of `size` texels.
+fn mu_s_h_to_uv(mu_s: f32, h: f32, size: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(
+        unit_to_texel_coord(mu_s_to_unit(mu_s), size.x),
+        unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), size.y),
+    );
+}
+
+fn uv_to_mu_s_h(uv: vec2<f32>, size: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(
+        unit_to_mu_s(texel_coord_to_unit(uv.x, size.x)),
+        texel_coord_to_unit(uv.y, size.y) * atmosphere.radii.w,
+    );
+}
+
 const TRANSMITTANCE_LUT_SIZE: vec2<f32> = vec2<f32>(256.0, 64.0);
 
 // Bruneton's transmittance parameterisation: x_mu spreads the distance to the top between its

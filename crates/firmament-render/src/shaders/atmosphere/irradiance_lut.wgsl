@@ -20,8 +20,9 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let uv = in.clip.xy / IRRADIANCE_LUT_SIZE;
-    let mu_s = unit_to_mu_s(texel_coord_to_unit(uv.x, IRRADIANCE_LUT_SIZE.x));
-    let h = texel_coord_to_unit(uv.y, IRRADIANCE_LUT_SIZE.y) * atmosphere.radii.w;
+    let mu_s_h = uv_to_mu_s_h(uv, IRRADIANCE_LUT_SIZE);
+    let mu_s = mu_s_h.x;
+    let h = mu_s_h.y;
     let r = atmosphere.lut.x + h;
     let origin = vec3<f32>(0.0, 0.0, r);
     let sun = vec3<f32>(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);

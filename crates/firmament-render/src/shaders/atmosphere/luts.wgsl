@@ -48,11 +48,7 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 // Hillaire 2020's Ψ_ms at altitude h for a sun at mu_s: radiance of all orders ≥ 2 per unit
 // irradiance, to be multiplied by the total scattering coefficient.
 fn multiscattering(h: f32, mu_s: f32) -> vec3<f32> {
-    let uv = vec2<f32>(
-        unit_to_texel_coord(mu_s_to_unit(mu_s), MULTISCATTERING_LUT_SIZE.x),
-        unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), MULTISCATTERING_LUT_SIZE.y),
-    );
-    return textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb;
+    return textureSampleLevel(multiscattering_lut, lut_sampler, mu_s_h_to_uv(mu_s, h, MULTISCATTERING_LUT_SIZE), 0.0).rgb;
 }
 
 const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);
@@ -60,9 +56,5 @@ const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);
 // Sky irradiance on a horizontal surface at altitude h for a unit sun at mu_s (W·m⁻²·nm⁻¹ per
 // W·m⁻²·nm⁻¹ of sun).
 fn sky_irradiance(h: f32, mu_s: f32) -> vec3<f32> {
-    let uv = vec2<f32>(
-        unit_to_texel_coord(mu_s_to_unit(mu_s), IRRADIANCE_LUT_SIZE.x),
-        unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), IRRADIANCE_LUT_SIZE.y),
-    );
-    return textureSampleLevel(irradiance_lut, lut_sampler, uv, 0.0).rgb;
+    return textureSampleLevel(irradiance_lut, lut_sampler, mu_s_h_to_uv(mu_s, h, IRRADIANCE_LUT_SIZE), 0.0).rgb;
 }
