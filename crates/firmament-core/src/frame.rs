@@ -1,7 +1,8 @@
 //! Everything needed to draw one frame, in `f64`: the renderer's only input.
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 
+use crate::atmosphere::seed::{SeedAtmosphere, SeedStar};
 use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
 use crate::color::LinearRgb;
@@ -19,17 +20,20 @@ pub enum Sky {
     Gradient(GradientSkyState),
     /// A physically based atmosphere around a planet, lit by one or more suns.
     Atmosphere(AtmosphereSky),
+    /// The seed's own empirical atmosphere model (seed 000, version 3.1;
+    /// [`crate::atmosphere::seed`]).
+    Seed(SeedSky),
 }
 
 impl Sky {
     /// The gradient sky's radiance along a unit view direction in the local frame — the
-    /// reference the GPU gradient pass is tested against. `None` for the atmosphere, whose
+    /// reference the GPU gradient pass is tested against. `None` for the atmospheres, whose
     /// radiance depends on where the camera is: use
-    /// [`Reference`](crate::atmosphere::reference::Reference) for it.
+    /// [`Reference`](crate::atmosphere::reference::Reference) or [`SeedSky::radiance`] for them.
     pub fn gradient_radiance(&self, view: DVec3) -> Option<LinearRgb> {
         match self {
             Self::Gradient(sky) => Some(sky.radiance(view)),
-            Self::Atmosphere(_) => None,
+            Self::Atmosphere(_) | Self::Seed(_) => None,
         }
     }
 }
@@ -61,6 +65,127 @@ impl AtmosphereSky {
     }
 }
 
+/// The most stars a [`SeedSky`] may have (the seed itself takes 3, `_lights`, seed line 297;
+/// firmament's GPU pass takes as many as it takes suns).
+pub const MAX_SEED_STARS: usize = MAX_SUNS;
+
+/// Luminance of the seed colour 1 (white) in the HDR target, cd/m², unless a scene says
+/// otherwise: a bright daylight sky, so the seed's saturated limb (1) and its zenith (≈ 0.2) land
+/// where daylight exposures (EV100 12–14) put them.
+pub const SEED_DEFAULT_LUMINANCE: f64 = 10_000.0;
+
+/// The seed's own atmosphere model around a posed planet: the sky firmament draws for
+/// `atmosphere.model = "seed"`.
+///
+/// The seed works in its planet frame ([`crate::atmosphere::seed`]: origin at the planet centre,
+/// `z` along the polar axis, metres); `center` and `orientation` place that frame in the world,
+/// like [`Planet`](crate::atmosphere::Planet)'s pose, so a world-frame camera maps into it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeedSky {
+    /// The seed's parameters (radii, height, view depth, B0, overglow).
+    pub atmosphere: SeedAtmosphere,
+    /// Planet centre in world coordinates, metres.
+    pub center: DVec3,
+    /// Rotation from the planet frame to the world frame.
+    pub orientation: DQuat,
+    /// The stars (the seed's `light_*` uniforms), **planet frame**; 0 to [`MAX_SEED_STARS`].
+    pub stars: Vec<SeedStar>,
+    /// Luminance that the seed's colour 1 becomes in the HDR target, cd/m² (the seed's colours
+    /// are unitless display values in [0, 1]; see [`SEED_DEFAULT_LUMINANCE`]).
+    pub luminance: f64,
+}
+
+impl SeedSky {
+    /// Checks the seed's parameters, the pose, the number of stars, every star (finite
+    /// position, radius > 0 m, finite non-zero direction, colour finite and >= 0) and the
+    /// luminance (finite, > 0 cd/m²). Field names start with `seed.` (the atmosphere's own with
+    /// `atmosphere.seed.`).
+    pub fn validate(&self) -> Result<(), crate::CoreError> {
+        let invalid = |field, value: String, rule| Err(crate::CoreError::Invalid { field, value, rule });
+        self.atmosphere.validate()?;
+        if !self.center.is_finite() {
+            return invalid("seed.center", format!("{:?}", self.center.to_array()), "must be finite");
+        }
+        if !(self.orientation.is_finite() && self.orientation.length_squared() > 0.0) {
+            return invalid(
+                "seed.orientation",
+                format!("{:?}", self.orientation.to_array()),
+                "must be a finite rotation",
+            );
+        }
+        if self.stars.len() > MAX_SEED_STARS {
+            return invalid("seed.stars", format!("{} stars", self.stars.len()), "at most 8 stars");
+        }
+        for star in &self.stars {
+            if !star.position.is_finite() {
+                return invalid(
+                    "seed.stars.position",
+                    format!("{:?}", star.position.to_array()),
+                    "must be finite (metres)",
+                );
+            }
+            if !(star.radius.is_finite() && star.radius > 0.0) {
+                return invalid(
+                    "seed.stars.radius",
+                    star.radius.to_string(),
+                    "must be a finite radius > 0 m",
+                );
+            }
+            if !(star.direction.is_finite() && star.direction.length_squared() > 0.0) {
+                return invalid(
+                    "seed.stars.direction",
+                    format!("{:?}", star.direction.to_array()),
+                    "must be a finite, non-zero direction",
+                );
+            }
+            if !(star.color.is_finite() && star.color.min_element() >= 0.0) {
+                return invalid(
+                    "seed.stars.color",
+                    format!("{:?}", star.color.to_array()),
+                    "every channel must be finite and >= 0",
+                );
+            }
+        }
+        if !(self.luminance.is_finite() && self.luminance > 0.0) {
+            return invalid(
+                "seed.luminance",
+                self.luminance.to_string(),
+                "must be a finite luminance > 0 cd/m²",
+            );
+        }
+        Ok(())
+    }
+
+    /// A world-space point in the planet frame, metres.
+    pub fn to_planet_frame(&self, world: DVec3) -> DVec3 {
+        self.orientation.normalize().inverse() * (world - self.center)
+    }
+
+    /// A world-space direction in the planet frame.
+    pub fn direction_to_planet_frame(&self, world: DVec3) -> DVec3 {
+        self.orientation.normalize().inverse() * world
+    }
+
+    /// The seed's `(rgb, alpha)` for a world-frame view ray ([`SeedAtmosphere::color`]):
+    /// unitless colour in [0, 1] and alpha 0 or 1.
+    pub fn color(&self, origin: DVec3, direction: DVec3) -> (DVec3, f64) {
+        self.atmosphere.color(
+            self.to_planet_frame(origin),
+            self.direction_to_planet_frame(direction),
+            &self.stars,
+        )
+    }
+
+    /// What the GPU pass writes for a world-frame view ray with nothing behind the sky: the
+    /// seed's colour (blended `ONE, ONE_MINUS_SRC_ALPHA` over black, i.e. the colour itself) times
+    /// [`luminance`](Self::luminance), linear RGB in cd/m².
+    pub fn radiance(&self, origin: DVec3, direction: DVec3) -> LinearRgb {
+        let (rgb, _) = self.color(origin, direction);
+        let rgb = rgb * self.luminance;
+        LinearRgb::new(rgb.x, rgb.y, rgb.z)
+    }
+}
+
 /// One frame: where we look from, what sky we see, and how it is shown.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
@@ -70,4 +195,75 @@ pub struct Frame {
     pub sky: Sky,
     /// Exposure and tone curve.
     pub display: DisplaySettings,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::atmosphere::Planet;
+
+    fn seed_sky() -> SeedSky {
+        let a = SeedAtmosphere::seed_earth();
+        let planet = Planet::spheroid(a.equatorial_radius, a.polar_radius, a.height).posed_at(0.6, -1.2);
+        let sun = planet.direction_to_planet_frame(DVec3::new(0.3, -0.8, 0.5).normalize());
+        SeedSky {
+            atmosphere: a,
+            center: planet.center,
+            orientation: planet.orientation,
+            stars: vec![SeedStar::at(sun * 1.5e11, 7.0e8, DVec3::splat(10.0))],
+            luminance: SEED_DEFAULT_LUMINANCE,
+        }
+    }
+
+    #[test]
+    fn seed_sky_maps_the_world_into_the_planet_frame() {
+        let sky = seed_sky();
+        assert_eq!(sky.validate(), Ok(()));
+        // The world origin is on the surface, the world +z its geodetic up (a ray straight up
+        // from 2 m is the seed's zenith ray there).
+        let o = sky.to_planet_frame(DVec3::new(0.0, 0.0, 2.0));
+        let d = sky.direction_to_planet_frame(DVec3::Z);
+        assert_eq!(
+            sky.color(DVec3::new(0.0, 0.0, 2.0), DVec3::Z),
+            sky.atmosphere.color(o, d, &sky.stars)
+        );
+        let (rgb, _) = sky.color(DVec3::new(0.0, 0.0, 2.0), DVec3::Z);
+        assert!(rgb.max_element() > 0.0);
+        let radiance = sky.radiance(DVec3::new(0.0, 0.0, 2.0), DVec3::Z);
+        assert_eq!(
+            DVec3::new(radiance.r, radiance.g, radiance.b),
+            rgb * SEED_DEFAULT_LUMINANCE
+        );
+        assert_eq!(Sky::Seed(sky).gradient_radiance(DVec3::Z), None);
+    }
+
+    #[test]
+    fn seed_sky_validation_names_the_field() {
+        let field = |sky: SeedSky| match sky.validate() {
+            Err(crate::CoreError::Invalid { field, .. }) => field,
+            other => panic!("{other:?}"),
+        };
+        let good = seed_sky();
+        let mut sky = good.clone();
+        sky.atmosphere.view_depth = 0.0;
+        assert_eq!(field(sky), "atmosphere.seed.view_depth");
+        let mut sky = good.clone();
+        sky.luminance = f64::NAN;
+        assert_eq!(field(sky), "seed.luminance");
+        let mut sky = good.clone();
+        sky.center = DVec3::INFINITY;
+        assert_eq!(field(sky), "seed.center");
+        let mut sky = good.clone();
+        sky.stars[0].radius = 0.0;
+        assert_eq!(field(sky), "seed.stars.radius");
+        let mut sky = good.clone();
+        sky.stars[0].color = DVec3::new(1.0, -1.0, 0.0);
+        assert_eq!(field(sky), "seed.stars.color");
+        let mut sky = good.clone();
+        sky.stars[0].direction = DVec3::ZERO;
+        assert_eq!(field(sky), "seed.stars.direction");
+        let mut sky = good;
+        sky.stars = vec![sky.stars[0]; MAX_SEED_STARS + 1];
+        assert_eq!(field(sky), "seed.stars");
+    }
 }

@@ -36,6 +36,11 @@ pub struct AtmosphereBench {
     pub sky_view_lut_ms: f64,
     /// The sky pass reading the sky-view LUT.
     pub sky_ms: f64,
+    /// The aerial-perspective volume (froxels).
+    pub aerial_volume_ms: f64,
+    /// Applying aerial perspective to a depth buffer covered by geometry everywhere (the worst
+    /// case: no pixel is skipped).
+    pub aerial_apply_ms: f64,
     /// A whole LUT-path frame: sky-view LUT and sky.
     pub lut_frame_ms: f64,
     /// A brute-force frame: every pixel marches its ray.
@@ -104,6 +109,23 @@ fn median_ms(
     times[times.len() / 2]
 }
 
+/// Clears the depth target to `depth` (reversed-Z) in a pass of its own.
+fn clear_depth(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, depth: f32) {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("firmament bench depth clear"),
+        color_attachments: &[],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(depth),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    });
+}
+
 fn hdr_pixels(ctx: &GpuContext, targets: &FrameTargets) -> Result<Vec<f32>, RenderError> {
     Ok(decode_f16(&read_texture(ctx, &targets.hdr)?))
 }
@@ -142,6 +164,16 @@ pub fn bench_atmosphere(
         pass.record(e, &targets.hdr_view, &targets.depth_view)
     });
     let march_image = hdr_pixels(ctx, &targets)?;
+    let aerial_volume_ms = median_ms(ctx, frames, &pass.luts().aerial_transmittance.texture, |e| {
+        pass.record_aerial_perspective_volume(e)
+    });
+    pass.bind_depth(&ctx.device, &targets.depth_view);
+    // Last, since it covers the depth buffer: geometry 1 km away (at the centre) in every pixel.
+    let geometry_depth = (camera.projection_matrix() * glam::DVec4::new(0.0, 0.0, -1_000.0, 1.0)).z / 1_000.0;
+    let aerial_apply_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        clear_depth(e, &targets, geometry_depth as f32);
+        pass.record_aerial_perspective(e, &targets.hdr_view);
+    });
     let mut differences: Vec<f64> = lut_image
         .chunks_exact(4)
         .zip(march_image.chunks_exact(4))
@@ -168,6 +200,8 @@ pub fn bench_atmosphere(
         medium_luts_ms,
         sky_view_lut_ms,
         sky_ms,
+        aerial_volume_ms,
+        aerial_apply_ms,
         lut_frame_ms,
         march_frame_ms,
         difference,

@@ -1,11 +1,12 @@
-//! The frame renderer: HDR sky (and, later, everything else) → tonemap → the caller's view.
+//! The frame renderer: HDR sky (and, later, everything else) → aerial perspective → tonemap →
+//! the caller's view.
 
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, GradientSkyPass, TonemapPass};
+use crate::passes::{AtmospherePass, GradientSkyPass, SeedSkyPass, TonemapPass};
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
 
 /// The sky passes a frame can use.
@@ -13,6 +14,7 @@ use crate::targets::{DEPTH_CLEAR, FrameTargets};
 enum SkyKind {
     Gradient,
     Atmosphere,
+    Seed,
 }
 
 /// Renders [`Frame`]s into any texture view of the output format it was built for.
@@ -20,6 +22,7 @@ enum SkyKind {
 pub struct Renderer {
     sky_gradient: GradientSkyPass,
     atmosphere: AtmospherePass,
+    seed: SeedSkyPass,
     /// Which sky the last `prepare` chose.
     sky: SkyKind,
     tonemap: TonemapPass,
@@ -32,6 +35,7 @@ impl Renderer {
         Self {
             sky_gradient: GradientSkyPass::new(&ctx.device),
             atmosphere: AtmospherePass::new(&ctx.device),
+            seed: SeedSkyPass::new(&ctx.device),
             sky: SkyKind::Gradient,
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
@@ -43,7 +47,9 @@ impl Renderer {
     pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
         ctx.check_image_size(width, height)?;
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
-            self.targets = Some(FrameTargets::new(&ctx.device, width, height));
+            let targets = FrameTargets::new(&ctx.device, width, height);
+            self.atmosphere.bind_depth(&ctx.device, &targets.depth_view);
+            self.targets = Some(targets);
         }
         let camera = firmament_core::Camera {
             aspect: f64::from(width) / f64::from(height),
@@ -57,6 +63,10 @@ impl Renderer {
             Sky::Atmosphere(sky) => {
                 self.atmosphere.prepare(&ctx.queue, sky, &camera);
                 self.sky = SkyKind::Atmosphere;
+            }
+            Sky::Seed(sky) => {
+                self.seed.prepare(&ctx.queue, sky, &camera);
+                self.sky = SkyKind::Seed;
             }
         }
         if let Some(targets) = &self.targets {
@@ -102,7 +112,12 @@ impl Renderer {
             match self.sky {
                 SkyKind::Gradient => self.sky_gradient.draw(&mut pass),
                 SkyKind::Atmosphere => self.atmosphere.draw(&mut pass),
+                SkyKind::Seed => self.seed.draw(&mut pass),
             }
+        }
+        if self.sky == SkyKind::Atmosphere {
+            // The air between the camera and the geometry the main pass drew.
+            self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
         }
         self.tonemap.record(encoder, output);
     }

@@ -18,6 +18,13 @@ pub const TONEMAP: &str = concat!(
     include_str!("shaders/tonemap.wgsl")
 );
 
+/// The seed's own atmosphere model (`atmosphere.model = "seed"`), with its include.
+pub const SEED_SKY: &str = concat!(
+    include_str!("shaders/common/fullscreen.wgsl"),
+    "\n",
+    include_str!("shaders/seed_sky.wgsl")
+);
+
 /// Composes an atmosphere pass: the full-screen triangle, the atmosphere includes in dependency
 /// order (`common`, `luts`, `view`), then the entry file.
 macro_rules! atmosphere_shader {
@@ -42,6 +49,12 @@ pub const ATMOSPHERE_SKY_VIEW_LUT: &str = atmosphere_shader!("common", "luts", "
 /// The atmosphere's sky pass.
 pub const ATMOSPHERE_SKY: &str = atmosphere_shader!("common", "luts", "view"; "sky");
 
+/// The atmosphere's aerial-perspective volume (compute).
+pub const ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME: &str =
+    atmosphere_shader!("common", "luts", "view"; "aerial_perspective_volume");
+/// The atmosphere's aerial-perspective application over geometry.
+pub const ATMOSPHERE_AERIAL_PERSPECTIVE: &str = atmosphere_shader!("common", "luts", "view"; "aerial_perspective");
+
 /// The classic (fixed-function) lighting pass.
 pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
 
@@ -50,11 +63,17 @@ pub const ALL: &[(&str, &str)] = &[
     ("sky_gradient", SKY_GRADIENT),
     ("tonemap", TONEMAP),
     ("classic_lighting", CLASSIC_LIGHTING),
+    ("seed_sky", SEED_SKY),
     ("atmosphere/transmittance_lut", ATMOSPHERE_TRANSMITTANCE_LUT),
     ("atmosphere/multiscattering_lut", ATMOSPHERE_MULTISCATTERING_LUT),
     ("atmosphere/irradiance_lut", ATMOSPHERE_IRRADIANCE_LUT),
     ("atmosphere/sky_view_lut", ATMOSPHERE_SKY_VIEW_LUT),
     ("atmosphere/sky", ATMOSPHERE_SKY),
+    (
+        "atmosphere/aerial_perspective_volume",
+        ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
+    ),
+    ("atmosphere/aerial_perspective", ATMOSPHERE_AERIAL_PERSPECTIVE),
 ];
 
 /// The include files on their own (validated as modules too, so errors point at the right file).
@@ -136,6 +155,29 @@ mod tests {
                 members.into_iter().map(|(n, o)| (n.trim_start_matches('_').to_owned(), o)).collect();
             assert_eq!(wgsl, rust, "members of {}", $wgsl);
         }};
+    }
+
+    #[test]
+    fn seed_sky_layouts_match() {
+        use crate::gpu_types::{SeedSkyUniforms, SeedStarUniform};
+        let seed = validate("seed_sky", SEED_SKY);
+        assert_layout!(seed, "SeedStar", SeedStarUniform, [position, direction, color]);
+        assert_layout!(
+            seed,
+            "SeedSky",
+            SeedSkyUniforms,
+            [
+                view_to_planet,
+                camera,
+                camera_shape,
+                center,
+                radii,
+                b0,
+                params,
+                counts,
+                stars
+            ]
+        );
     }
 
     #[test]
@@ -241,6 +283,7 @@ mod tests {
                 to_srgb0,
                 to_srgb1,
                 to_srgb2,
+                aerial,
                 sun_count,
                 suns
             ]

@@ -7,7 +7,11 @@
 
 mod medium;
 mod planet;
+mod seed;
 mod suns;
+
+pub use seed::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
+pub(crate) use seed::{seed_planet, seed_sky};
 
 use firmament_core::CoreError;
 use firmament_core::atmosphere::{Atmosphere, Planet};

@@ -21,7 +21,8 @@
 //! and `"atmosphere"` (a planet from `[planet]` with the medium of `[atmosphere]`, lit by
 //! `[[suns]]`; the world frame is East-North-Up at `planet.latitude`, `planet.longitude` on the
 //! surface). `[planet]`, `[atmosphere]` and `[[suns]]` are checked in every scene but used only by
-//! the atmosphere.
+//! the atmosphere. `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of the
+//! physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
 
 mod atmosphere;
 mod color;
@@ -33,11 +34,13 @@ mod spectrum;
 mod to_frame;
 mod validate;
 
+pub use atmosphere::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
 pub use color::SceneColor;
 pub use error::SceneError;
 pub use model::{
-    AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection, MiePhaseName,
-    PlanetSection, RenderSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
+    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection,
+    MiePhaseName, PlanetSection, RenderSection, Scene, SeedSection, SkyModelName, SkySection, SunEntry, SunSection,
+    TimeSection,
 };
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;

@@ -4,7 +4,9 @@ mod atmosphere;
 
 use serde::Deserialize;
 
-pub use self::atmosphere::{AtmosphereSection, Body, MiePhaseName, PlanetSection, SunEntry};
+pub use self::atmosphere::{
+    AtmosphereModelName, AtmosphereSection, Body, MiePhaseName, PlanetSection, SeedSection, SunEntry,
+};
 use crate::color::SceneColor;
 use crate::error::{SceneError, did_you_mean};
 

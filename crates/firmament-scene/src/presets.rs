@@ -71,6 +71,16 @@ pub const PRESETS: &[Preset] = &[
         summary: "atmosphere: the oblate globe of Saturn from 180 000 km, lit at a gibbous phase",
         toml: include_str!("presets/saturn-orbit.toml"),
     },
+    Preset {
+        name: "seed-earth",
+        summary: "the seed's own model: its Earth from 12 000 km, the blue-veiled globe and its glowing limb",
+        toml: include_str!("presets/seed-earth.toml"),
+    },
+    Preset {
+        name: "seed-mars",
+        summary: "the seed's own model: its Mars from the ground, looking west at the low Sun",
+        toml: include_str!("presets/seed-mars.toml"),
+    },
 ];
 
 /// How many presets may build on each other before we call it a loop.

@@ -2,14 +2,14 @@
 
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
-use firmament_core::frame::{AtmosphereSky, Sky};
+use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
 use firmament_core::gradient_sky::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
 use firmament_core::sun::{SolarPath, SunDisc};
 use firmament_core::{Camera, Frame, TimeOfDay};
 use glam::DVec3;
 
 use crate::error::SceneError;
-use crate::model::{Scene, SkyModelName};
+use crate::model::{AtmosphereModelName, Scene, SkyModelName};
 use crate::validate::time;
 
 impl Scene {
@@ -100,10 +100,21 @@ impl Scene {
         crate::atmosphere::sky(self)
     }
 
+    /// The seed's own atmosphere model around the scene's planet (`atmosphere.model = "seed"`):
+    /// the body's seed values with `[planet]`'s radii and `[atmosphere.seed]`'s overrides, the
+    /// `[[suns]]` as the seed's stars.
+    pub fn seed_sky(&self) -> Result<SeedSky, SceneError> {
+        crate::atmosphere::seed_sky(self, &self.atmosphere_sky()?)
+    }
+
     /// The camera's geodetic altitude above the surface of the scene's planet, metres (negative
-    /// inside it); meaningful for atmosphere scenes.
+    /// inside it); meaningful for atmosphere scenes (the seed's planet when
+    /// `atmosphere.model = "seed"`).
     pub fn camera_altitude(&self) -> Result<f64, SceneError> {
-        let planet = self.atmosphere_sky()?.atmosphere.planet;
+        let planet = match self.atmosphere.model {
+            AtmosphereModelName::Physical => self.atmosphere_sky()?.atmosphere.planet,
+            AtmosphereModelName::Seed => crate::atmosphere::seed_planet(&self.seed_sky()?),
+        };
         Ok(planet.altitude(planet.to_planet_frame(DVec3::from_array(self.camera.position))))
     }
 
@@ -132,7 +143,10 @@ impl Scene {
                     sun,
                 })
             }
-            SkyModelName::Atmosphere => Sky::Atmosphere(self.atmosphere_sky()?),
+            SkyModelName::Atmosphere => match self.atmosphere.model {
+                AtmosphereModelName::Physical => Sky::Atmosphere(self.atmosphere_sky()?),
+                AtmosphereModelName::Seed => Sky::Seed(self.seed_sky()?),
+            },
         };
         Ok(Frame {
             camera: self.camera(),

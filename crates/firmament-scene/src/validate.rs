@@ -4,7 +4,7 @@ use firmament_core::TimeOfDay;
 
 use crate::MAX_IMAGE_SIDE;
 use crate::error::SceneError;
-use crate::model::{Scene, SkyModelName};
+use crate::model::{AtmosphereModelName, Scene, SkyModelName};
 
 /// Checks `ok`, or fails with `key = value: rule`.
 pub(crate) fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
@@ -184,8 +184,14 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     }
 
     let sky = crate::atmosphere::sky(scene)?;
+    // The seed's values are checked whenever the scene picks the seed model; its planet (the
+    // seed's radii) is then the one the camera must be above.
+    let planet = match scene.atmosphere.model {
+        AtmosphereModelName::Physical => sky.atmosphere.planet,
+        AtmosphereModelName::Seed => crate::atmosphere::seed_planet(&crate::atmosphere::seed_sky(scene, &sky)?),
+    };
     if scene.sky.model == SkyModelName::Atmosphere {
-        crate::atmosphere::camera_above_surface(scene, &sky.atmosphere.planet)?;
+        crate::atmosphere::camera_above_surface(scene, &planet)?;
     }
     Ok(())
 }

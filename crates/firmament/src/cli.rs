@@ -81,7 +81,8 @@ pub(crate) struct RenderArgs {
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
     /// Render an atmosphere scene with the f64 reference integrator instead of the GPU: slow
-    /// (seconds per pixel at high path counts) but the truth the GPU is checked against.
+    /// (seconds per pixel at high path counts) but the truth the GPU is checked against. With
+    /// `atmosphere.model = "seed"`, the seed model's own f64 port, per pixel (fast).
     #[arg(long)]
     pub(crate) reference: bool,
     /// Monte Carlo paths per pixel for `--reference`'s multiple scattering, 1 to 1000000.

@@ -307,6 +307,8 @@ fn check_accepts_the_atmosphere_presets_and_presets_lists_them() {
         "mars-noon",
         "binary-sunset",
         "saturn-orbit",
+        "seed-earth",
+        "seed-mars",
     ] {
         assert!(
             listing.lines().any(|l| l.starts_with(name)),

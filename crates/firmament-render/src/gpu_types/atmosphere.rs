@@ -14,6 +14,11 @@ use glam::{DMat3, DVec3};
 /// closest approach to the planet centre instead of at the camera.
 pub const FAR_CAMERA_RADII: f64 = 10.0;
 
+/// How far the aerial-perspective volume reaches into the air along each view ray, metres:
+/// geometry farther than this gets the scattering of this distance. 100 km holds a view from a
+/// mountain or an airliner to the horizon.
+pub const AERIAL_PERSPECTIVE_RANGE: f64 = 100_000.0;
+
 /// The altitude band, as fractions of the atmosphere height, over which the sky blends from the
 /// sky-view LUT (below) to the per-pixel march (above, and anywhere outside the atmosphere).
 pub const LUT_TO_MARCH_BAND: (f64, f64) = (0.9, 1.0);
@@ -150,6 +155,9 @@ pub struct AtmosphereViewUniforms {
     pub to_srgb1: [f32; 4],
     /// Third column.
     pub to_srgb2: [f32; 4],
+    /// Range of the aerial-perspective volume (m); the projection's `A` and `B`, so that a
+    /// reversed-Z depth `z` lies at view depth `B / (z + A)`.
+    pub aerial: [f32; 4],
     /// x = number of suns.
     pub sun_count: [u32; 4],
     /// The suns; the first `sun_count` are used.
@@ -202,6 +210,7 @@ impl AtmosphereViewUniforms {
         };
 
         let tan_y = (0.5 * camera.fov_y).tan();
+        let projection = camera.projection_matrix();
         let to_srgb = atmosphere.spectral_conversion().to_linear_srgb_matrix();
         let mut suns = [AtmosphereSunUniform::zeroed(); MAX_SUNS];
         for (slot, sun) in suns.iter_mut().zip(&sky.suns) {
@@ -225,6 +234,12 @@ impl AtmosphereViewUniforms {
             to_srgb0: vec3_w(to_srgb.x_axis, 0.0),
             to_srgb1: vec3_w(to_srgb.y_axis, 0.0),
             to_srgb2: vec3_w(to_srgb.z_axis, 0.0),
+            aerial: [
+                AERIAL_PERSPECTIVE_RANGE as f32,
+                projection.z_axis.z as f32,
+                projection.w_axis.z as f32,
+                0.0,
+            ],
             sun_count: [sky.suns.len().min(MAX_SUNS) as u32, 0, 0, 0],
             suns,
         }

@@ -14,8 +14,10 @@ use firmament_core::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
 
 pub mod atmosphere;
+pub mod seed;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
+pub use seed::{SeedSkyUniforms, SeedStarUniform};
 
 /// `vec4<f32>` of a colour, alpha `w`.
 fn rgbw(c: LinearRgb, w: f64) -> [f32; 4] {

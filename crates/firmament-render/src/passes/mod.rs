@@ -4,11 +4,13 @@
 
 pub mod atmosphere;
 pub mod classic_mesh;
+pub mod seed_sky;
 pub mod sky_gradient;
 pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
 pub use classic_mesh::{ClassicMeshPass, GpuMesh};
+pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
 
@@ -103,6 +105,15 @@ pub(crate) struct PassPipeline<'a> {
 impl PassPipeline<'_> {
     /// Builds the pipeline and its bind group layout, labelled for the owner.
     pub(crate) fn build(&self, device: &wgpu::Device) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+        self.build_blended(device, None)
+    }
+
+    /// Builds the pipeline with `blend` on its colour target, and its bind group layout.
+    pub(crate) fn build_blended(
+        &self,
+        device: &wgpu::Device,
+        blend: Option<wgpu::BlendState>,
+    ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         let owner = self.owner;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&format!("firmament {owner} shader")),
@@ -141,7 +152,7 @@ impl PassPipeline<'_> {
                 },
                 targets: &[Some(wgpu::ColorTargetState {
                     format: self.color,
-                    blend: None,
+                    blend,
                     write_mask: wgpu::ColorWrites::ALL,
                 })],
             }),

@@ -85,12 +85,55 @@ pub enum MiePhaseName {
     HenyeyGreenstein,
 }
 
+/// The atmosphere models `sky.model = "atmosphere"` can draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AtmosphereModelName {
+    /// The physically based atmosphere (the body's medium with `[atmosphere]`'s overrides).
+    #[default]
+    Physical,
+    /// The seed's own empirical model (seed 000, version 3.1), with `[atmosphere.seed]`.
+    Seed,
+}
+
+/// `[atmosphere.seed]`: the seed model's values, all optional; the defaults are the seed's own
+/// for the body (`seed_earth`, `seed_mars`; Saturn has none, so a Saturn scene must give
+/// `view_depth`, `b0` and `overglow`). The radii are the planet's when `[planet]` sets them, else
+/// the seed's (Earth 6 378 141.2 / 6 356 754.795 m, Mars 3 397 000 / 3 374 919.5 m).
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeedSection {
+    /// Height of the atmosphere above the surface, metres, > 0 (also the density's length scale;
+    /// default `planet.atmosphere_height` when set, else the seed's: 60 km Earth, 30 km Mars).
+    #[serde(default)]
+    pub height: Option<f64>,
+    /// Path length at which the air's colour saturates, metres, > 0 (the seed's: 250 km Earth,
+    /// 300 km Mars).
+    #[serde(default)]
+    pub view_depth: Option<f64>,
+    /// The "100 % scattered" colour B0, `[r, g, b]` linear, unitless, each finite and >= 0.
+    #[serde(default)]
+    pub b0: Option<[f64; 3]>,
+    /// Overglow, unitless, finite: lights the sky before the sun rises (0.75 Earth, 0.5 Mars).
+    #[serde(default)]
+    pub overglow: Option<f64>,
+    /// Luminance of the seed's colour 1 in the HDR image, cd/m², > 0 (default 10 000).
+    #[serde(default)]
+    pub luminance: Option<f64>,
+}
+
 /// `[atmosphere]`: overrides of the body's medium, all optional. Spectral values are a number
 /// (the same at every wavelength) or `[a, b, c]` in the order of `wavelengths`. Coefficients are
 /// at density 1, i.e. at the surface for exponential profiles and at the peak for ozone.
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AtmosphereSection {
+    /// Which model draws the atmosphere: `"physical"` (default) or `"seed"`.
+    #[serde(default)]
+    pub model: AtmosphereModelName,
+    /// The seed model's values (`model = "seed"`).
+    #[serde(default)]
+    pub seed: SeedSection,
     /// Rayleigh (molecular) scattering coefficient, m⁻¹, >= 0.
     #[serde(default)]
     pub rayleigh_scattering: Option<SceneSpectrum>,

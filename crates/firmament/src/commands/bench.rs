@@ -41,6 +41,11 @@ fn print_table(b: &AtmosphereBench) {
         ),
         ("sky-view LUT", b.sky_view_lut_ms),
         ("sky pass", b.sky_ms),
+        ("aerial-perspective volume", b.aerial_volume_ms),
+        (
+            "aerial perspective applied (geometry in every pixel)",
+            b.aerial_apply_ms,
+        ),
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
     ] {
@@ -65,6 +70,8 @@ fn json(b: &AtmosphereBench) -> String {
         "medium_luts_ms": b.medium_luts_ms,
         "sky_view_lut_ms": b.sky_view_lut_ms,
         "sky_ms": b.sky_ms,
+        "aerial_volume_ms": b.aerial_volume_ms,
+        "aerial_apply_ms": b.aerial_apply_ms,
         "lut_frame_ms": b.lut_frame_ms,
         "march_frame_ms": b.march_frame_ms,
         "difference_median": b.difference.0,

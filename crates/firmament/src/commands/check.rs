@@ -1,7 +1,7 @@
 //! `firmament check [SCENE]`.
 
 use anyhow::{Context, Result};
-use firmament_scene::{Scene, SkyModelName};
+use firmament_scene::{AtmosphereModelName, Scene, SkyModelName};
 
 use crate::cli::CheckArgs;
 
@@ -38,7 +38,11 @@ fn sky_summary(scene: &Scene) -> String {
                 .camera_altitude()
                 .map(|h| format!(", camera at altitude {} m", (h * 10.0).round() / 10.0))
                 .unwrap_or_default();
-            format!("atmosphere of {}, {suns}{altitude}", scene.planet.body.name())
+            let model = match scene.atmosphere.model {
+                AtmosphereModelName::Physical => "atmosphere",
+                AtmosphereModelName::Seed => "seed atmosphere",
+            };
+            format!("{model} of {}, {suns}{altitude}", scene.planet.body.name())
         }
     }
 }

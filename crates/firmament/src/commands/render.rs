@@ -39,6 +39,33 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let frame = scene.frame_at(None)?;
     let (width, height) = (scene.render.width, scene.render.height);
 
+    if args.reference
+        && let Sky::Seed(sky) = &frame.sky
+    {
+        // The seed's model is its own reference: SeedAtmosphere::color per pixel centre, in f64
+        // (what the GPU pass is tested against), times the sky's luminance scale.
+        tracing::info!("rendering {what} with the seed model's f64 port at {width}x{height}");
+        let camera = firmament_core::Camera {
+            aspect: f64::from(width) / f64::from(height),
+            ..frame.camera
+        };
+        let radiance: Vec<LinearRgb> = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let ndc = glam::DVec2::new(
+                    (f64::from(x) + 0.5) / f64::from(width) * 2.0 - 1.0,
+                    1.0 - (f64::from(y) + 0.5) / f64::from(height) * 2.0,
+                );
+                sky.radiance(camera.position, camera.view_direction(ndc))
+            })
+            .collect();
+        match format {
+            OutputFormat::Png => write_png(&args.output, &reference_ldr(&radiance, &frame, width, height))?,
+            OutputFormat::Exr => write_exr(&args.output, &reference_hdr(&radiance, width, height))?,
+        }
+        tracing::info!("wrote {}", args.output.display());
+        return Ok(());
+    }
     if args.reference {
         let Sky::Atmosphere(sky) = &frame.sky else {
             bail!("--reference renders the atmosphere: the scene needs sky.model = \"atmosphere\"");

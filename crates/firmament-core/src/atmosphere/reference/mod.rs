@@ -66,6 +66,25 @@ pub(crate) struct Segment {
     pub ends_on_ground: bool,
 }
 
+impl Segment {
+    /// The part of the segment in front of an opaque surface at `limit` along the ray (`None`
+    /// when the surface hides all of it), and whether the surface cut it short.
+    pub(crate) fn before(self, limit: f64) -> (Option<Self>, bool) {
+        if limit >= self.end {
+            (Some(self), false)
+        } else if limit <= self.start {
+            (None, true)
+        } else {
+            let cut = Self {
+                end: limit,
+                ends_on_ground: false,
+                ..self
+            };
+            (Some(cut), true)
+        }
+    }
+}
+
 /// The part of a planet-frame ray inside the atmosphere and above the ground, if any.
 pub(crate) fn segment(planet: &Planet, ray: &Ray) -> Option<Segment> {
     let top = planet.atmosphere_top().intersect(ray)?;
@@ -225,18 +244,31 @@ impl Reference {
 
     /// Radiance along a world-frame view ray, by source.
     pub fn radiance(&self, view: &Ray) -> RadianceParts {
+        self.radiance_before(view, f64::INFINITY)
+    }
+
+    /// Radiance along a world-frame view ray that ends on an opaque black surface at `distance`
+    /// metres (the ray's direction is normalised): the aerial perspective in front of that
+    /// surface. `transmittance` is then the transmittance from the eye to the surface, and
+    /// nothing behind the surface (sun discs, ground, sky) is seen; the surface casts no shadow
+    /// (the GPU's aerial perspective makes the same assumption). An infinite `distance` is
+    /// [`radiance`](Self::radiance).
+    pub fn radiance_before(&self, view: &Ray, distance: f64) -> RadianceParts {
         let planet = &self.atmosphere.planet;
         let ray = planet.ray_to_planet_frame(view);
-        let (single, ground, transmittance) = self.single_scattering(&ray);
-        let multiple = path_tracer::multiple_scattering(self, &ray, 2, self.settings.paths);
-        let sun_discs = self
-            .suns
-            .iter()
-            .map(|sun| {
-                let angle = ray.direction.dot(sun.direction).clamp(-1.0, 1.0).acos();
-                sun.disc_radiance(angle) * transmittance
-            })
-            .sum();
+        let (single, ground, transmittance) = self.single_scattering(&ray, distance);
+        let multiple = path_tracer::multiple_scattering(self, &ray, 2, self.settings.paths, distance);
+        let sun_discs = if distance.is_finite() {
+            Spectrum::ZERO
+        } else {
+            self.suns
+                .iter()
+                .map(|sun| {
+                    let angle = ray.direction.dot(sun.direction).clamp(-1.0, 1.0).acos();
+                    sun.disc_radiance(angle) * transmittance
+                })
+                .sum()
+        };
         RadianceParts {
             single,
             ground,
@@ -247,11 +279,11 @@ impl Reference {
     }
 
     /// Single scattering, the directly sunlit ground seen along the ray, and the transmittance to
-    /// space, for a planet-frame ray.
-    fn single_scattering(&self, ray: &Ray) -> (Spectrum, Spectrum, Spectrum) {
+    /// space (or to an opaque surface at `limit` along the ray), for a planet-frame ray.
+    fn single_scattering(&self, ray: &Ray, limit: f64) -> (Spectrum, Spectrum, Spectrum) {
         let planet = &self.atmosphere.planet;
         let medium = &self.atmosphere.medium;
-        let Some(segment) = segment(planet, ray) else {
+        let Some(segment) = segment(planet, ray).and_then(|s| s.before(limit).0) else {
             return (Spectrum::ZERO, Spectrum::ZERO, Spectrum::ONE);
         };
         let n = self.settings.view_steps.max(2).next_multiple_of(2);

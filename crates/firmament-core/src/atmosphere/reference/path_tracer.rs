@@ -50,18 +50,48 @@ pub struct MultipleScattering {
     pub standard_error: Spectrum,
 }
 
-/// Multiple scattering (contributions of order ≥ `min_order`) along a planet-frame ray.
+/// Multiple scattering (contributions of order ≥ `min_order`) along a planet-frame ray that
+/// ends on an opaque black surface at `limit` along it (infinite: no surface).
 pub(super) fn multiple_scattering(
     reference: &Reference,
     ray: &Ray,
     min_order: usize,
     paths: usize,
+    limit: f64,
 ) -> MultipleScattering {
     let ray_seed = hash(reference.settings.seed, ray.origin, ray.direction);
     estimate(paths, |index| {
         let mut rng = Pcg64Mcg::seed_from_u64(ray_seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        trace(reference, *ray, Spectrum::ONE, 0, min_order, min_order >= 2, &mut rng)
+        let start = PathStart {
+            events: 0,
+            min_order,
+            split_first: min_order >= 2,
+            limit,
+        };
+        trace(reference, *ray, Spectrum::ONE, start, &mut rng)
     })
+}
+
+/// Where a path starts: events so far, the first order tallied, whether the first segment is
+/// split (see [`trace`]) and where an opaque surface ends the first segment.
+#[derive(Debug, Clone, Copy)]
+struct PathStart {
+    events: usize,
+    min_order: usize,
+    split_first: bool,
+    limit: f64,
+}
+
+impl PathStart {
+    /// A path from a scattering or reflection event, with no surface in its way.
+    fn after(events: usize, min_order: usize) -> Self {
+        Self {
+            events,
+            min_order,
+            split_first: false,
+            limit: f64::INFINITY,
+        }
+    }
 }
 
 /// Sky irradiance on a surface with normal `up` at planet-frame point `p`: π × the mean radiance
@@ -75,9 +105,7 @@ pub(super) fn sky_irradiance(reference: &Reference, p: DVec3, up: DVec3, paths: 
             reference,
             Ray { origin: p, direction },
             Spectrum::ONE,
-            0,
-            1,
-            false,
+            PathStart::after(0, 1),
             &mut rng,
         )
     });
@@ -128,22 +156,36 @@ fn estimate(paths: usize, path: impl Fn(usize) -> [Spectrum; TALLIED_ORDERS] + S
 /// collision in the air, plus (when the segment ends on the ground) a branch reflected by the
 /// ground with weight `T(end)`. For a view ray whose first event is not counted this removes the
 /// paths that would leave with nothing, the bulk of them under a clear sky.
+///
+/// An opaque black surface at `start.limit` along the first segment ends it: nothing behind it
+/// (ground, background) is seen.
 fn trace(
     reference: &Reference,
     mut ray: Ray,
     mut weight: Spectrum,
-    mut events: usize,
-    min_order: usize,
-    mut split_first: bool,
+    start: PathStart,
     rng: &mut Pcg64Mcg,
 ) -> [Spectrum; TALLIED_ORDERS] {
     let atmosphere = &reference.atmosphere;
     let planet = &atmosphere.planet;
     let medium = &atmosphere.medium;
+    let PathStart {
+        mut events,
+        min_order,
+        mut split_first,
+        mut limit,
+    } = start;
     let mut tally = [Spectrum::ZERO; TALLIED_ORDERS];
     loop {
-        let Some(segment) = segment(planet, &ray) else {
-            add(&mut tally, min_order, events, weight * reference.settings.background);
+        let (found, walled) = match segment(planet, &ray) {
+            Some(s) => s.before(limit),
+            None => (None, limit.is_finite()),
+        };
+        limit = f64::INFINITY;
+        let Some(segment) = found else {
+            if !walled {
+                add(&mut tally, min_order, events, weight * reference.settings.background);
+            }
             return tally;
         };
         let flight = sample_distance(reference, &ray, segment.start, segment.end, weight, split_first, rng);
@@ -207,7 +249,9 @@ fn trace(
             Flight::Boundary { weight: w } => {
                 weight *= w;
                 if !segment.ends_on_ground {
-                    add(&mut tally, min_order, events, weight * reference.settings.background);
+                    if !walled {
+                        add(&mut tally, min_order, events, weight * reference.settings.background);
+                    }
                     return tally;
                 }
                 events += 1;
@@ -269,9 +313,7 @@ fn reflect_and_trace(
             direction,
         },
         weight * reference.atmosphere.medium.ground_albedo,
-        order,
-        min_order,
-        false,
+        PathStart::after(order, min_order),
         rng,
     );
     for (order, value) in rest.into_iter().enumerate() {

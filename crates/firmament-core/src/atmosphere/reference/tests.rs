@@ -108,7 +108,7 @@ fn single_scattering_matches_the_plane_parallel_closed_form() {
             },
         );
         let eye = DVec3::new(0.0, 0.0, radius + 1.0);
-        let (single, _, _) = reference.single_scattering(&Ray::new(eye, view).unwrap());
+        let (single, _, _) = reference.single_scattering(&Ray::new(eye, view).unwrap(), f64::INFINITY);
         let (mu, mu0) = (vz.cos(), sz.cos());
         let want =
             sun.irradiance * rayleigh_phase(view.dot(sun_direction)) * mu0 * ((-tau / mu).exp() - (-tau / mu0).exp())
@@ -134,7 +134,9 @@ fn single_scattering_is_mirror_symmetric_and_reciprocal() {
     };
     let single = |view: DVec3, sun: DVec3| {
         let reference = Reference::new(atmosphere, &[presets::earth_sun(sun)], settings);
-        reference.single_scattering(&Ray::new(eye, view).unwrap()).0
+        reference
+            .single_scattering(&Ray::new(eye, view).unwrap(), f64::INFINITY)
+            .0
     };
     // Mirror: the sun at azimuth ±40° relative to the view.
     let a = single(direction(50.0, 0.0), direction(30.0, 40.0));
@@ -146,7 +148,9 @@ fn single_scattering_is_mirror_symmetric_and_reciprocal() {
     let rayleigh = rayleigh_only(atmosphere.planet);
     let single = |view: DVec3, sun: DVec3| {
         let reference = Reference::new(rayleigh, &[presets::earth_sun(sun)], settings);
-        reference.single_scattering(&Ray::new(eye, view).unwrap()).0
+        reference
+            .single_scattering(&Ray::new(eye, view).unwrap(), f64::INFINITY)
+            .0
     };
     let (z1, z2) = (20.0_f64, 55.0_f64);
     let l12 = single(direction(z1, 0.0), direction(z2, 120.0));
@@ -194,7 +198,7 @@ fn grey_white_furnace_conserves_energy_exactly() {
     };
     let reference = Reference::new(atmosphere, &[], settings);
     for ray in furnace_rays(&atmosphere) {
-        let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths);
+        let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths, f64::INFINITY);
         assert!(
             relative(radiance.total, background) < 1e-9,
             "{ray:?}: {:?}",
@@ -215,7 +219,7 @@ fn spectral_white_furnace_conserves_energy_within_noise() {
     };
     let reference = Reference::new(atmosphere, &[], settings);
     for ray in furnace_rays(&atmosphere) {
-        let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths);
+        let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths, f64::INFINITY);
         let deviation = (radiance.total - background).abs();
         let error = radiance.standard_error;
         assert!(
@@ -316,4 +320,40 @@ fn ground_irradiance_is_plausible_at_noon() {
     let ratio = irradiance.sky / irradiance.direct;
     assert!(ratio.z > ratio.y && ratio.y > ratio.x, "{ratio}");
     assert!((0.05..0.3).contains(&ratio.y), "{ratio}");
+}
+
+/// An opaque surface on the view ray splits the radiance exactly: what the air scatters in front
+/// of it, plus the transmittance to it times the radiance arriving from beyond it.
+#[test]
+fn radiance_before_a_surface_splits_the_ray() {
+    let atmosphere = presets::earth();
+    let sun = presets::earth_sun(DVec3::new(0.6, 0.0, 0.8).normalize());
+    let settings = ReferenceSettings {
+        view_steps: 2048,
+        paths: 1,
+        ..Default::default()
+    };
+    let reference = Reference::new(atmosphere, &[sun], settings);
+    let eye = atmosphere.planet.surface_point(0.0, 0.0) + DVec3::Z * 100.0;
+    let view = Ray::new(eye, DVec3::new(0.0, 1.0, 0.05)).unwrap();
+    let distance = 20_000.0;
+    let near = reference.radiance_before(&view, distance);
+    let far = reference.radiance(&Ray::new(view.at(distance), view.direction).unwrap());
+    let whole = reference.radiance(&view);
+    let split = near.single + near.transmittance * (far.single + far.ground);
+    assert!(
+        relative(split, whole.single + whole.ground) < 1e-4,
+        "{split} vs {}",
+        whole.single
+    );
+    let depth = reference.optical_depth(
+        atmosphere.planet.to_planet_frame(eye),
+        atmosphere.planet.to_planet_frame(view.at(distance)),
+    );
+    assert!(relative(near.transmittance, (-depth).exp()) < 1e-9);
+    assert_eq!(near.sun_discs, Spectrum::ZERO);
+    assert_eq!(near.ground, Spectrum::ZERO);
+    // Beyond the end of the atmosphere the surface changes nothing.
+    let beyond = reference.radiance_before(&view, 1e9);
+    assert!(relative(beyond.single, whole.single) < 1e-12);
 }

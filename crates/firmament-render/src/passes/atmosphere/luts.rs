@@ -6,6 +6,7 @@
 //! | multiple scattering | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
 //! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
+//! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
 //!
 //! The sizes are mirrored by constants in `atmosphere/common.wgsl`, `luts.wgsl` and `view.wgsl`.
 
@@ -28,6 +29,13 @@ pub const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Fl
 pub const SKY_VIEW_TILE: (u32, u32) = (192, 108);
 /// Sky-view LUT format.
 pub const SKY_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// Aerial-perspective volume size (texels): screen x × screen y × distance slices. Stored as a
+/// 2D atlas, the slices side by side (`x · z` × `y`): GL binds 3D storage textures one layer at
+/// a time.
+pub const AERIAL_PERSPECTIVE_SIZE: (u32, u32, u32) = (32, 32, 32);
+/// Aerial-perspective volume format (written by a compute pass, filtered when read).
+pub const AERIAL_PERSPECTIVE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// A LUT texture and its view.
 #[derive(Debug)]
@@ -76,11 +84,17 @@ pub struct AtmosphereLuts {
     pub irradiance: Lut,
     /// Sky-view radiance, one tile per sun.
     pub sky_view: Lut,
+    /// Aerial perspective: light scattered towards the camera (spectral radiance, all suns).
+    pub aerial_scattering: Lut,
+    /// Aerial perspective: transmittance from the camera.
+    pub aerial_transmittance: Lut,
 }
 
 impl AtmosphereLuts {
     /// Creates the textures (contents undefined until the pass renders them).
     pub fn new(device: &wgpu::Device) -> Self {
+        let (x, y, z) = AERIAL_PERSPECTIVE_SIZE;
+        let aerial_atlas = (x * z, y);
         Self {
             transmittance: Lut::new(
                 device,
@@ -109,6 +123,20 @@ impl AtmosphereLuts {
                 (SKY_VIEW_TILE.0 * MAX_SUNS as u32, SKY_VIEW_TILE.1),
                 SKY_VIEW_FORMAT,
                 wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            aerial_scattering: Lut::new(
+                device,
+                "aerial-perspective scattering",
+                aerial_atlas,
+                AERIAL_PERSPECTIVE_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
+            ),
+            aerial_transmittance: Lut::new(
+                device,
+                "aerial-perspective transmittance",
+                aerial_atlas,
+                AERIAL_PERSPECTIVE_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
             ),
         }
     }

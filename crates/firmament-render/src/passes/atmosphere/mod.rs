@@ -6,10 +6,12 @@
 //! 1. the transmittance LUT (Bruneton 2017's parameterisation; a compute pass) and
 //! 2. the multiple-scattering LUT and
 //! 3. the ground's sky-irradiance LUT — these three only when the medium changed —, then
-//! 4. the sky-view LUT, one tile per sun, at the camera;
+//! 4. the sky-view LUT, one tile per sun, at the camera, and
+//! 5. the aerial-perspective volume (froxels) at the camera;
 //!
-//! and [`AtmospherePass::draw`] draws the sky, the lit ground and the sun discs behind whatever
-//! the depth buffer holds. Above the atmosphere each pixel marches its own ray instead of reading
+//! [`AtmospherePass::draw`] draws the sky, the lit ground and the sun discs behind whatever
+//! the depth buffer holds, and [`AtmospherePass::record_aerial_perspective`] lays the air between
+//! the camera and that geometry over it. Above the atmosphere each pixel marches its own ray instead of reading
 //! the sky-view LUT.
 //!
 //! # Ellipsoids
@@ -21,7 +23,9 @@
 //! the mean by under 0.7 %; on Saturn (0.098) by up to 10 %, which shifts the terminator and
 //! the low sun's air mass slightly.
 
+mod aerial_perspective;
 pub mod luts;
+mod stages;
 
 use std::cell::Cell;
 
@@ -29,174 +33,14 @@ use firmament_core::Camera;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
-use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
+use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 pub use luts::AtmosphereLuts;
 use luts::{IRRADIANCE_FORMAT, MULTISCATTERING_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
-
-/// Binding numbers shared by every atmosphere shader.
-mod binding {
-    pub(super) const PARAMS: u32 = 0;
-    pub(super) const VIEW: u32 = 1;
-    pub(super) const TRANSMITTANCE: u32 = 2;
-    pub(super) const MULTISCATTERING: u32 = 3;
-    pub(super) const SKY_VIEW: u32 = 4;
-    pub(super) const SAMPLER: u32 = 5;
-    pub(super) const TRANSMITTANCE_OUT: u32 = 6;
-    pub(super) const IRRADIANCE: u32 = 7;
-}
-
-fn texture_entry(binding: u32, filterable: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-        count: None,
-    }
-}
-
-/// One of the pass's pipelines with its bind group.
-#[derive(Debug)]
-struct Stage {
-    pipeline: wgpu::RenderPipeline,
-    bind_group: wgpu::BindGroup,
-}
-
-impl Stage {
-    /// Builds a stage whose bind group holds `resources` at the bindings `entries` declare.
-    fn new(device: &wgpu::Device, pipeline: PassPipeline<'_>, resources: &[(u32, wgpu::BindingResource<'_>)]) -> Self {
-        let owner = pipeline.owner;
-        let (pipeline, layout) = pipeline.build(device);
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
-            .iter()
-            .map(|(binding, resource)| wgpu::BindGroupEntry {
-                binding: *binding,
-                resource: resource.clone(),
-            })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("firmament {owner} bind group")),
-            layout: &layout,
-            entries: &entries,
-        });
-        Self { pipeline, bind_group }
-    }
-
-    /// Renders the stage's full-screen triangle into `target`, cleared, in `viewport` width.
-    fn render(&self, encoder: &mut wgpu::CommandEncoder, label: &str, target: &wgpu::TextureView, width: Option<u32>) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        if let Some(width) = width {
-            pass.set_viewport(0.0, 0.0, width as f32, SKY_VIEW_TILE.1 as f32, 0.0, 1.0);
-        }
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
-    }
-}
-
-/// The transmittance LUT's compute pipeline and its bind group.
-#[derive(Debug)]
-struct TransmittanceStage {
-    pipeline: wgpu::ComputePipeline,
-    bind_group: wgpu::BindGroup,
-}
-
-impl TransmittanceStage {
-    const OWNER: &str = "AtmospherePass transmittance LUT";
-
-    fn new(device: &wgpu::Device, params: &wgpu::Buffer, target: &wgpu::TextureView) -> Self {
-        let owner = Self::OWNER;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&format!("firmament {owner} shader")),
-            source: wgpu::ShaderSource::Wgsl(shaders::ATMOSPHERE_TRANSMITTANCE_LUT.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(&format!("firmament {owner} bind group layout")),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ..uniform_entry(binding::PARAMS)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: binding::TRANSMITTANCE_OUT,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: TRANSMITTANCE_FORMAT,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(&format!("firmament {owner} pipeline layout")),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&format!("firmament {owner} pipeline")),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&format!("firmament {owner} bind group")),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: binding::PARAMS,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: binding::TRANSMITTANCE_OUT,
-                    resource: wgpu::BindingResource::TextureView(target),
-                },
-            ],
-        });
-        Self { pipeline, bind_group }
-    }
-
-    fn record(&self, encoder: &mut wgpu::CommandEncoder) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(&format!("firmament {}", Self::OWNER)),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        let (width, height) = luts::TRANSMITTANCE_SIZE;
-        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
-    }
-}
+use stages::{ComputeStage, Stage, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
 
 /// How the sky pass finds each pixel's scattered light inside the atmosphere.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -232,10 +76,12 @@ pub struct AtmospherePass {
     luts: AtmosphereLuts,
     params: wgpu::Buffer,
     view: wgpu::Buffer,
-    transmittance: TransmittanceStage,
+    transmittance: ComputeStage,
     multiscattering: Stage,
     irradiance: Stage,
     sky_view: Stage,
+    aerial: AerialPerspectiveStages,
+    sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
     /// Which sky pipeline this frame uses.
@@ -281,7 +127,22 @@ impl AtmospherePass {
             uniform_entry(binding::PARAMS),
             texture_entry(binding::TRANSMITTANCE, false),
         ];
-        let transmittance = TransmittanceStage::new(device, &params, &luts.transmittance.view);
+        let transmittance = ComputeStage::new(
+            device,
+            "AtmospherePass transmittance LUT",
+            shaders::ATMOSPHERE_TRANSMITTANCE_LUT,
+            &[
+                uniform_entry(binding::PARAMS),
+                storage_entry(binding::TRANSMITTANCE_OUT, TRANSMITTANCE_FORMAT),
+            ],
+            &[
+                (binding::PARAMS, params.as_entire_binding()),
+                (
+                    binding::TRANSMITTANCE_OUT,
+                    wgpu::BindingResource::TextureView(&luts.transmittance.view),
+                ),
+            ],
+        );
         let multiscattering = Stage::new(
             device,
             lut_pipeline(
@@ -377,7 +238,19 @@ impl AtmospherePass {
             )
         };
         let sky = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(sky_stage);
+        let aerial = AerialPerspectiveStages::new(
+            device,
+            &AerialPerspectiveResources {
+                params: &params,
+                view: &view,
+                luts: &luts,
+                sampler: &sampler,
+            },
+            color,
+        );
         Self {
+            aerial,
+            sampler,
             luts,
             params,
             view,
@@ -429,11 +302,39 @@ impl AtmospherePass {
         if self.method == SkyMethod::Lut {
             self.record_sky_view_lut(encoder);
         }
+        self.record_aerial_perspective_volume(encoder);
+    }
+
+    /// Encodes the aerial-perspective volume at this frame's camera (part of `record_luts`).
+    pub fn record_aerial_perspective_volume(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.aerial.record_volume(encoder);
+    }
+
+    /// Makes `depth` the depth buffer [`record_aerial_perspective`](Self::record_aerial_perspective)
+    /// reads: a reversed-Z depth view (sample type depth) of the colour target's size, drawn with
+    /// this frame's camera. Call again whenever the depth view changes; it builds two bind groups.
+    pub fn bind_depth(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView) {
+        let resources = AerialPerspectiveResources {
+            params: &self.params,
+            view: &self.view,
+            luts: &self.luts,
+            sampler: &self.sampler,
+        };
+        self.aerial.bind_depth(device, &resources, depth);
+    }
+
+    /// Applies aerial perspective to every pixel of `color` the bound depth buffer covers (not
+    /// the far plane): `colour · T + S` from the volume `record_luts` built this frame. Draw the
+    /// geometry first; the sky may be drawn before or after (it is left alone).
+    pub fn record_aerial_perspective(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) {
+        self.aerial.record_apply(encoder, color);
     }
 
     /// Encodes the transmittance, multiple-scattering and sky-irradiance LUTs unconditionally.
     pub fn record_medium_luts(&self, encoder: &mut wgpu::CommandEncoder) {
-        self.transmittance.record(encoder);
+        let (width, height) = luts::TRANSMITTANCE_SIZE;
+        self.transmittance
+            .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
         self.multiscattering.render(
             encoder,
             "firmament AtmospherePass multiple-scattering LUT",
@@ -455,7 +356,7 @@ impl AtmospherePass {
                 encoder,
                 "firmament AtmospherePass sky-view LUT",
                 &self.luts.sky_view.view,
-                Some(SKY_VIEW_TILE.0 * self.sun_count.min(MAX_SUNS as u32)),
+                Some((SKY_VIEW_TILE.0 * self.sun_count.min(MAX_SUNS as u32), SKY_VIEW_TILE.1)),
             );
         }
     }

@@ -4,9 +4,10 @@
 // Conventions: as atmosphere/common.wgsl; every position and direction is in the planet frame,
 // positions relative to the planet centre. The camera position is f32 (its altitude and its
 // ellipsoid terms come exactly from f64); a camera far away never appears in a position at all
-// (see `view_ray` in sky.wgsl).
+// (see `view_ray` below).
 
 const MAX_SUNS: u32 = 8u;
+const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
 
 struct AtmosphereSun {
     direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad)
@@ -26,6 +27,9 @@ struct AtmosphereView {
     to_srgb0: vec4<f32>,         // columns of spectral radiance → linear sRGB (Y in cd/m²)
     to_srgb1: vec4<f32>,
     to_srgb2: vec4<f32>,
+    // x = range of the aerial-perspective volume (m); y, z = the projection's A, B (view depth =
+    // B / (depth + A) for a reversed-Z depth-buffer value); w unused
+    aerial: vec4<f32>,
     sun_count: vec4<u32>,        // x = number of suns; yzw unused
     suns: array<AtmosphereSun, 8>,
 }
@@ -98,6 +102,43 @@ fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
     return frame.up * cos(zenith) + horizontal * sin(zenith);
 }
 
+// A view ray in the planet frame, as the part of the line that lies in front of the camera.
+struct ViewRay {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+    near: f32,         // smallest t in front of the camera
+    c_surface: f32,    // |origin/a|² − 1 against the surface and the top
+    c_top: f32,
+}
+
+// Far from the planet the camera's own position is useless in f32 (at 100 AU its rounding is a
+// sizeable fraction of the planet), so the ray starts at its closest approach to the centre,
+// computed from the small, exact offset between the pixel and the centre on the image plane:
+// with dn = (x·tan_x, y·tan_y, −1), the centre at s·cn (s its depth, cn = (cx, cy, −1)) and
+// δ = dn − cn, the closest point is s·(δ − (δ·d̂)d̂) and the camera sits at t = −s·(|dn| − δ·d̂).
+fn view_ray(ndc: vec2<f32>) -> ViewRay {
+    let tangent = ndc * view.camera_shape.zw;
+    let dn = vec3<f32>(tangent, -1.0);
+    let d_view = normalize(dn);
+    let rotation = mat3x3<f32>(view.view_to_planet[0].xyz, view.view_to_planet[1].xyz, view.view_to_planet[2].xyz);
+    var ray: ViewRay;
+    ray.direction = normalize(rotation * d_view);
+    if view.center.w > 0.5 {
+        let delta = vec3<f32>(tangent - view.center.xy, 0.0);
+        let along = dot(delta, d_view);
+        ray.origin = rotation * (view.center.z * (delta - along * d_view));
+        ray.near = -view.center.z * (length(dn) - along);
+        ray.c_surface = ellipsoid_c(ray.origin, atmosphere.radii.xyz);
+        ray.c_top = ellipsoid_c(ray.origin, top_radii());
+    } else {
+        ray.origin = view.camera.xyz;
+        ray.near = 0.0;
+        ray.c_surface = view.camera_shape.x;
+        ray.c_top = view.camera_shape.y;
+    }
+    return ray;
+}
+
 // The radiance of the lit ground at p (normal `up`) from suns [first, first + count): direct
 // sunlight and sky light (a Lambertian surface of the ground albedo).
 fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
@@ -109,6 +150,30 @@ fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
         irradiance += sun.irradiance.rgb * (direct + sky_irradiance(h, mu_s));
     }
     return atmosphere.ground_albedo.rgb / PI * irradiance;
+}
+
+// The medium at one point of a view ray along d: its extinction and the light it scatters
+// towards −d per unit length (all orders) from suns [first, first + count).
+struct MediumSample {
+    extinction: vec3<f32>,
+    source: vec3<f32>,
+}
+
+fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSample {
+    let here = altitude_up(p);
+    let c = coefficients_at(here.h);
+    let scattering = c.rayleigh + c.mie;
+    var out: MediumSample;
+    out.extinction = c.extinction;
+    out.source = vec3<f32>(0.0);
+    for (var i = first; i < first + count; i++) {
+        let sun = view.suns[i];
+        let s = sun.direction.xyz;
+        let mu_s = dot(here.up, s);
+        let direct = transmittance_to_sun(here.h, mu_s, sun.direction.w) * scattering_phase(c, dot(d, s));
+        out.source += sun.irradiance.rgb * (direct + scattering * multiscattering(here.h, mu_s));
+    }
+    return out;
 }
 
 struct MarchResult {
@@ -133,20 +198,9 @@ fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32,
         }
         let dt = (b - a) * span;
         let t = t0 + (a + b) * 0.5 * span;
-        let p = o + d * t;
-        let here = altitude_up(p);
-        let c = coefficients_at(here.h);
-        let scattering = c.rayleigh + c.mie;
-        var source = vec3<f32>(0.0);
-        for (var i = first; i < first + count; i++) {
-            let sun = view.suns[i];
-            let s = sun.direction.xyz;
-            let mu_s = dot(here.up, s);
-            let direct = transmittance_to_sun(here.h, mu_s, sun.direction.w) * scattering_phase(c, dot(d, s));
-            source += sun.irradiance.rgb * (direct + scattering * multiscattering(here.h, mu_s));
-        }
-        let step_transmittance = exp(-c.extinction * dt);
-        result.radiance += result.transmittance * integrate_step(source, c.extinction, step_transmittance, dt);
+        let here = medium_sample(o + d * t, d, first, count);
+        let step_transmittance = exp(-here.extinction * dt);
+        result.radiance += result.transmittance * integrate_step(here.source, here.extinction, step_transmittance, dt);
         result.transmittance *= step_transmittance;
     }
     if ground {
@@ -159,4 +213,30 @@ fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32,
 // Linear sRGB (Y in cd/m²) of a spectral radiance.
 fn to_linear_srgb(radiance: vec3<f32>) -> vec3<f32> {
     return mat3x3<f32>(view.to_srgb0.xyz, view.to_srgb1.xyz, view.to_srgb2.xyz) * radiance;
+}
+
+// ---- Aerial perspective ----
+// The volume (Hillaire 2020, section 5.3) covers the view frustum: x, y as the screen (u right,
+// v down), z the distance travelled through the air from where the pixel's ray enters it,
+// `range · w²` for w in [0, 1] (slices crowd near the camera, where distances are short). Slice k
+// holds the light scattered towards the camera over the first `range · ((k + ½)/N)²` metres and
+// the transmittance over them, so a texel centre is exactly where its value was integrated.
+// Stored as a 2D atlas of the slices side by side (see aerial_perspective_volume.wgsl).
+
+const AERIAL_PERSPECTIVE_SIZE: vec3<u32> = vec3<u32>(32u, 32u, 32u);
+
+// Where a view ray's air starts and ends (t along the ray; the ground ends it): equal when the
+// ray misses the atmosphere.
+fn aerial_span(ray: ViewRay) -> vec2<f32> {
+    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    if top.x > top.y || top.y <= ray.near {
+        return vec2<f32>(ray.near);
+    }
+    let start = max(top.x, ray.near);
+    var end = top.y;
+    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+    if ground.x <= ground.y && ground.x > ray.near {
+        end = min(end, ground.x);
+    }
+    return vec2<f32>(start, max(end, start));
 }

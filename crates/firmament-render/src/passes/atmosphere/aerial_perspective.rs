@@ -1,0 +1,213 @@
+//! Aerial perspective (Hillaire 2020, section 5.3): a froxel volume of the light the air scatters
+//! towards the camera and its transmittance, filled by a compute pass each frame, and applied to
+//! whatever a depth buffer holds as `colour · T + S`, per channel.
+//!
+//! Per-channel `colour · T` and `+ S` cannot both be one blend without dual-source blending
+//! (not on every adapter), so the application is two full-screen draws: multiply, then add.
+
+use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
+use super::stages::{ComputeStage, bind_group, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
+use crate::passes::PassPipeline;
+use crate::shaders;
+
+/// The draws that apply the volume, in order, with their blending.
+const APPLY_DRAWS: [(&str, f64, wgpu::BlendComponent); 2] = [
+    (
+        "AtmospherePass aerial perspective (transmittance)",
+        0.0,
+        wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::Zero,
+            dst_factor: wgpu::BlendFactor::Src,
+            operation: wgpu::BlendOperation::Add,
+        },
+    ),
+    (
+        "AtmospherePass aerial perspective (scattering)",
+        1.0,
+        wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        },
+    ),
+];
+
+/// The volume's compute stage and the two draws that apply it.
+#[derive(Debug)]
+pub(super) struct AerialPerspectiveStages {
+    volume: ComputeStage,
+    /// The transmittance and scattering draws, with their bind group layouts.
+    apply: Vec<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
+    /// One bind group per draw, for the depth view of the last `bind_depth`.
+    bind_groups: Vec<wgpu::BindGroup>,
+}
+
+/// Everything the stages bind besides the depth buffer.
+pub(super) struct AerialPerspectiveResources<'a> {
+    pub(super) params: &'a wgpu::Buffer,
+    pub(super) view: &'a wgpu::Buffer,
+    pub(super) luts: &'a luts::AtmosphereLuts,
+    pub(super) sampler: &'a wgpu::Sampler,
+}
+
+impl AerialPerspectiveResources<'_> {
+    fn common(&self) -> [(u32, wgpu::BindingResource<'_>); 3] {
+        [
+            (binding::PARAMS, self.params.as_entire_binding()),
+            (binding::VIEW, self.view.as_entire_binding()),
+            (binding::SAMPLER, wgpu::BindingResource::Sampler(self.sampler)),
+        ]
+    }
+}
+
+/// The depth buffer, read as an unfilterable float texture: GLSL cannot `textureLoad` a depth
+/// texture, and a depth view may be bound as unfilterable float anywhere.
+fn depth_entry() -> wgpu::BindGroupLayoutEntry {
+    texture_entry(binding::SCENE_DEPTH, false)
+}
+
+impl AerialPerspectiveStages {
+    /// Builds the compute stage and the two draws into targets of `color`.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        color: wgpu::TextureFormat,
+    ) -> Self {
+        let luts = resources.luts;
+        let storage = |binding| storage_entry(binding, AERIAL_PERSPECTIVE_FORMAT);
+        let mut volume_resources = resources.common().to_vec();
+        volume_resources.extend([
+            (
+                binding::TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.transmittance.view),
+            ),
+            (
+                binding::MULTISCATTERING,
+                wgpu::BindingResource::TextureView(&luts.multiscattering.view),
+            ),
+            (
+                binding::AERIAL_SCATTERING_OUT,
+                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
+            ),
+            (
+                binding::AERIAL_TRANSMITTANCE_OUT,
+                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
+            ),
+        ]);
+        let volume = ComputeStage::new(
+            device,
+            "AtmospherePass aerial-perspective volume",
+            shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
+            &[
+                uniform_entry(binding::PARAMS),
+                uniform_entry(binding::VIEW),
+                sampler_entry(binding::SAMPLER),
+                texture_entry(binding::TRANSMITTANCE, false),
+                texture_entry(binding::MULTISCATTERING, true),
+                storage(binding::AERIAL_SCATTERING_OUT),
+                storage(binding::AERIAL_TRANSMITTANCE_OUT),
+            ],
+            &volume_resources,
+        );
+        let apply_entries = [
+            uniform_entry(binding::PARAMS),
+            uniform_entry(binding::VIEW),
+            sampler_entry(binding::SAMPLER),
+            texture_entry(binding::AERIAL_SCATTERING, true),
+            texture_entry(binding::AERIAL_TRANSMITTANCE, true),
+            depth_entry(),
+        ];
+        let apply = APPLY_DRAWS
+            .iter()
+            .map(|&(owner, output, component)| {
+                PassPipeline {
+                    owner,
+                    source: shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
+                    entries: &apply_entries,
+                    color,
+                    depth_stencil: None,
+                    vertex_buffers: &[],
+                    primitive: wgpu::PrimitiveState::default(),
+                    constants: &[("OUTPUT", output)],
+                }
+                .build_blended(
+                    device,
+                    Some(wgpu::BlendState {
+                        color: component,
+                        alpha: wgpu::BlendComponent {
+                            src_factor: wgpu::BlendFactor::Zero,
+                            dst_factor: wgpu::BlendFactor::One,
+                            operation: wgpu::BlendOperation::Add,
+                        },
+                    }),
+                )
+            })
+            .collect();
+        Self {
+            volume,
+            apply,
+            bind_groups: Vec::new(),
+        }
+    }
+
+    /// Encodes the volume's compute pass (after the transmittance and multiple-scattering LUTs).
+    pub(super) fn record_volume(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (x, y, _) = AERIAL_PERSPECTIVE_SIZE;
+        self.volume.dispatch(encoder, (x.div_ceil(8), y.div_ceil(8), 1));
+    }
+
+    /// Binds `depth` (a depth view of the colour target's size) for the next applications.
+    pub(super) fn bind_depth(
+        &mut self,
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        depth: &wgpu::TextureView,
+    ) {
+        let luts = resources.luts;
+        let mut all = resources.common().to_vec();
+        all.extend([
+            (
+                binding::AERIAL_SCATTERING,
+                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
+            ),
+            (
+                binding::AERIAL_TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
+            ),
+            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
+        ]);
+        self.bind_groups = self
+            .apply
+            .iter()
+            .zip(APPLY_DRAWS)
+            .map(|((_, layout), (owner, ..))| bind_group(device, owner, layout, &all))
+            .collect();
+    }
+
+    /// Encodes the two draws over `color` (loaded, not cleared). Does nothing before
+    /// `bind_depth`.
+    pub(super) fn record_apply(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) {
+        if self.bind_groups.is_empty() {
+            tracing::warn!("AtmospherePass aerial perspective recorded before a depth view was bound: skipped");
+            return;
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("firmament AtmospherePass aerial perspective"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: color,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        for ((pipeline, _), bind_group) in self.apply.iter().zip(&self.bind_groups) {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+    }
+}

@@ -1,0 +1,198 @@
+//! The building blocks of the atmosphere pass: bind group layout entries, and a pipeline with its
+//! bind group for full-screen draws (`Stage`) and compute dispatches (`ComputeStage`).
+
+use crate::passes::PassPipeline;
+
+/// Binding numbers shared by every atmosphere shader.
+pub(super) mod binding {
+    pub(in crate::passes::atmosphere) const PARAMS: u32 = 0;
+    pub(in crate::passes::atmosphere) const VIEW: u32 = 1;
+    pub(in crate::passes::atmosphere) const TRANSMITTANCE: u32 = 2;
+    pub(in crate::passes::atmosphere) const MULTISCATTERING: u32 = 3;
+    pub(in crate::passes::atmosphere) const SKY_VIEW: u32 = 4;
+    pub(in crate::passes::atmosphere) const SAMPLER: u32 = 5;
+    pub(in crate::passes::atmosphere) const TRANSMITTANCE_OUT: u32 = 6;
+    pub(in crate::passes::atmosphere) const IRRADIANCE: u32 = 7;
+    pub(in crate::passes::atmosphere) const AERIAL_SCATTERING_OUT: u32 = 8;
+    pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE_OUT: u32 = 9;
+    pub(in crate::passes::atmosphere) const AERIAL_SCATTERING: u32 = 10;
+    pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE: u32 = 11;
+    pub(in crate::passes::atmosphere) const SCENE_DEPTH: u32 = 12;
+}
+
+/// A sampled 2D texture, seen by the fragment and compute stages.
+pub(super) fn texture_entry(binding: u32, filterable: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A filtering sampler, seen by the fragment and compute stages.
+pub(super) fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        count: None,
+    }
+}
+
+/// A write-only 2D storage texture of `format`, for compute stages.
+pub(super) fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
+}
+
+/// A bind group of `resources` (binding, resource) for `layout`, labelled for `owner`.
+pub(super) fn bind_group(
+    device: &wgpu::Device,
+    owner: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[(u32, wgpu::BindingResource<'_>)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: resource.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(&format!("firmament {owner} bind group")),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// One of the pass's render pipelines with its bind group.
+#[derive(Debug)]
+pub(super) struct Stage {
+    pub(super) pipeline: wgpu::RenderPipeline,
+    pub(super) bind_group: wgpu::BindGroup,
+}
+
+impl Stage {
+    /// Builds a stage whose bind group holds `resources` at the bindings the pipeline's entries
+    /// declare.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        pipeline: PassPipeline<'_>,
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> Self {
+        let owner = pipeline.owner;
+        let (pipeline, layout) = pipeline.build(device);
+        let bind_group = bind_group(device, owner, &layout, resources);
+        Self { pipeline, bind_group }
+    }
+
+    /// Renders the stage's full-screen triangle into `target`, cleared; with `viewport`, only
+    /// into its top-left `viewport` texels.
+    pub(super) fn render(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &str,
+        target: &wgpu::TextureView,
+        viewport: Option<(u32, u32)>,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        if let Some((width, height)) = viewport {
+            pass.set_viewport(0.0, 0.0, width as f32, height as f32, 0.0, 1.0);
+        }
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
+
+/// A compute pipeline (entry point `cs_main`) with its bind group.
+#[derive(Debug)]
+pub(super) struct ComputeStage {
+    owner: &'static str,
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+}
+
+impl ComputeStage {
+    /// Builds the pipeline from `source` with one bind group of `entries` holding `resources`.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        owner: &'static str,
+        source: &str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&format!("firmament {owner} shader")),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&format!("firmament {owner} bind group layout")),
+            entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(&format!("firmament {owner} pipeline layout")),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(&format!("firmament {owner} pipeline")),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("cs_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let bind_group = bind_group(device, owner, &layout, resources);
+        Self {
+            owner,
+            pipeline,
+            bind_group,
+        }
+    }
+
+    /// Dispatches `workgroups` in a compute pass of its own.
+    pub(super) fn dispatch(&self, encoder: &mut wgpu::CommandEncoder, workgroups: (u32, u32, u32)) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(&format!("firmament {}", self.owner)),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
+    }
+}
+
+/// A uniform buffer seen by every stage.
+pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
+        ..crate::passes::uniform_entry(binding)
+    }
+}

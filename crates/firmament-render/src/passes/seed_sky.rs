@@ -1,0 +1,117 @@
+//! The seed's own atmosphere model (`atmosphere.model = "seed"`): a full-screen triangle at the
+//! far plane running `shaders/seed_sky.wgsl`, the GPU twin of
+//! [`SeedAtmosphere::color`](firmament_core::atmosphere::seed::SeedAtmosphere::color).
+//!
+//! # What lands in the HDR target
+//! The seed's colour (unitless, in [0, 1]) times [`SeedSky::luminance`] (cd/m² per unit colour),
+//! as linear RGB, blended like the seed blends it (`ONE, ONE_MINUS_SRC_ALPHA`, seed line 252):
+//! where the seed's alpha is 1 (a star disc was on the ray and its colour started the
+//! integration) the sky replaces what is behind it, where it is 0 the sky is added to it. Nothing
+//! else draws at the far plane today, so over the cleared (black) target the result is the colour
+//! itself, which [`SeedSky::radiance`] gives in `f64`. The seed draws its planet's surface with
+//! other code; here a ray that meets the ground gets the seed's colour of the air in front of it,
+//! as the f64 port does, over black.
+
+use firmament_core::Camera;
+use firmament_core::frame::SeedSky;
+
+use crate::gpu_types::SeedSkyUniforms;
+use crate::passes::{begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::shaders;
+use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
+
+/// The seed's blend (`glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA)`, seed line 252), for colour
+/// and alpha alike (alpha stays 1 over an opaque target).
+const SEED_BLEND: wgpu::BlendState = wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING;
+
+/// Draws the seed's atmosphere behind everything already in the depth buffer.
+#[derive(Debug)]
+pub struct SeedSkyPass {
+    pipeline: wgpu::RenderPipeline,
+    uniforms: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+impl SeedSkyPass {
+    /// Builds the pipeline for an HDR target of [`HDR_FORMAT`] and depth of [`DEPTH_FORMAT`].
+    pub fn new(device: &wgpu::Device) -> Self {
+        Self::with_formats(device, HDR_FORMAT, DEPTH_FORMAT)
+    }
+
+    /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
+    pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
+        // Built here rather than with `PassPipeline`, which has no blending: the seed's alpha
+        // decides what shows through.
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("firmament SeedSkyPass shader"),
+            source: wgpu::ShaderSource::Wgsl(shaders::SEED_SKY.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("firmament SeedSkyPass bind group layout"),
+            entries: &[uniform_entry(0)],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("firmament SeedSkyPass pipeline layout"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("firmament SeedSkyPass pipeline"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(far_plane_depth_state(depth)),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: color,
+                    blend: Some(SEED_BLEND),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let uniforms = uniform_buffer::<SeedSkyUniforms>(device, "firmament SeedSkyPass uniforms");
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("firmament SeedSkyPass bind group"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniforms.as_entire_binding(),
+            }],
+        });
+        Self {
+            pipeline,
+            uniforms,
+            bind_group,
+        }
+    }
+
+    /// Uploads the seed's parameters, stars and the camera's view for this frame.
+    pub fn prepare(&self, queue: &wgpu::Queue, sky: &SeedSky, camera: &Camera) {
+        let data = SeedSkyUniforms::new(sky, camera);
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&data));
+    }
+
+    /// Draws into a render pass the caller already began (with a depth attachment).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// Draws into `color` (loaded, not cleared) behind what `depth` already holds.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
+        let mut pass = begin_load_pass(encoder, "firmament SeedSkyPass", color, depth);
+        self.draw(&mut pass);
+    }
+}

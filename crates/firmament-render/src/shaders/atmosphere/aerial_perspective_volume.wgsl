@@ -1,0 +1,49 @@
+// atmosphere/aerial_perspective_volume.wgsl — Hillaire 2020's aerial-perspective volume, a
+// compute pass. Includes: atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+//
+// One invocation per froxel column: it marches the column's view ray through the air once and
+// stores, at each slice, the scattered light so far (spectral radiance, all suns) and the
+// transmittance so far — O(N) per column instead of O(N²). Slices and their distances: see
+// `AERIAL_PERSPECTIVE_SIZE` in view.wgsl. Two midpoint samples per slice.
+//
+// The volume is a 2D atlas of its slices side by side (slice k at x ∈ [32k, 32k + 32)): GL
+// binds a 3D storage texture one layer at a time, so a 3D volume would only get its first slice.
+
+@group(0) @binding(8) var aerial_scattering_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
+
+const SAMPLES_PER_SLICE: u32 = 2u;
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= AERIAL_PERSPECTIVE_SIZE.xy) {
+        return;
+    }
+    let uv = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(AERIAL_PERSPECTIVE_SIZE.xy);
+    let ray = view_ray(vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y));
+    let span = aerial_span(ray);
+    let air = span.y - span.x;
+    var radiance = vec3<f32>(0.0);
+    var transmittance = vec3<f32>(1.0);
+    var previous = 0.0;
+    let slices = AERIAL_PERSPECTIVE_SIZE.z;
+    for (var k = 0u; k < slices; k++) {
+        let w = (f32(k) + 0.5) / f32(slices);
+        let distance = view.aerial.x * w * w;
+        for (var s = 0u; s < SAMPLES_PER_SLICE; s++) {
+            let a = min(mix(previous, distance, f32(s) / f32(SAMPLES_PER_SLICE)), air);
+            let b = min(mix(previous, distance, f32(s + 1u) / f32(SAMPLES_PER_SLICE)), air);
+            let dt = b - a;
+            if dt > 0.0 {
+                let here = medium_sample(ray.origin + ray.direction * (span.x + 0.5 * (a + b)), ray.direction, 0u, view.sun_count.x);
+                let step_transmittance = exp(-here.extinction * dt);
+                radiance += transmittance * integrate_step(here.source, here.extinction, step_transmittance, dt);
+                transmittance *= step_transmittance;
+            }
+        }
+        previous = distance;
+        let texel = vec2<u32>(id.x + k * AERIAL_PERSPECTIVE_SIZE.x, id.y);
+        textureStore(aerial_scattering_out, texel, vec4<f32>(radiance, 1.0));
+        textureStore(aerial_transmittance_out, texel, vec4<f32>(transmittance, 1.0));
+    }
+}
