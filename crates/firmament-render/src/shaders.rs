@@ -3,6 +3,8 @@
 
 /// Shared full-screen triangle (`common/fullscreen.wgsl`).
 const FULLSCREEN: &str = include_str!("shaders/common/fullscreen.wgsl");
+/// Shared ray/ellipsoid intersection (`common/ellipsoid.wgsl`).
+const ELLIPSOID: &str = include_str!("shaders/common/ellipsoid.wgsl");
 
 /// The gradient sky pass, with its includes.
 pub const SKY_GRADIENT: &str = concat!(
@@ -22,15 +24,19 @@ pub const TONEMAP: &str = concat!(
 pub const SEED_SKY: &str = concat!(
     include_str!("shaders/common/fullscreen.wgsl"),
     "\n",
+    include_str!("shaders/common/ellipsoid.wgsl"),
+    "\n",
     include_str!("shaders/seed_sky.wgsl")
 );
 
-/// Composes an atmosphere pass: the full-screen triangle, the atmosphere includes in dependency
+/// Composes an atmosphere pass: the full-screen triangle, the ellipsoid intersection, the atmosphere includes in dependency
 /// order (`common`, `luts`, `view`), then the entry file.
 macro_rules! atmosphere_shader {
     ($($include:literal),* ; $entry:literal) => {
         concat!(
             include_str!("shaders/common/fullscreen.wgsl"),
+            "\n",
+            include_str!("shaders/common/ellipsoid.wgsl"),
             "\n",
             $(include_str!(concat!("shaders/atmosphere/", $include, ".wgsl")), "\n",)*
             include_str!(concat!("shaders/atmosphere/", $entry, ".wgsl"))
@@ -80,10 +86,20 @@ pub const ALL: &[(&str, &str)] = &[
 /// Each atmosphere include comes with the ones it needs before it.
 pub const INCLUDES: &[(&str, &str)] = &[
     ("common/fullscreen", FULLSCREEN),
-    ("atmosphere/common", include_str!("shaders/atmosphere/common.wgsl")),
+    ("common/ellipsoid", ELLIPSOID),
+    (
+        "atmosphere/common",
+        concat!(
+            include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/common.wgsl")
+        ),
+    ),
     (
         "atmosphere/luts",
         concat!(
+            include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
             include_str!("shaders/atmosphere/common.wgsl"),
             "\n",
             include_str!("shaders/atmosphere/luts.wgsl")
@@ -92,6 +108,8 @@ pub const INCLUDES: &[(&str, &str)] = &[
     (
         "atmosphere/view",
         concat!(
+            include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
             include_str!("shaders/atmosphere/common.wgsl"),
             "\n",
             include_str!("shaders/atmosphere/luts.wgsl"),

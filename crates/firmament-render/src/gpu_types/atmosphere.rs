@@ -8,11 +8,10 @@ use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
-/// How far the camera must be, in top-of-atmosphere radii, before view rays start at their
-/// closest approach to the planet centre instead of at the camera.
-pub const FAR_CAMERA_RADII: f64 = 10.0;
+pub use super::planet_view::FAR_CAMERA_RADII;
+use super::planet_view::PlanetView;
 
 /// How far the aerial-perspective volume reaches into the air along each view ray, metres:
 /// geometry farther than this gets the scattering of this distance. 100 km holds a view from a
@@ -164,12 +163,6 @@ pub struct AtmosphereViewUniforms {
     pub suns: [AtmosphereSunUniform; MAX_SUNS],
 }
 
-/// `|o/a|² − 1`, in f64: its sign says inside or outside, and near the surface it is tiny, which
-/// f32 could not compute from a rounded position.
-fn ellipsoid_c(o: DVec3, radii: DVec3) -> f64 {
-    (o / radii).length_squared() - 1.0
-}
-
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
     let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
@@ -184,32 +177,15 @@ impl AtmosphereViewUniforms {
         let o = planet.to_planet_frame(camera.position);
         let altitude = planet.altitude(o);
         let up = planet.up(o);
-        let view_to_planet =
-            DMat3::from_quat(planet.orientation.normalize().inverse() * camera.orientation.normalize());
-
-        // The planet centre in view space, exactly: far cameras march from closest approaches.
-        let center_view = camera.orientation.normalize().inverse() * (planet.center - camera.position);
-        let depth = -center_view.z;
-        let far = depth > 0.0 && center_view.length() > FAR_CAMERA_RADII * top_radii.max_element();
-        let center = if far {
-            [
-                (center_view.x / depth) as f32,
-                (center_view.y / depth) as f32,
-                depth as f32,
-                1.0,
-            ]
-        } else {
-            [0.0, 0.0, depth as f32, 0.0]
-        };
+        let shape = PlanetView::new(camera, planet.center, planet.orientation, o, planet.radii, top_radii);
         let (band_low, band_high) = LUT_TO_MARCH_BAND;
         let height = planet.atmosphere_height;
-        let blend = if far {
+        let blend = if shape.far {
             1.0
         } else {
             smoothstep(band_low * height, band_high * height, altitude)
         };
 
-        let tan_y = (0.5 * camera.fov_y).tan();
         let projection = camera.projection_matrix();
         let to_srgb = atmosphere.spectral_conversion().to_linear_srgb_matrix();
         let mut suns = [AtmosphereSunUniform::zeroed(); MAX_SUNS];
@@ -221,15 +197,10 @@ impl AtmosphereViewUniforms {
             };
         }
         Self {
-            view_to_planet: glam::DMat4::from_mat3(view_to_planet).as_mat4().to_cols_array_2d(),
+            view_to_planet: shape.view_to_planet,
             camera: vec3_w(o, altitude),
-            camera_shape: [
-                ellipsoid_c(o, planet.radii) as f32,
-                ellipsoid_c(o, top_radii) as f32,
-                (tan_y * camera.aspect) as f32,
-                tan_y as f32,
-            ],
-            center,
+            camera_shape: shape.camera_shape,
+            center: shape.center,
             local_up: vec3_w(up, blend),
             to_srgb0: vec3_w(to_srgb.x_axis, 0.0),
             to_srgb1: vec3_w(to_srgb.y_axis, 0.0),

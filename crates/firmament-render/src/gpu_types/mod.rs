@@ -14,6 +14,7 @@ use firmament_core::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
 
 pub mod atmosphere;
+mod planet_view;
 pub mod seed;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};

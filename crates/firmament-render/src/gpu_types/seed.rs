@@ -11,9 +11,9 @@ use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::atmosphere::seed::{SEED_STAR_RADIUS_INV_SQ_FACTOR, SeedStar};
 use firmament_core::frame::{MAX_SEED_STARS, SeedSky};
-use glam::{DMat3, DMat4, DVec3};
+use glam::DVec3;
 
-use super::atmosphere::FAR_CAMERA_RADII;
+use super::planet_view::PlanetView;
 
 fn vec3_w(v: DVec3, w: f64) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, w as f32]
@@ -92,11 +92,6 @@ pub struct SeedSkyUniforms {
     pub stars: [SeedStarUniform; MAX_SEED_STARS],
 }
 
-/// `|o/a|² − 1` in `f64`.
-fn ellipsoid_c(o: DVec3, radii: DVec3) -> f64 {
-    (o / radii).length_squared() - 1.0
-}
-
 impl SeedSkyUniforms {
     /// The uniforms for `sky` seen by `camera` (whose aspect ratio is the target's). Stars past
     /// [`MAX_SEED_STARS`] are dropped (the caller validates counts).
@@ -104,39 +99,18 @@ impl SeedSkyUniforms {
         let a = &sky.atmosphere;
         let radii = a.surface().radii;
         let top = a.top().radii;
-        let orientation = sky.orientation.normalize();
         let o = sky.to_planet_frame(camera.position);
-        let view_to_planet = DMat3::from_quat(orientation.inverse() * camera.orientation.normalize());
-
-        let center_view = camera.orientation.normalize().inverse() * (sky.center - camera.position);
-        let depth = -center_view.z;
-        let far = depth > 0.0 && center_view.length() > FAR_CAMERA_RADII * top.max_element();
-        let center = if far {
-            [
-                (center_view.x / depth) as f32,
-                (center_view.y / depth) as f32,
-                depth as f32,
-                1.0,
-            ]
-        } else {
-            [0.0, 0.0, depth as f32, 0.0]
-        };
-        let tan_y = (0.5 * camera.fov_y).tan();
+        let shape = PlanetView::new(camera, sky.center, sky.orientation, o, radii, top);
         let mut stars = [SeedStarUniform::zeroed(); MAX_SEED_STARS];
         for (slot, star) in stars.iter_mut().zip(&sky.stars) {
             *slot = SeedStarUniform::new(star);
         }
         let valid = a.validate().is_ok() && o.is_finite() && sky.luminance.is_finite();
         Self {
-            view_to_planet: DMat4::from_mat3(view_to_planet).as_mat4().to_cols_array_2d(),
+            view_to_planet: shape.view_to_planet,
             camera: vec3_w(o, 0.0),
-            camera_shape: [
-                ellipsoid_c(o, radii) as f32,
-                ellipsoid_c(o, top) as f32,
-                (tan_y * camera.aspect) as f32,
-                tan_y as f32,
-            ],
-            center,
+            camera_shape: shape.camera_shape,
+            center: shape.center,
             radii: vec3_w(radii, a.height),
             b0: vec3_w(a.b0, a.overglow),
             params: [a.view_depth as f32, 0.0, sky.luminance as f32, 0.0],

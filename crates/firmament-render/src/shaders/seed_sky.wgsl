@@ -3,7 +3,7 @@
 // seed document 000_643abe256ac7a513.txt (lines 285–476, uniforms 477–495, CPU side 498–553),
 // mirroring firmament_core::atmosphere::seed::SeedAtmosphere::color step for step (the f64
 // reference the GPU test compares with).
-// Includes: common/fullscreen.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl.
 //
 // Conventions
 // - Planet frame (the seed's "ellipsoid space"): origin at the planet centre, x and y in the
@@ -55,33 +55,6 @@ const HDR_MAX: f32 = 65504.0;        // largest half float (firmament_render::HD
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
     return fullscreen_vertex(index, FAR_DEPTH);
-}
-
-// Entry and exit parameters of the line o + t·d through the ellipsoid with semi-axes `a`, or
-// (1, 0) when it misses; `c` = |o/a|² − 1 (passed in so the camera's can come from f64). The
-// numerically stable pair of roots (geometry.rs does the same in f64).
-fn ellipsoid_hits(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, c: f32) -> vec2<f32> {
-    let os = o / a;
-    let ds = d / a;
-    let qa = dot(ds, ds);
-    let qb = dot(os, ds);
-    let disc = qb * qb - qa * c;
-    if disc < 0.0 {
-        return vec2<f32>(1.0, 0.0);
-    }
-    let s = sqrt(disc);
-    let q = -(qb + select(-s, s, qb >= 0.0));
-    if q == 0.0 {
-        return vec2<f32>(0.0, 0.0);
-    }
-    let t0 = q / qa;
-    let t1 = c / q;
-    return vec2<f32>(min(t0, t1), max(t0, t1));
-}
-
-fn ellipsoid_c(o: vec3<f32>, a: vec3<f32>) -> f32 {
-    let os = o / a;
-    return dot(os, os) - 1.0;
 }
 
 fn top_radii() -> vec3<f32> {

@@ -1,5 +1,5 @@
 // atmosphere/aerial_perspective.wgsl — applies the aerial-perspective volume to whatever the depth
-// buffer holds: colour · T + S, per channel. Includes: common/fullscreen.wgsl,
+// buffer holds: colour · T + S, per channel. Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl,
 // atmosphere/common.wgsl, luts.wgsl, view.wgsl.
 //
 // Without dual-source blending one draw cannot multiply by a colour and add another, so the pass

@@ -1,5 +1,5 @@
 // atmosphere/aerial_perspective_volume.wgsl — Hillaire 2020's aerial-perspective volume, a
-// compute pass. Includes: atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+// compute pass. Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
 //
 // One invocation per froxel column: it marches the column's view ray through the air once and
 // stores, at each slice, the scattered light so far (spectral radiance, all suns) and the

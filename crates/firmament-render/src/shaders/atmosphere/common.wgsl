@@ -1,5 +1,5 @@
 // atmosphere/common.wgsl — shared include of every atmosphere pass: the medium, the phase
-// functions, ray intersections and the LUT parameterisations.
+// functions, altitudes and the LUT parameterisations. Needs common/ellipsoid.wgsl.
 //
 // Conventions (those of firmament_core::atmosphere):
 // - Planet frame: metres, centred on the planet, axes along the ellipsoid's semi-axes.
@@ -197,34 +197,6 @@ fn altitude_up(p: vec3<f32>) -> AltitudeUp {
     out.h = first.h + second.h;
     out.up = second.up;
     return out;
-}
-
-// Entry and exit distances of the ray o + t·d (t may be negative) through the ellipsoid with
-// semi-axes `a`, or (1, 0) when it misses. `c` is |o/a|² − 1, passed in so callers can give a
-// value computed more exactly (the camera's, from f64).
-fn ellipsoid_hits(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, c: f32) -> vec2<f32> {
-    let os = o / a;
-    let ds = d / a;
-    let qa = dot(ds, ds);
-    let qb = dot(os, ds);
-    let disc = qb * qb - qa * c;
-    if disc < 0.0 {
-        return vec2<f32>(1.0, 0.0);
-    }
-    let s = sqrt(disc);
-    // The numerically stable pair of roots.
-    let q = -(qb + select(-s, s, qb >= 0.0));
-    if q == 0.0 {
-        return vec2<f32>(0.0, 0.0);
-    }
-    let t0 = q / qa;
-    let t1 = c / q;
-    return vec2<f32>(min(t0, t1), max(t0, t1));
-}
-
-fn ellipsoid_c(o: vec3<f32>, a: vec3<f32>) -> f32 {
-    let os = o / a;
-    return dot(os, os) - 1.0;
 }
 
 fn top_radii() -> vec3<f32> {

@@ -1,7 +1,7 @@
 // atmosphere/irradiance_lut.wgsl — sky irradiance on a horizontal surface, per unit sun
 // irradiance (the ground's sky light; Bruneton 2017's irradiance texture, computed in one pass
 // from single scattering plus Hillaire's multiple-scattering term).
-// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
 // Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
 // on the LUT sphere (IRRADIANCE_LUT_SIZE).

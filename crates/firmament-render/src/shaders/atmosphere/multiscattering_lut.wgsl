@@ -1,6 +1,6 @@
 // atmosphere/multiscattering_lut.wgsl — Hillaire 2020's multiple-scattering LUT ("A Scalable and
 // Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020, section 5.2).
-// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
 // Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
 // on the LUT sphere. For a unit sun it integrates second-order light L₂ and the transfer f_ms over 64 directions with the isotropic

@@ -1,7 +1,7 @@
 // atmosphere/sky.wgsl — the atmosphere seen by the camera: sky, lit ground and sun discs, as
 // linear sRGB radiance (Y in cd/m²) into the HDR target, drawn at the far plane behind whatever
 // is already in the depth buffer.
-// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
 //
 // Inside the atmosphere each pixel sums the sky-view LUT tiles of the suns; above it each pixel
 // marches its own ray (Hillaire 2020 does the same); across the top of the atmosphere the two

@@ -1,5 +1,5 @@
 // atmosphere/sky_view_lut.wgsl — Hillaire 2020's sky-view LUT, one tile per sun.
-// Includes: common/fullscreen.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
 //
 // The target is SKY_VIEW_LUT_SIZE.x · MAX_SUNS wide: tile i (x in [i·W, (i+1)·W)) holds the light
 // scattered towards the camera from sun i alone (all orders, and the ground that sun lights),

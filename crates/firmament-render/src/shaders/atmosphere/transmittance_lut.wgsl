@@ -1,6 +1,6 @@
 // atmosphere/transmittance_lut.wgsl — the transmittance LUT: for each (r, mu) of the LUT sphere,
 // exp(−optical depth) to the top of the atmosphere (Bruneton 2017, ComputeTransmittanceToTopAtmosphereBoundary).
-// Includes: common/fullscreen.wgsl (unused), atmosphere/common.wgsl. A compute pass (GL cannot
+// Includes: common/fullscreen.wgsl (unused), common/ellipsoid.wgsl, atmosphere/common.wgsl. A compute pass (GL cannot
 // render to Rgba32Float, but can store to it): one invocation per texel of TRANSMITTANCE_LUT_SIZE;
 // rgb = transmittance per wavelength, a = 1.
 
