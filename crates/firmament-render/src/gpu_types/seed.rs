@@ -3,7 +3,7 @@
 //! Everything is in the seed's planet frame and computed in `f64` before rounding: the camera's
 //! planet-frame position and its ellipsoid terms `|o/a|² − 1` (exact even 1 m above the ground,
 //! where `f32` could not compute them from a rounded position), and, for a camera farther than
-//! [`FAR_CAMERA_RADII`] top radii, the planet centre's offset on the image plane, so that rays
+//! [`FAR_CAMERA_RADII`](super::atmosphere::FAR_CAMERA_RADII) top radii, the planet centre's offset on the image plane, so that rays
 //! start at their closest approach to the planet and never at the camera's useless `f32`
 //! position (the same scheme as [`super::atmosphere`]).
 
