@@ -1,8 +1,12 @@
-//! Benchmarks of the atmosphere pass: per-pass wall time with full synchronisation (each pass
-//! submitted alone and waited for), and the LUT path against the brute-force per-pixel march.
+//! Benchmarks of the atmosphere pass: per-pass GPU time, and the LUT path against the
+//! brute-force per-pixel march.
 //!
-//! Wall time includes submission and the wait, so on a real GPU it overstates sub-millisecond
-//! passes; compare figures taken side by side in one run.
+//! Each pass is submitted alone and waited for. Where the device has timestamp queries inside
+//! command encoders ([`TIMESTAMP_FEATURES`], requested by [`GpuContext`] whenever the adapter
+//! offers them) the figure is the GPU's own time between two timestamps around the pass;
+//! elsewhere (llvmpipe's GL) it is wall time with full synchronisation, which includes submission
+//! and the wait and so overstates sub-millisecond passes. [`AtmosphereBench::timing`] says
+//! which; compare figures taken side by side in one run.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -17,6 +21,29 @@ use crate::passes::{AtmospherePass, SkyMethod};
 use crate::readback::{decode_f16, read_texture};
 use crate::targets::FrameTargets;
 
+/// The device features GPU timestamps need: queries written between commands of an encoder.
+pub const TIMESTAMP_FEATURES: wgpu::Features =
+    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+
+/// How a benchmark figure was measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Timing {
+    /// The GPU's timestamps around the pass.
+    GpuTimestamps,
+    /// Wall time from submission until the pass's output could be read (full synchronisation).
+    WallTime,
+}
+
+impl Timing {
+    /// A short description for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::GpuTimestamps => "GPU timestamps",
+            Self::WallTime => "wall time with full synchronisation",
+        }
+    }
+}
+
 /// Median milliseconds per pass, and how far the LUT path is from the brute-force march.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AtmosphereBench {
@@ -30,6 +57,8 @@ pub struct AtmosphereBench {
     pub frames: u32,
     /// Number of suns in the scene.
     pub suns: usize,
+    /// How the times were measured.
+    pub timing: Timing,
     /// Transmittance, multiple-scattering and irradiance LUTs (rebuilt when the medium changes).
     pub medium_luts_ms: f64,
     /// The sky-view LUT tiles.
@@ -53,6 +82,9 @@ pub struct AtmosphereBench {
 /// Median wall time of `frames` submissions of `encode`, each ending with a copy of one texel of
 /// `written` (a texture the work writes) that is then mapped: GL fences give up after 2³¹ ns, but
 /// reading the copy back waits for the work itself.
+///
+/// With [`Timing::GpuTimestamps`] the time is the GPU's between timestamps written before and
+/// after `encode`'s commands.
 fn median_ms(
     ctx: &GpuContext,
     frames: u32,
@@ -65,12 +97,20 @@ fn median_ms(
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
+    let timestamps = (timing(ctx) == Timing::GpuTimestamps).then(|| Timestamps::new(ctx));
     let mut times: Vec<f64> = (0..frames.max(1))
         .map(|_| {
             let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("firmament bench encoder"),
             });
+            if let Some(t) = &timestamps {
+                encoder.write_timestamp(&t.queries, 0);
+            }
             encode(&mut encoder);
+            if let Some(t) = &timestamps {
+                encoder.write_timestamp(&t.queries, 1);
+                t.resolve(&mut encoder);
+            }
             encoder.copy_texture_to_buffer(
                 written.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
@@ -102,7 +142,7 @@ fn median_ms(
             }
             let elapsed = start.elapsed().as_secs_f64() * 1e3;
             staging.unmap();
-            elapsed
+            timestamps.as_ref().and_then(|t| t.read_ms(ctx)).unwrap_or(elapsed)
         })
         .collect();
     times.sort_by(f64::total_cmp);
@@ -124,6 +164,75 @@ fn clear_depth(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, depth
         }),
         ..Default::default()
     });
+}
+
+/// How this device's benchmarks are timed.
+fn timing(ctx: &GpuContext) -> Timing {
+    if ctx.device.features().contains(TIMESTAMP_FEATURES) {
+        Timing::GpuTimestamps
+    } else {
+        Timing::WallTime
+    }
+}
+
+/// A pair of timestamp queries and the buffers that bring them back.
+struct Timestamps {
+    queries: wgpu::QuerySet,
+    resolved: wgpu::Buffer,
+    readback: wgpu::Buffer,
+}
+
+impl Timestamps {
+    const BYTES: u64 = 2 * std::mem::size_of::<u64>() as u64;
+
+    fn new(ctx: &GpuContext) -> Self {
+        let buffer = |label, usage| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: Self::BYTES,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            queries: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("firmament bench timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolved: buffer(
+                "firmament bench timestamps resolved",
+                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            ),
+            readback: buffer(
+                "firmament bench timestamps readback",
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            ),
+        }
+    }
+
+    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.resolve_query_set(&self.queries, 0..2, &self.resolved, 0);
+        encoder.copy_buffer_to_buffer(&self.resolved, 0, &self.readback, 0, Self::BYTES);
+    }
+
+    /// Milliseconds between the two timestamps of the last submission (already finished).
+    fn read_ms(&self, ctx: &GpuContext) -> Option<f64> {
+        let slice = self.readback.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| ());
+        ctx.device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
+        let ticks = slice.get_mapped_range().ok().map(|bytes| {
+            let at = |i: usize| {
+                bytes[i * 8..(i + 1) * 8]
+                    .iter()
+                    .rev()
+                    .fold(0u64, |v, b| v << 8 | u64::from(*b))
+            };
+            at(1).saturating_sub(at(0))
+        });
+        self.readback.unmap();
+        Some(ticks? as f64 * f64::from(ctx.queue.get_timestamp_period()) * 1e-6)
+    }
 }
 
 fn hdr_pixels(ctx: &GpuContext, targets: &FrameTargets) -> Result<Vec<f32>, RenderError> {
@@ -197,6 +306,7 @@ pub fn bench_atmosphere(
         height,
         frames,
         suns: sky.suns.len(),
+        timing: timing(ctx),
         medium_luts_ms,
         sky_view_lut_ms,
         sky_ms,

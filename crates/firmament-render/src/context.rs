@@ -86,7 +86,8 @@ impl GpuContext {
         tracing::info!(adapter = %info.name, backend = ?info.backend, driver = %info.driver, "GPU adapter");
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("firmament device"),
-            required_features: wgpu::Features::empty(),
+            // Optional: GPU timestamps for `firmament bench`, where the adapter has them.
+            required_features: adapter.features() & crate::bench::TIMESTAMP_FEATURES,
             required_limits: adapter.limits(),
             ..Default::default()
         }))

@@ -135,10 +135,9 @@ fn aerial_perspective_matches_the_reference() {
         100.0 * worst.0,
         worst.1
     );
-    // The scattered light carries the multiple-scattering approximation's error (Hillaire's Ψ_ms
-    // underestimates low horizontal paths, see docs/ATMOSPHERE.md); single scattering and the
-    // transmittance are exact to the quadrature.
-    assert!(worst.0 < 0.12, "scattered light off by {:.1} %", 100.0 * worst.0);
+    // Measured worst 4.7 %, low: the multiple-scattering model's error (docs/ATMOSPHERE.md);
+    // single scattering and the transmittance are exact to the quadrature.
+    assert!(worst.0 < 0.06, "scattered light off by {:.1} %", 100.0 * worst.0);
     assert!(worst.1 < 3e-3, "transmittance off by {}", worst.1);
 }
 

@@ -140,7 +140,10 @@ fn transmittance_lut_texels_match_the_reference() {
     assert!(worst.0 < 1e-3, "worst {worst:?}");
 }
 
-/// Relative errors of the GPU against the reference (1024 paths) from a street on Bruneton's
+/// Monte Carlo paths per reference radiance in the street tests.
+const STREET_PATHS: usize = 8192;
+
+/// Relative errors of the GPU against the reference (`STREET_PATHS` paths) from a street on Bruneton's
 /// sphere, one sun at `sun` (azimuth, elevation), for views at each (azimuth, elevation).
 fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f64> {
     let atmosphere = earth_sphere();
@@ -149,8 +152,10 @@ fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f6
         atmosphere,
         suns: vec![sun],
     };
+    // Enough paths that the reference's Monte Carlo noise (printed) is well inside the budget:
+    // with 1024 a view 50° from a high sun moved by 4 %.
     let settings = ReferenceSettings {
-        paths: 1024,
+        paths: STREET_PATHS,
         ..ReferenceSettings::default()
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
@@ -168,10 +173,9 @@ fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f6
         .collect()
 }
 
-/// Sky and ground from a street, sun 30° up. The GPU's single scattering and lit ground agree
-/// with the reference to 0.2 %; the total carries Hillaire's isotropic multiple-scattering
-/// approximation, which is low by up to a quarter of the multiple-scattering part near the
-/// horizon (see docs/ATMOSPHERE.md for the measurements).
+/// Sky and ground from a street, sun 30° up. The budget for sun zenith angles up to 85°
+/// is 1 % median, 5 % worst; measured 1.1 % and 3.7 % (the GPU runs 1–2 % low, see
+/// docs/ATMOSPHERE.md), so the median is held to 2.5 %.
 #[test]
 fn sky_from_the_ground_matches_the_reference() {
     let views = [
@@ -189,10 +193,34 @@ fn sky_from_the_ground_matches_the_reference() {
     let worst = errors.iter().copied().fold(0.0, f64::max);
     let median = median(errors);
     println!("median {median:.4}, worst {worst:.4}");
-    assert!(median < 0.05 && worst < 0.10, "median {median}, worst {worst}");
+    assert!(median < 0.025 && worst < 0.05, "median {median}, worst {worst}");
 }
 
-/// The sun 3° above the horizon: the sunset budget is 10 %.
+/// The same with the sun high (70°: median 1.4 %, worst 3.2 %) and low (10° up, zenith angle
+/// 80°: 2.3 %, 3.3 %).
+#[test]
+fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
+    let views = [
+        (0.0, 90.0),
+        (90.0, 20.0),
+        (180.0, 5.0),
+        (270.0, 45.0),
+        (90.0, 1.0),
+        (0.0, -30.0),
+    ];
+    for sun_elevation in [70.0, 10.0] {
+        let errors = street_errors(&mut gpu(), (90.0, sun_elevation), &views);
+        let worst = errors.iter().copied().fold(0.0, f64::max);
+        let median = median(errors);
+        println!("sun {sun_elevation}° up: median {median:.4}, worst {worst:.4}");
+        assert!(
+            median < 0.025 && worst < 0.05,
+            "sun {sun_elevation}°: median {median}, worst {worst}"
+        );
+    }
+}
+
+/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 3.6 %).
 #[test]
 fn sunset_sky_matches_the_reference() {
     let views = [(0.0, 90.0), (250.0, 4.0), (270.0, 20.0), (90.0, 5.0), (180.0, 30.0)];

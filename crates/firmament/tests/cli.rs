@@ -405,12 +405,19 @@ fn bench_reports_every_pass_as_json() {
         "medium_luts_ms",
         "sky_view_lut_ms",
         "sky_ms",
+        "aerial_volume_ms",
+        "aerial_apply_ms",
         "lut_frame_ms",
         "march_frame_ms",
         "difference_median",
+        "timing",
     ] {
         assert!(stdout.contains(&format!("\"{key}\":")), "{key} missing from {stdout}");
     }
+    assert!(
+        stdout.contains("GPU timestamps") || stdout.contains("wall time"),
+        "{stdout}"
+    );
 }
 
 #[test]

@@ -6,7 +6,10 @@
 //! (not on every adapter), so the application is two full-screen draws: multiply, then add.
 
 use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
-use super::stages::{ComputeStage, bind_group, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
+use super::stages::{
+    ComputeStage, bind_group, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
+    uniform_entry,
+};
 use crate::passes::PassPipeline;
 use crate::shaders;
 
@@ -76,14 +79,14 @@ impl AerialPerspectiveStages {
         let luts = resources.luts;
         let storage = |binding| storage_entry(binding, AERIAL_PERSPECTIVE_FORMAT);
         let mut volume_resources = resources.common().to_vec();
+        volume_resources.extend(moment_resources(
+            binding::MULTISCATTERING_MOMENTS,
+            luts.multiscattering_views(),
+        ));
         volume_resources.extend([
             (
                 binding::TRANSMITTANCE,
                 wgpu::BindingResource::TextureView(&luts.transmittance.view),
-            ),
-            (
-                binding::MULTISCATTERING,
-                wgpu::BindingResource::TextureView(&luts.multiscattering.view),
             ),
             (
                 binding::AERIAL_SCATTERING_OUT,
@@ -94,19 +97,20 @@ impl AerialPerspectiveStages {
                 wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
             ),
         ]);
+        let mut volume_entries = vec![
+            uniform_entry(binding::PARAMS),
+            uniform_entry(binding::VIEW),
+            sampler_entry(binding::SAMPLER),
+            texture_entry(binding::TRANSMITTANCE, false),
+            storage(binding::AERIAL_SCATTERING_OUT),
+            storage(binding::AERIAL_TRANSMITTANCE_OUT),
+        ];
+        volume_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
         let volume = ComputeStage::new(
             device,
             "AtmospherePass aerial-perspective volume",
             shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
-            &[
-                uniform_entry(binding::PARAMS),
-                uniform_entry(binding::VIEW),
-                sampler_entry(binding::SAMPLER),
-                texture_entry(binding::TRANSMITTANCE, false),
-                texture_entry(binding::MULTISCATTERING, true),
-                storage(binding::AERIAL_SCATTERING_OUT),
-                storage(binding::AERIAL_TRANSMITTANCE_OUT),
-            ],
+            &volume_entries,
             &volume_resources,
         );
         let apply_entries = [

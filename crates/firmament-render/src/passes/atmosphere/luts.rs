@@ -3,7 +3,7 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
+//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z) | 32 × 32, six | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
 //! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
@@ -19,6 +19,20 @@ pub const TRANSMITTANCE_SIZE: (u32, u32) = (256, 64);
 pub const TRANSMITTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Multiple-scattering LUT size (texels): mu_s × h.
 pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
+/// Number of multiple-scattering moment textures (`Moments` in `atmosphere/luts.wgsl`).
+pub const MULTISCATTERING_MOMENTS: usize = 6;
+/// Their names, for labels.
+pub(super) const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z"];
+
+/// The views of a set of moment textures.
+pub(super) fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
+    let mut i = 0;
+    [(); MULTISCATTERING_MOMENTS].map(|()| {
+        i += 1;
+        &luts[i - 1].view
+    })
+}
+
 /// Multiple-scattering LUT format.
 pub const MULTISCATTERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Sky irradiance LUT size (texels): mu_s × h.
@@ -47,7 +61,8 @@ pub struct Lut {
 }
 
 impl Lut {
-    fn new(
+    /// A 2D LUT of `format`, sampled and copyable, written as `written_by` says.
+    pub(super) fn new(
         device: &wgpu::Device,
         name: &str,
         (width, height): (u32, u32),
@@ -78,8 +93,10 @@ impl Lut {
 pub struct AtmosphereLuts {
     /// Transmittance to the top of the atmosphere.
     pub transmittance: Lut,
-    /// Hillaire's multiple-scattering Ψ_ms.
-    pub multiscattering: Lut,
+    /// Multiple scattering: moments of the radiance (orders ≥ 1) arriving at each point — the
+    /// mean Ψ, then the means of radiance × ωz², × ωx², × ωx·ωz, × ωx, × ωz (x towards the sun's
+    /// azimuth, z up).
+    pub multiscattering: [Lut; MULTISCATTERING_MOMENTS],
     /// Sky irradiance on a horizontal surface per unit sun irradiance.
     pub irradiance: Lut,
     /// Sky-view radiance, one tile per sun.
@@ -91,6 +108,11 @@ pub struct AtmosphereLuts {
 }
 
 impl AtmosphereLuts {
+    /// The views of the multiple-scattering moments, in binding order.
+    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
+        moment_views(&self.multiscattering)
+    }
+
     /// Creates the textures (contents undefined until the pass renders them).
     pub fn new(device: &wgpu::Device) -> Self {
         let (x, y, z) = AERIAL_PERSPECTIVE_SIZE;
@@ -103,13 +125,15 @@ impl AtmosphereLuts {
                 TRANSMITTANCE_FORMAT,
                 wgpu::TextureUsages::STORAGE_BINDING,
             ),
-            multiscattering: Lut::new(
-                device,
-                "multiple-scattering",
-                MULTISCATTERING_SIZE,
-                MULTISCATTERING_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            ),
+            multiscattering: MOMENT_NAMES.map(|moment| {
+                Lut::new(
+                    device,
+                    &format!("multiple-scattering {moment} moment"),
+                    MULTISCATTERING_SIZE,
+                    MULTISCATTERING_FORMAT,
+                    wgpu::TextureUsages::RENDER_ATTACHMENT,
+                )
+            }),
             irradiance: Lut::new(
                 device,
                 "sky irradiance",

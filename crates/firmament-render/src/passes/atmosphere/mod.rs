@@ -25,6 +25,7 @@
 
 mod aerial_perspective;
 pub mod luts;
+mod multiscattering;
 mod stages;
 
 use std::cell::Cell;
@@ -39,8 +40,13 @@ use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 pub use luts::AtmosphereLuts;
-use luts::{IRRADIANCE_FORMAT, MULTISCATTERING_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
-use stages::{ComputeStage, Stage, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
+use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
+pub use multiscattering::MULTISCATTERING_ITERATIONS;
+use multiscattering::MultiscatteringStages;
+use stages::{
+    ComputeStage, Stage, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
+    uniform_entry,
+};
 
 /// How the sky pass finds each pixel's scattered light inside the atmosphere.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -77,7 +83,7 @@ pub struct AtmospherePass {
     params: wgpu::Buffer,
     view: wgpu::Buffer,
     transmittance: ComputeStage,
-    multiscattering: Stage,
+    multiscattering: MultiscatteringStages,
     irradiance: Stage,
     sky_view: Stage,
     aerial: AerialPerspectiveStages,
@@ -123,10 +129,6 @@ impl AtmospherePass {
             primitive: wgpu::PrimitiveState::default(),
             constants: &[],
         };
-        let multiscattering_entries = [
-            uniform_entry(binding::PARAMS),
-            texture_entry(binding::TRANSMITTANCE, false),
-        ];
         let transmittance = ComputeStage::new(
             device,
             "AtmospherePass transmittance LUT",
@@ -143,47 +145,29 @@ impl AtmospherePass {
                 ),
             ],
         );
-        let multiscattering = Stage::new(
-            device,
-            lut_pipeline(
-                "AtmospherePass multiple-scattering LUT",
-                shaders::ATMOSPHERE_MULTISCATTERING_LUT,
-                &multiscattering_entries,
-                MULTISCATTERING_FORMAT,
-            ),
-            &[
-                (binding::PARAMS, params.as_entire_binding()),
-                (
-                    binding::TRANSMITTANCE,
-                    wgpu::BindingResource::TextureView(&luts.transmittance.view),
-                ),
-            ],
-        );
-        let irradiance_entries = [
+        let multiscattering = MultiscatteringStages::new(device, &params, &luts, &sampler);
+        let mut irradiance_entries = vec![
             uniform_entry(binding::PARAMS),
             texture_entry(binding::TRANSMITTANCE, false),
-            texture_entry(binding::MULTISCATTERING, true),
             sampler_entry(binding::SAMPLER),
         ];
-        let view_entries = [
+        irradiance_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        let mut view_entries = vec![
             uniform_entry(binding::PARAMS),
             uniform_entry(binding::VIEW),
             texture_entry(binding::TRANSMITTANCE, false),
-            texture_entry(binding::MULTISCATTERING, true),
             sampler_entry(binding::SAMPLER),
             texture_entry(binding::IRRADIANCE, true),
             texture_entry(binding::SKY_VIEW, true),
         ];
-        let view_resources = [
+        view_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        let moments = moment_resources(binding::MULTISCATTERING_MOMENTS, luts.multiscattering_views());
+        let mut view_resources = vec![
             (binding::PARAMS, params.as_entire_binding()),
             (binding::VIEW, view.as_entire_binding()),
             (
                 binding::TRANSMITTANCE,
                 wgpu::BindingResource::TextureView(&luts.transmittance.view),
-            ),
-            (
-                binding::MULTISCATTERING,
-                wgpu::BindingResource::TextureView(&luts.multiscattering.view),
             ),
             (binding::SAMPLER, wgpu::BindingResource::Sampler(&sampler)),
             (
@@ -195,15 +179,29 @@ impl AtmospherePass {
                 wgpu::BindingResource::TextureView(&luts.sky_view.view),
             ),
         ];
+        view_resources.extend(moments);
+        // The view resources that the bindings in `entries` name.
+        let resources_for = |entries: &[wgpu::BindGroupLayoutEntry]| -> Vec<(u32, wgpu::BindingResource<'_>)> {
+            view_resources
+                .iter()
+                .filter(|(b, _)| entries.iter().any(|e| e.binding == *b))
+                .cloned()
+                .collect()
+        };
+        let sky_view_entries: Vec<_> = view_entries
+            .iter()
+            .filter(|e| e.binding != binding::SKY_VIEW)
+            .copied()
+            .collect();
         let sky_view = Stage::new(
             device,
             lut_pipeline(
                 "AtmospherePass sky-view LUT",
                 shaders::ATMOSPHERE_SKY_VIEW_LUT,
-                &view_entries[..6],
+                &sky_view_entries,
                 SKY_VIEW_FORMAT,
             ),
-            &view_resources[..6],
+            &resources_for(&sky_view_entries),
         );
         let irradiance = Stage::new(
             device,
@@ -213,11 +211,7 @@ impl AtmospherePass {
                 &irradiance_entries,
                 IRRADIANCE_FORMAT,
             ),
-            &view_resources[..1]
-                .iter()
-                .chain(&view_resources[2..5])
-                .cloned()
-                .collect::<Vec<_>>(),
+            &resources_for(&irradiance_entries),
         );
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
         // rasterizers run both sides of a branch they cannot prove uniform).
@@ -335,12 +329,7 @@ impl AtmospherePass {
         let (width, height) = luts::TRANSMITTANCE_SIZE;
         self.transmittance
             .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
-        self.multiscattering.render(
-            encoder,
-            "firmament AtmospherePass multiple-scattering LUT",
-            &self.luts.multiscattering.view,
-            None,
-        );
+        self.multiscattering.record(encoder, &self.luts);
         self.irradiance.render(
             encoder,
             "firmament AtmospherePass sky irradiance LUT",

@@ -18,6 +18,13 @@ pub(super) mod binding {
     pub(in crate::passes::atmosphere) const AERIAL_SCATTERING: u32 = 10;
     pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE: u32 = 11;
     pub(in crate::passes::atmosphere) const SCENE_DEPTH: u32 = 12;
+    pub(in crate::passes::atmosphere) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
+    /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z; `Moments` in `atmosphere/luts.wgsl`).
+    pub(in crate::passes::atmosphere) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
+        [MULTISCATTERING, 15, 17, 18, 21, 22];
+    /// The previous iterate's moments, while the multiple-scattering LUTs are built.
+    pub(in crate::passes::atmosphere) const PREVIOUS_MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
+        [13, 16, 19, 20, 23, 24];
 }
 
 /// A sampled 2D texture, seen by the fragment and compute stages.
@@ -195,4 +202,25 @@ pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
         ..crate::passes::uniform_entry(binding)
     }
+}
+
+/// How many multiple-scattering moment textures there are.
+pub(super) const MOMENTS: usize = super::luts::MULTISCATTERING_MOMENTS;
+
+/// Layout entries of the multiple-scattering moment textures at `bindings`.
+pub(super) fn moment_entries(bindings: [u32; MOMENTS]) -> [wgpu::BindGroupLayoutEntry; MOMENTS] {
+    bindings.map(|b| texture_entry(b, true))
+}
+
+/// The moment textures `views` bound at `bindings`.
+pub(super) fn moment_resources<'a>(
+    bindings: [u32; MOMENTS],
+    views: [&'a wgpu::TextureView; MOMENTS],
+) -> [(u32, wgpu::BindingResource<'a>); MOMENTS] {
+    let mut i = 0;
+    bindings.map(|b| {
+        let view = views[i];
+        i += 1;
+        (b, wgpu::BindingResource::TextureView(view))
+    })
 }

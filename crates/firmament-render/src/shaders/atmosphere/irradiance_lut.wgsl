@@ -40,18 +40,22 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
             if ray_hits_ground(r, mu) {
                 continue;
             }
-            let dt = distance_to_top(r, mu) / f32(STEPS);
+            let ray_length = distance_to_top(r, mu);
             let nu = dot(dir, sun);
             var throughput = vec3<f32>(1.0);
             var radiance = vec3<f32>(0.0);
             for (var k = 0; k < STEPS; k++) {
-                let p = origin + dir * ((f32(k) + 0.5) * dt);
+                // Quadratic steps, short near the point (see multiscattering_lut.wgsl).
+                let a = f32(k) / f32(STEPS);
+                let b = f32(k + 1) / f32(STEPS);
+                let dt = (b * b - a * a) * ray_length;
+                let p = origin + dir * (0.5 * (a * a + b * b) * ray_length);
                 let r_t = length(p);
                 let h_t = r_t - atmosphere.lut.x;
                 let c = coefficients_at(h_t);
                 let mu_s_t = dot(p, sun) / r_t;
                 let direct = transmittance_to_sun(h_t, mu_s_t, 0.0) * scattering_phase(c, nu);
-                let source = direct + (c.rayleigh + c.mie) * multiscattering(h_t, mu_s_t);
+                let source = direct + multiple_scattering(c, h_t, p / r_t, sun, dir);
                 let step_transmittance = exp(-c.extinction * dt);
                 radiance += throughput * integrate_step(source, c.extinction, step_transmittance, dt);
                 throughput *= step_transmittance;

@@ -9,6 +9,11 @@
 @group(0) @binding(3) var multiscattering_lut: texture_2d<f32>;
 @group(0) @binding(5) var lut_sampler: sampler;
 @group(0) @binding(7) var irradiance_lut: texture_2d<f32>;
+@group(0) @binding(15) var multiscattering_zz_lut: texture_2d<f32>;
+@group(0) @binding(17) var multiscattering_xx_lut: texture_2d<f32>;
+@group(0) @binding(18) var multiscattering_xz_lut: texture_2d<f32>;
+@group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
+@group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
 
 fn load_bilinear(lut: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(textureDimensions(lut));
@@ -45,10 +50,57 @@ fn transmittance_to_sun(h: f32, mu_s: f32, alpha: f32) -> vec3<f32> {
 
 const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 
-// Hillaire 2020's Ψ_ms at altitude h for a sun at mu_s: radiance of all orders ≥ 2 per unit
-// irradiance, to be multiplied by the total scattering coefficient.
-fn multiscattering(h: f32, mu_s: f32) -> vec3<f32> {
-    return textureSampleLevel(multiscattering_lut, lut_sampler, mu_s_h_to_uv(mu_s, h, MULTISCATTERING_LUT_SIZE), 0.0).rgb;
+// A radiance field at a point known by its moments over directions ω, in the frame x = towards
+// the sun's azimuth, z = up (y across; the field is mirror-symmetric in y): psi = mean(L) and the
+// second moments mean(L·ωz²), mean(L·ωx²), mean(L·ωx·ωz) and the first moments mean(L·ωx),
+// mean(L·ωz).
+struct Moments {
+    psi: vec3<f32>,
+    zz: vec3<f32>,
+    xx: vec3<f32>,
+    xz: vec3<f32>,
+    x: vec3<f32>,
+    z: vec3<f32>,
+}
+
+// The light such a field scatters per unit length towards a direction ω with components
+// (`toward`, ·, `up`) in that frame. A phase function with Legendre coefficients a_l scatters
+// Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; the moments hold bands 0 to 2:
+// L_0 = psi, L_1(ω) = 3 ω·m (m the first moments) and L_2(ω) = 5·(3/2 ωᵀQω − psi/2), Q the
+// second-moment matrix. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10 and nothing else, so
+// its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 2, with Henyey–Greenstein's
+// a_l = g^l. Isotropic light (m = 0, Q = psi/3 on the diagonal) gives (σ_R + σ_M)·psi.
+fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f32> {
+    let yy = m.psi - m.xx - m.zz;
+    let across2 = max(1.0 - up * up - toward * toward, 0.0);
+    let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
+    let g = atmosphere.lut.z;
+    let band1 = 3.0 * (m.x * toward + m.z * up);
+    let band2 = 5.0 * (1.5 * second - 0.5 * m.psi);
+    let mie = max(m.psi + g * band1 + g * g * band2, vec3<f32>(0.0));
+    return c.rayleigh * 0.75 * (m.psi + second) + c.mie * mie;
+}
+
+// The cosine between d and the horizontal direction towards the sun s at a point of up `up` (0
+// when the sun is at the zenith or nadir, where every azimuth is alike).
+fn toward_sun_cosine(d: vec3<f32>, up: vec3<f32>, s: vec3<f32>) -> f32 {
+    let horizontal = s - dot(s, up) * up;
+    let length2 = dot(horizontal, horizontal);
+    return select(0.0, dot(d, horizontal) * inverseSqrt(length2), length2 > 1e-12);
+}
+
+// The light of order ≥ 2 scattered per unit length at altitude h, sun s at mu_s, towards the ray
+// direction d at a point of up `up`, per unit sun irradiance (multiscattering_lut.wgsl).
+fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    let uv = mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE);
+    var m: Moments;
+    m.psi = textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb;
+    m.zz = textureSampleLevel(multiscattering_zz_lut, lut_sampler, uv, 0.0).rgb;
+    m.xx = textureSampleLevel(multiscattering_xx_lut, lut_sampler, uv, 0.0).rgb;
+    m.xz = textureSampleLevel(multiscattering_xz_lut, lut_sampler, uv, 0.0).rgb;
+    m.x = textureSampleLevel(multiscattering_x_lut, lut_sampler, uv, 0.0).rgb;
+    m.z = textureSampleLevel(multiscattering_z_lut, lut_sampler, uv, 0.0).rgb;
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
 }
 
 const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);

@@ -1,34 +1,88 @@
-// atmosphere/multiscattering_lut.wgsl — Hillaire 2020's multiple-scattering LUT ("A Scalable and
-// Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020, section 5.2).
+// atmosphere/multiscattering_lut.wgsl — the multiple-scattering LUT: Hillaire 2020's Ψ_ms ("A
+// Scalable and Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020, section 5.2),
+// solved by fixed-point iteration instead of his geometric series.
 // Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
 // Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
-// on the LUT sphere. For a unit sun it integrates second-order light L₂ and the transfer f_ms over 64 directions with the isotropic
-// phase, ground bounce included, and stores Ψ_ms = L₂ / (1 − f_ms): the sum of every order ≥ 2
-// under Hillaire's assumption that the light arriving at a point is isotropic beyond order 2.
+// on the LUT sphere. Ψ(h, mu_s) is the mean, over all directions, of the radiance of every order
+// ≥ 1 arriving at the point for a unit sun: the light of order ≥ 2 that the point scatters is then
+// σ_s · Ψ (Hillaire's assumption: that light is scattered isotropically). Each iteration marches
+// DIRECTIONS_SQRT² rays of STEPS samples from the point, with the sources
+//   σ_s · phase(ν) · T_sun        (sunlight scattered once, with the true phase) and
+//   σ_s · Ψ_prev(h', mu_s')       (light scattered again, from the previous iterate),
+// plus the ground at each ray's end lit by the sun and by the previous iterate's sky irradiance
+// E_prev. Starting from zero, iterate k holds every order up to k exactly under that assumption;
+// Hillaire's 1/(1 − f_ms) series instead assumes every point sees the same light, which is low
+// near the ground, where the sky near the horizon is brightest (measured in docs/ATMOSPHERE.md).
+//
+// `OUTPUT` picks the targets: 0 = the moments (Ψ, zz, xx, xz, x, z) over MULTISCATTERING_LUT_SIZE;
+// 1 = (E, unused…), E the sky irradiance on the ground per unit sun, one row over mu_s (the same
+// u mapping), needed by the next iterate's ground.
+
+@group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
+@group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
+@group(0) @binding(16) var previous_multiscattering_zz: texture_2d<f32>;
+@group(0) @binding(19) var previous_multiscattering_xx: texture_2d<f32>;
+@group(0) @binding(20) var previous_multiscattering_xz: texture_2d<f32>;
+@group(0) @binding(23) var previous_multiscattering_x: texture_2d<f32>;
+@group(0) @binding(24) var previous_multiscattering_z: texture_2d<f32>;
+
+struct Targets {
+    @location(0) psi: vec4<f32>,
+    @location(1) zz: vec4<f32>,
+    @location(2) xx: vec4<f32>,
+    @location(3) xz: vec4<f32>,
+    @location(4) x: vec4<f32>,
+    @location(5) z: vec4<f32>,
+}
+
+override OUTPUT: u32 = 0u;
 
 const DIRECTIONS_SQRT: i32 = 8;
 const STEPS: i32 = 20;
-const ISOTROPIC_PHASE: f32 = 1.0 / (4.0 * PI);
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
     return fullscreen_vertex(index, FAR_DEPTH);
 }
 
+// The previous iterate's `multiple_scattering` (luts.wgsl).
+fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    let uv = mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE);
+    var m: Moments;
+    m.psi = textureSampleLevel(previous_multiscattering, lut_sampler, uv, 0.0).rgb;
+    m.zz = textureSampleLevel(previous_multiscattering_zz, lut_sampler, uv, 0.0).rgb;
+    m.xx = textureSampleLevel(previous_multiscattering_xx, lut_sampler, uv, 0.0).rgb;
+    m.xz = textureSampleLevel(previous_multiscattering_xz, lut_sampler, uv, 0.0).rgb;
+    m.x = textureSampleLevel(previous_multiscattering_x, lut_sampler, uv, 0.0).rgb;
+    m.z = textureSampleLevel(previous_multiscattering_z, lut_sampler, uv, 0.0).rgb;
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+}
+
+fn previous_irradiance(mu_s: f32) -> vec3<f32> {
+    let u = unit_to_texel_coord(mu_s_to_unit(mu_s), MULTISCATTERING_LUT_SIZE.x);
+    return textureSampleLevel(previous_ground_irradiance, lut_sampler, vec2<f32>(u, 0.5), 0.0).rgb;
+}
+
 @fragment
-fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+fn fs_main(in: FullscreenVertex) -> Targets {
     let uv = in.clip.xy / MULTISCATTERING_LUT_SIZE;
     let mu_s_h = uv_to_mu_s_h(uv, MULTISCATTERING_LUT_SIZE);
     let mu_s = mu_s_h.x;
-    let h = mu_s_h.y;
+    let h = select(mu_s_h.y, 0.0, OUTPUT == 1u);
     let r = atmosphere.lut.x + h;
     let origin = vec3<f32>(0.0, 0.0, r);
     let sun = vec3<f32>(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
     let albedo = atmosphere.ground_albedo.rgb;
 
-    var second_order = vec3<f32>(0.0);
-    var transfer = vec3<f32>(0.0);
+    var moments: Moments;
+    moments.psi = vec3<f32>(0.0);
+    moments.zz = vec3<f32>(0.0);
+    moments.xx = vec3<f32>(0.0);
+    moments.xz = vec3<f32>(0.0);
+    moments.x = vec3<f32>(0.0);
+    moments.z = vec3<f32>(0.0);
+    var irradiance = vec3<f32>(0.0);
     for (var i = 0; i < DIRECTIONS_SQRT; i++) {
         for (var j = 0; j < DIRECTIONS_SQRT; j++) {
             // Stratified, uniform over the sphere.
@@ -43,37 +97,57 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
                 let bottom = atmosphere.lut.x;
                 ray_length = max(-r * mu - safe_sqrt(r * r * (mu * mu - 1.0) + bottom * bottom), 0.0);
             }
-            let dt = ray_length / f32(STEPS);
+
+            let nu = dot(dir, sun);
             var throughput = vec3<f32>(1.0);
             var light = vec3<f32>(0.0);
-            var light_as_one = vec3<f32>(0.0);
             for (var k = 0; k < STEPS; k++) {
-                let t = (f32(k) + 0.5) * dt;
+                // Steps spread quadratically, short near the point: a grazing ray from the
+                // ground is ~1000 km long but meets most of its air in the first kilometres.
+                let a = f32(k) / f32(STEPS);
+                let b = f32(k + 1) / f32(STEPS);
+                let dt = (b * b - a * a) * ray_length;
+                let t = 0.5 * (a * a + b * b) * ray_length;
                 let p = origin + dir * t;
                 let r_t = length(p);
                 let h_t = r_t - atmosphere.lut.x;
+                let mu_s_t = dot(p, sun) / r_t;
                 let c = coefficients_at(h_t);
-                let scattering = c.rayleigh + c.mie;
                 let step_transmittance = exp(-c.extinction * dt);
-                let sun_transmittance = transmittance_to_sun(h_t, dot(p, sun) / r_t, 0.0);
-                let source = scattering * sun_transmittance * ISOTROPIC_PHASE;
+                let sun_transmittance = transmittance_to_sun(h_t, mu_s_t, 0.0);
+                let again = previous_multiple_scattering(c, h_t, p / r_t, sun, dir);
+                let source = scattering_phase(c, nu) * sun_transmittance + again;
                 light += throughput * integrate_step(source, c.extinction, step_transmittance, dt);
-                light_as_one += throughput * integrate_step(scattering, c.extinction, step_transmittance, dt);
                 throughput *= step_transmittance;
             }
             if ground {
                 let p = origin + dir * ray_length;
-                let up = normalize(p);
-                let mu_ground = dot(up, sun);
-                light += throughput * transmittance_to_sun(0.0, mu_ground, 0.0) * max(mu_ground, 0.0) * albedo / PI;
+                let mu_ground = dot(normalize(p), sun);
+                let direct = transmittance_to_sun(0.0, mu_ground, 0.0) * max(mu_ground, 0.0);
+                light += throughput * albedo / PI * (direct + previous_irradiance(mu_ground));
             }
-            second_order += light;
-            transfer += light_as_one;
+            // The sun is in the x–z plane: x is towards its azimuth.
+            moments.psi += light;
+            moments.zz += light * dir.z * dir.z;
+            moments.xx += light * dir.x * dir.x;
+            moments.xz += light * dir.x * dir.z;
+            moments.x += light * dir.x;
+            moments.z += light * dir.z;
+            irradiance += light * max(mu, 0.0);
         }
     }
     let n = f32(DIRECTIONS_SQRT * DIRECTIONS_SQRT);
-    // The mean over the sphere is the integral with the isotropic phase 1/4π.
-    second_order /= n;
-    transfer /= n;
-    return vec4<f32>(second_order / (1.0 - transfer), 1.0);
+    var out: Targets;
+    if OUTPUT == 1u {
+        // ∫ L cos⁺ dω over the sphere, by uniform sampling: 4π/n per direction.
+        out.psi = vec4<f32>(irradiance * (4.0 * PI / n), 1.0);
+        return out;
+    }
+    out.psi = vec4<f32>(moments.psi / n, 1.0);
+    out.zz = vec4<f32>(moments.zz / n, 1.0);
+    out.xx = vec4<f32>(moments.xx / n, 1.0);
+    out.xz = vec4<f32>(moments.xz / n, 1.0);
+    out.x = vec4<f32>(moments.x / n, 1.0);
+    out.z = vec4<f32>(moments.z / n, 1.0);
+    return out;
 }

@@ -162,7 +162,6 @@ struct MediumSample {
 fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSample {
     let here = altitude_up(p);
     let c = coefficients_at(here.h);
-    let scattering = c.rayleigh + c.mie;
     var out: MediumSample;
     out.extinction = c.extinction;
     out.source = vec3<f32>(0.0);
@@ -171,7 +170,7 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
         let s = sun.direction.xyz;
         let mu_s = dot(here.up, s);
         let direct = transmittance_to_sun(here.h, mu_s, sun.direction.w) * scattering_phase(c, dot(d, s));
-        out.source += sun.irradiance.rgb * (direct + scattering * multiscattering(here.h, mu_s));
+        out.source += sun.irradiance.rgb * (direct + multiple_scattering(c, here.h, here.up, s, d));
     }
     return out;
 }
