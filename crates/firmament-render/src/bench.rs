@@ -281,7 +281,7 @@ pub fn bench_atmosphere(
     let geometry_depth = (camera.projection_matrix() * glam::DVec4::new(0.0, 0.0, -1_000.0, 1.0)).z / 1_000.0;
     let aerial_apply_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         clear_depth(e, &targets, geometry_depth as f32);
-        pass.record_aerial_perspective(e, &targets.hdr_view);
+        pass.record_aerial_perspective_apply(e, &targets.hdr_view);
     });
     let mut differences: Vec<f64> = lut_image
         .chunks_exact(4)

@@ -1,5 +1,6 @@
-//! The frame renderer: HDR sky (and, later, everything else) → aerial perspective → tonemap →
-//! the caller's view.
+//! The frame renderer: HDR sky (and, later, everything else) → tonemap → the caller's view.
+//! It draws no geometry yet, so it does not pay for aerial perspective
+//! (`AtmospherePass::record_aerial_perspective`); that goes after the main pass once it does.
 
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
@@ -47,9 +48,7 @@ impl Renderer {
     pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
         ctx.check_image_size(width, height)?;
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
-            let targets = FrameTargets::new(&ctx.device, width, height);
-            self.atmosphere.bind_depth(&ctx.device, &targets.depth_view);
-            self.targets = Some(targets);
+            self.targets = Some(FrameTargets::new(&ctx.device, width, height));
         }
         let camera = firmament_core::Camera {
             aspect: f64::from(width) / f64::from(height),
@@ -114,10 +113,6 @@ impl Renderer {
                 SkyKind::Atmosphere => self.atmosphere.draw(&mut pass),
                 SkyKind::Seed => self.seed.draw(&mut pass),
             }
-        }
-        if self.sky == SkyKind::Atmosphere {
-            // The air between the camera and the geometry the main pass drew.
-            self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
         }
         self.tonemap.record(encoder, output);
     }

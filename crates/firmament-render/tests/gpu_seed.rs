@@ -18,7 +18,7 @@ use firmament_core::frame::{SEED_DEFAULT_LUMINANCE, SeedSky, Sky};
 use firmament_core::{Camera, Frame};
 use glam::{DVec2, DVec3};
 
-const AU: f64 = 1.495_978_707e11;
+const AU: f64 = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
 const SUN_RADIUS: f64 = 6.957e8;
 const WIDTH: u32 = 32;
 const HEIGHT: u32 = 24;

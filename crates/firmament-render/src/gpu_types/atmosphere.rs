@@ -12,6 +12,7 @@ use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
 use super::planet_view::PlanetView;
+use super::vec3_w;
 
 /// How far the aerial-perspective volume reaches into the air along each view ray, metres:
 /// geometry farther than this gets the scattering of this distance. 100 km holds a view from a
@@ -24,10 +25,6 @@ pub const LUT_TO_MARCH_BAND: (f64, f64) = (0.9, 1.0);
 
 fn spectrum_w(s: Spectrum, w: f64) -> [f32; 4] {
     [s.x as f32, s.y as f32, s.z as f32, w as f32]
-}
-
-fn vec3_w(v: DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
 }
 
 /// Mirrors `DensityProfile` in `atmosphere/common.wgsl`.

@@ -14,10 +14,7 @@ use firmament_core::frame::{MAX_SEED_STARS, SeedSky};
 use glam::DVec3;
 
 use super::planet_view::PlanetView;
-
-fn vec3_w(v: DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
-}
+use super::vec3_w;
 
 /// Mirrors `SeedStar` in `shaders/seed_sky.wgsl`: one of the seed's `light_*` uniforms.
 #[repr(C)]
@@ -157,7 +154,7 @@ mod tests {
     #[test]
     fn a_far_camera_uses_the_image_plane_offset() {
         let s = sky(DVec3::ZERO);
-        let au = 1.495_978_707e11;
+        let au = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
         let camera = Camera::looking_at(DVec3::new(0.0, -25.0 * au, 1.0e6), DVec3::ZERO, DVec3::Z).expect("camera");
         let u = SeedSkyUniforms::new(&s, &camera);
         assert_eq!(u.center[3], 1.0);

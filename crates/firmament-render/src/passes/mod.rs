@@ -14,6 +14,19 @@ pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
 
+/// A colour attachment of `view` that keeps (loads and stores) what earlier passes left.
+pub(crate) fn load_color_attachment(view: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Load,
+            store: wgpu::StoreOp::Store,
+        },
+    }
+}
+
 /// Begins a render pass that loads and stores `color` and `depth` (for passes drawn over what
 /// earlier passes left).
 pub(crate) fn begin_load_pass<'e>(
@@ -24,15 +37,7 @@ pub(crate) fn begin_load_pass<'e>(
 ) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: color,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            },
-        })],
+        color_attachments: &[Some(load_color_attachment(color))],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: depth,
             depth_ops: Some(wgpu::Operations {

@@ -16,7 +16,7 @@ use firmament_core::Camera;
 use firmament_core::frame::SeedSky;
 
 use crate::gpu_types::SeedSkyUniforms;
-use crate::passes::{begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -40,46 +40,17 @@ impl SeedSkyPass {
 
     /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        // Built here rather than with `PassPipeline`, which has no blending: the seed's alpha
-        // decides what shows through.
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("firmament SeedSkyPass shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::SEED_SKY.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("firmament SeedSkyPass bind group layout"),
+        let (pipeline, layout) = PassPipeline {
+            owner: "SeedSkyPass",
+            source: shaders::SEED_SKY,
             entries: &[uniform_entry(0)],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("firmament SeedSkyPass pipeline layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("firmament SeedSkyPass pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
+            color,
             depth_stencil: Some(far_plane_depth_state(depth)),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: color,
-                    blend: Some(SEED_BLEND),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            vertex_buffers: &[],
+            primitive: wgpu::PrimitiveState::default(),
+            constants: &[],
+        }
+        .build_blended(device, Some(SEED_BLEND));
         let uniforms = uniform_buffer::<SeedSkyUniforms>(device, "firmament SeedSkyPass uniforms");
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("firmament SeedSkyPass bind group"),

@@ -22,7 +22,7 @@ use crate::validate::{check, positive};
 
 /// Distance of a sun given by azimuth and elevation from the planet centre, metres (1 AU); only
 /// the ratio of radius to distance matters for a star this far.
-pub const SEED_STAR_DISTANCE: f64 = 1.495_978_707e11;
+pub const SEED_STAR_DISTANCE: f64 = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
 
 /// The seed's visual intensity of a star: its colour × 10 (seed line 528), unitless.
 pub const SEED_STAR_INTENSITY: f64 = 10.0;

@@ -10,7 +10,7 @@ use super::stages::{
     ComputeStage, bind_group, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
-use crate::passes::PassPipeline;
+use crate::passes::{PassPipeline, load_color_attachment};
 use crate::shaders;
 
 /// The draws that apply the volume, in order, with their blending.
@@ -197,15 +197,7 @@ impl AerialPerspectiveStages {
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("firmament AtmospherePass aerial perspective"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: color,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &[Some(load_color_attachment(color))],
             ..Default::default()
         });
         for ((pipeline, _), bind_group) in self.apply.iter().zip(&self.bind_groups) {

@@ -6,12 +6,12 @@
 //! 1. the transmittance LUT (Bruneton 2017's parameterisation; a compute pass) and
 //! 2. the multiple-scattering LUT and
 //! 3. the ground's sky-irradiance LUT — these three only when the medium changed —, then
-//! 4. the sky-view LUT, one tile per sun, at the camera, and
-//! 5. the aerial-perspective volume (froxels) at the camera;
+//! 4. the sky-view LUT, one tile per sun, at the camera;
 //!
 //! [`AtmospherePass::draw`] draws the sky, the lit ground and the sun discs behind whatever
-//! the depth buffer holds, and [`AtmospherePass::record_aerial_perspective`] lays the air between
-//! the camera and that geometry over it. Above the atmosphere each pixel marches its own ray instead of reading
+//! the depth buffer holds, and [`AtmospherePass::record_aerial_perspective`] builds the
+//! aerial-perspective volume at the camera and lays the air between the camera and that geometry
+//! over it (only callers with geometry pay for it). Above the atmosphere each pixel marches its own ray instead of reading
 //! the sky-view LUT.
 //!
 //! # Ellipsoids
@@ -296,10 +296,10 @@ impl AtmospherePass {
         if self.method == SkyMethod::Lut {
             self.record_sky_view_lut(encoder);
         }
-        self.record_aerial_perspective_volume(encoder);
     }
 
-    /// Encodes the aerial-perspective volume at this frame's camera (part of `record_luts`).
+    /// Encodes the aerial-perspective volume at this frame's camera (part of
+    /// [`record_aerial_perspective`](Self::record_aerial_perspective); on its own for benchmarks).
     pub fn record_aerial_perspective_volume(&self, encoder: &mut wgpu::CommandEncoder) {
         self.aerial.record_volume(encoder);
     }
@@ -318,9 +318,20 @@ impl AtmospherePass {
     }
 
     /// Applies aerial perspective to every pixel of `color` the bound depth buffer covers (not
-    /// the far plane): `colour · T + S` from the volume `record_luts` built this frame. Draw the
-    /// geometry first; the sky may be drawn before or after (it is left alone).
+    /// the far plane): builds the volume at this frame's camera (after `record_luts`, whose
+    /// medium LUTs it reads), then `colour · T + S`. Draw the geometry first; the sky may be drawn
+    /// before or after (it is left alone).
     pub fn record_aerial_perspective(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) {
+        self.aerial.record_volume(encoder);
+        self.aerial.record_apply(encoder, color);
+    }
+
+    /// The application alone, from the volume last encoded (for benchmarks).
+    pub(crate) fn record_aerial_perspective_apply(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        color: &wgpu::TextureView,
+    ) {
         self.aerial.record_apply(encoder, color);
     }
 

@@ -92,15 +92,27 @@ fn toward_sun_cosine(d: vec3<f32>, up: vec3<f32>, s: vec3<f32>) -> f32 {
 // The light of order ≥ 2 scattered per unit length at altitude h, sun s at mu_s, towards the ray
 // direction d at a point of up `up`, per unit sun irradiance (multiscattering_lut.wgsl).
 fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
-    let uv = mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE);
-    var m: Moments;
-    m.psi = textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb;
-    m.zz = textureSampleLevel(multiscattering_zz_lut, lut_sampler, uv, 0.0).rgb;
-    m.xx = textureSampleLevel(multiscattering_xx_lut, lut_sampler, uv, 0.0).rgb;
-    m.xz = textureSampleLevel(multiscattering_xz_lut, lut_sampler, uv, 0.0).rgb;
-    m.x = textureSampleLevel(multiscattering_x_lut, lut_sampler, uv, 0.0).rgb;
-    m.z = textureSampleLevel(multiscattering_z_lut, lut_sampler, uv, 0.0).rgb;
+    let m = sample_moments(
+        multiscattering_lut, multiscattering_zz_lut, multiscattering_xx_lut,
+        multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut,
+        mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
+    );
     return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+}
+
+// The moments stored in six LUTs (in `Moments` order) at uv, filtered.
+fn sample_moments(
+    psi: texture_2d<f32>, zz: texture_2d<f32>, xx: texture_2d<f32>,
+    xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, uv: vec2<f32>,
+) -> Moments {
+    var m: Moments;
+    m.psi = textureSampleLevel(psi, lut_sampler, uv, 0.0).rgb;
+    m.zz = textureSampleLevel(zz, lut_sampler, uv, 0.0).rgb;
+    m.xx = textureSampleLevel(xx, lut_sampler, uv, 0.0).rgb;
+    m.xz = textureSampleLevel(xz, lut_sampler, uv, 0.0).rgb;
+    m.x = textureSampleLevel(x, lut_sampler, uv, 0.0).rgb;
+    m.z = textureSampleLevel(z, lut_sampler, uv, 0.0).rgb;
+    return m;
 }
 
 const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);

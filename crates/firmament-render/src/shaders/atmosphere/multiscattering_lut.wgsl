@@ -48,14 +48,11 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 
 // The previous iterate's `multiple_scattering` (luts.wgsl).
 fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
-    let uv = mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE);
-    var m: Moments;
-    m.psi = textureSampleLevel(previous_multiscattering, lut_sampler, uv, 0.0).rgb;
-    m.zz = textureSampleLevel(previous_multiscattering_zz, lut_sampler, uv, 0.0).rgb;
-    m.xx = textureSampleLevel(previous_multiscattering_xx, lut_sampler, uv, 0.0).rgb;
-    m.xz = textureSampleLevel(previous_multiscattering_xz, lut_sampler, uv, 0.0).rgb;
-    m.x = textureSampleLevel(previous_multiscattering_x, lut_sampler, uv, 0.0).rgb;
-    m.z = textureSampleLevel(previous_multiscattering_z, lut_sampler, uv, 0.0).rgb;
+    let m = sample_moments(
+        previous_multiscattering, previous_multiscattering_zz, previous_multiscattering_xx,
+        previous_multiscattering_xz, previous_multiscattering_x, previous_multiscattering_z,
+        mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
+    );
     return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
 }
 
