@@ -5,6 +5,7 @@ use glam::{DQuat, DVec3};
 use crate::atmosphere::seed::{SeedAtmosphere, SeedStar};
 use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
+use crate::classic::scene::ObjectLayer;
 use crate::color::LinearRgb;
 use crate::display::DisplaySettings;
 use crate::gradient_sky::GradientSkyState;
@@ -23,6 +24,9 @@ pub enum Sky {
     /// The seed's own empirical atmosphere model (seed 000, version 3.1;
     /// [`crate::atmosphere::seed`]).
     Seed(SeedSky),
+    /// One colour everywhere, as a GL program's `glClearColor` (radiance, or GL units in a
+    /// classic scene).
+    Clear(LinearRgb),
 }
 
 impl Sky {
@@ -33,7 +37,7 @@ impl Sky {
     pub fn gradient_radiance(&self, view: DVec3) -> Option<LinearRgb> {
         match self {
             Self::Gradient(sky) => Some(sky.radiance(view)),
-            Self::Atmosphere(_) | Self::Seed(_) => None,
+            Self::Atmosphere(_) | Self::Seed(_) | Self::Clear(_) => None,
         }
     }
 }
@@ -195,6 +199,8 @@ pub struct Frame {
     pub sky: Sky,
     /// Exposure and tone curve.
     pub display: DisplaySettings,
+    /// Objects in front of the sky, their lighting and fog.
+    pub objects: ObjectLayer,
 }
 
 #[cfg(test)]

@@ -31,6 +31,7 @@ pub mod gradient_sky;
 pub mod mesh;
 pub mod projection;
 pub mod sun;
+pub mod texture;
 pub mod time_of_day;
 pub mod viewport;
 

@@ -1,21 +1,22 @@
-//! The frame renderer: HDR sky (and, later, everything else) → tonemap → the caller's view.
-//! It draws no geometry yet, so it does not pay for aerial perspective
-//! (`AtmospherePass::record_aerial_perspective`); that goes after the main pass once it does.
+//! The frame renderer: objects, then the sky behind them, into HDR targets; aerial perspective
+//! over the objects when the sky is an atmosphere; tonemap → the caller's view.
 
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, GradientSkyPass, SeedSkyPass, TonemapPass};
+use crate::passes::{AtmospherePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass};
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
 
 /// The sky passes a frame can use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 enum SkyKind {
     Gradient,
     Atmosphere,
     Seed,
+    /// A clear colour (linear, as given).
+    Clear(wgpu::Color),
 }
 
 /// Renders [`Frame`]s into any texture view of the output format it was built for.
@@ -26,6 +27,7 @@ pub struct Renderer {
     seed: SeedSkyPass,
     /// Which sky the last `prepare` chose.
     sky: SkyKind,
+    objects: ObjectPass,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
 }
@@ -38,6 +40,7 @@ impl Renderer {
             atmosphere: AtmospherePass::new(&ctx.device),
             seed: SeedSkyPass::new(&ctx.device),
             sky: SkyKind::Gradient,
+            objects: ObjectPass::new(&ctx.device, &ctx.queue),
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
         }
@@ -48,7 +51,9 @@ impl Renderer {
     pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
         ctx.check_image_size(width, height)?;
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
-            self.targets = Some(FrameTargets::new(&ctx.device, width, height));
+            let targets = FrameTargets::new(&ctx.device, width, height);
+            self.atmosphere.bind_depth(&ctx.device, &targets.depth_view);
+            self.targets = Some(targets);
         }
         let camera = firmament_core::Camera {
             aspect: f64::from(width) / f64::from(height),
@@ -67,7 +72,16 @@ impl Renderer {
                 self.seed.prepare(&ctx.queue, sky, &camera);
                 self.sky = SkyKind::Seed;
             }
+            Sky::Clear(c) => {
+                self.sky = SkyKind::Clear(wgpu::Color {
+                    r: c.r,
+                    g: c.g,
+                    b: c.b,
+                    a: 1.0,
+                });
+            }
         }
+        self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
         if let Some(targets) = &self.targets {
             self.tonemap
                 .prepare(&ctx.device, &ctx.queue, &frame.display, &targets.hdr_view);
@@ -75,7 +89,8 @@ impl Renderer {
         Ok(())
     }
 
-    /// Encodes the frame: clear the HDR and depth targets, draw the sky, tone-map into `output`.
+    /// Encodes the frame: clear the HDR and depth targets, draw the objects and the sky behind
+    /// them, aerial perspective over the objects in an atmosphere, tone-map into `output`.
     /// Does nothing before the first `prepare`.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, output: &wgpu::TextureView) {
         let Some(targets) = &self.targets else {
@@ -85,6 +100,10 @@ impl Renderer {
         if self.sky == SkyKind::Atmosphere {
             self.atmosphere.record_luts(encoder);
         }
+        let clear = match self.sky {
+            SkyKind::Clear(color) => color,
+            _ => wgpu::Color::BLACK,
+        };
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("firmament Renderer main pass"),
@@ -93,7 +112,7 @@ impl Renderer {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        load: wgpu::LoadOp::Clear(clear),
                         store: wgpu::StoreOp::Store,
                     },
                 })],
@@ -107,12 +126,17 @@ impl Renderer {
                 }),
                 ..Default::default()
             });
-            // Opaque geometry goes here first; the sky then fills only what is left.
+            // Opaque objects first; the sky then fills only what is left.
+            self.objects.draw(&mut pass);
             match self.sky {
                 SkyKind::Gradient => self.sky_gradient.draw(&mut pass),
                 SkyKind::Atmosphere => self.atmosphere.draw(&mut pass),
                 SkyKind::Seed => self.seed.draw(&mut pass),
+                SkyKind::Clear(_) => {}
             }
+        }
+        if self.sky == SkyKind::Atmosphere && !self.objects.is_empty() {
+            self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
         }
         self.tonemap.record(encoder, output);
     }

@@ -61,7 +61,7 @@ pub const ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME: &str =
 /// The atmosphere's aerial-perspective application over geometry.
 pub const ATMOSPHERE_AERIAL_PERSPECTIVE: &str = atmosphere_shader!("common", "luts", "view"; "aerial_perspective");
 
-/// The classic (fixed-function) lighting pass.
+/// The object pass: classic (fixed-function) lighting, textures and fog.
 pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
 
 /// Every composed shader by name, for validation and tooling.
@@ -124,7 +124,8 @@ mod tests {
     use super::*;
     use crate::gpu_types::{
         AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, ClassicFrameUniforms,
-        ClassicLightUniform, ClassicMaterialUniform, DensityProfileUniform, GradientSkyUniforms, TonemapUniforms,
+        ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, GradientSkyUniforms,
+        TonemapUniforms,
     };
 
     fn validate(name: &str, source: &str) -> naga::Module {
@@ -244,8 +245,6 @@ mod tests {
             "ClassicFrame",
             ClassicFrameUniforms,
             [
-                model_view,
-                normal_matrix,
                 projection,
                 scene_ambient,
                 model_flags,
@@ -253,10 +252,15 @@ mod tests {
                 fog_mode,
                 fog_params,
                 fog_color,
-                front,
-                back,
+                eye_up,
                 lights
             ]
+        );
+        assert_layout!(
+            classic,
+            "ClassicObject",
+            ClassicObjectUniforms,
+            [model_view, normal_matrix, front, back, flags]
         );
         let atmosphere = validate("atmosphere/sky", ATMOSPHERE_SKY);
         assert_layout!(

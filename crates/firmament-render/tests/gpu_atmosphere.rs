@@ -43,6 +43,7 @@ fn render(gpu: &mut Gpu, sky: &AtmosphereSky, camera: Camera, width: u32, height
         camera,
         sky: Sky::Atmosphere(sky.clone()),
         display: DisplaySettings::default(),
+        objects: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     renderer.render_hdr(ctx, &frame, width, height).expect("render")

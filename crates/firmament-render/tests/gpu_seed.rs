@@ -78,6 +78,7 @@ fn compare(gpu: &mut Gpu, name: &str, sky: &SeedSky, camera: Camera) -> Comparis
         camera,
         sky: Sky::Seed(sky.clone()),
         display: DisplaySettings::default(),
+        objects: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     let image = renderer.render_hdr(ctx, &frame, WIDTH, HEIGHT).expect("render");
@@ -226,6 +227,7 @@ fn invalid_parameters_draw_nothing() {
         camera: camera(DVec3::new(0.0, 0.0, 2.0), DVec3::new(0.0, 1.0, 2.0), 1.0),
         sky: Sky::Seed(sky),
         display: DisplaySettings::default(),
+        objects: Default::default(),
     };
     let Gpu { ctx, renderer } = &mut *gpu;
     let image = renderer.render_hdr(ctx, &frame, 4, 3).expect("render");

@@ -52,6 +52,7 @@ fn frame(camera: Camera, sky: GradientSkyState, display: DisplaySettings) -> Fra
         camera,
         sky: Sky::Gradient(sky),
         display,
+        objects: Default::default(),
     }
 }
 

@@ -63,6 +63,16 @@ pub enum SceneError {
         /// The rule it broke.
         rule: String,
     },
+    /// A mesh or texture file named by the scene could not be loaded.
+    #[error("{key}: cannot load {path}: {reason}")]
+    Asset {
+        /// The key that named the file (`objects[2].mesh.file`).
+        key: String,
+        /// The path as resolved (relative paths are taken from the scene file's folder).
+        path: String,
+        /// What is wrong: the OS error, or the first broken rule of the format.
+        reason: String,
+    },
     /// A `key.path=value` override that cannot be applied.
     #[error("--set {item}: {rule}")]
     BadOverride {

@@ -24,6 +24,7 @@
 //! the atmosphere. `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of the
 //! physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
 
+pub mod assets;
 mod atmosphere;
 mod color;
 mod error;

@@ -152,6 +152,7 @@ impl Scene {
             camera: self.camera(),
             sky,
             display: self.display_settings(),
+            objects: firmament_core::classic::scene::ObjectLayer::default(),
         })
     }
 }

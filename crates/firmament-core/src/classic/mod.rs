@@ -7,3 +7,4 @@
 
 pub mod fog;
 pub mod lighting;
+pub mod scene;

@@ -3,13 +3,13 @@
 //! caller already began).
 
 pub mod atmosphere;
-pub mod classic_mesh;
+pub mod objects;
 pub mod seed_sky;
 pub mod sky_gradient;
 pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
-pub use classic_mesh::{ClassicMeshPass, GpuMesh};
+pub use objects::{GpuMesh, ObjectPass};
 pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;

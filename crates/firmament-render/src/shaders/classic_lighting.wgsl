@@ -1,12 +1,15 @@
-// classic_lighting.wgsl — meshes lit by the OpenGL 2.1 fixed-function equations (seeds 001, 004).
+// classic_lighting.wgsl — objects lit by the OpenGL 2.1 fixed-function equations (seeds 001, 004).
 //
 // Conventions: every lighting vector is in GL *eye space* (camera at the origin looking down -z),
 // as the GL specification states the equations; `n` is the unit normal, `to_light` the unit
 // vector from the point to the light. Colours are GL RGBA, clamped to [0, 1] where GL clamps.
-// The f64 reference is `firmament_core::classic::lighting::Lighting::shade`; keep the two in step.
-// `shading`: 0 = Gouraud (lit per vertex, colours interpolated), 1 = Phong (lit per fragment).
-// Depth is firmament's reversed-Z: the projection maps near to 1.
-
+// The f64 references are `firmament_core::classic::{lighting::Lighting::shade, fog}`; keep them in
+// step. Depth is firmament's reversed-Z: the projection maps near to 1.
+// Shading (`frame.mode.x`): 0 = Gouraud (lit per vertex, colours interpolated), 1 = Phong (lit per
+// fragment), 2 = unlit (the front diffuse colour). Flat shading is Gouraud over a mesh whose
+// vertices carry their triangle's provoking (GL: last) vertex as `shade_*` (see `GpuMesh`), so
+// all three light the same point and no flat interpolation qualifier (WGSL's takes the first
+// vertex) is involved.
 const MAX_LIGHTS: u32 = 8u;
 
 struct ClassicLight {
@@ -28,31 +31,47 @@ struct ClassicMaterial {
 }
 
 struct ClassicFrame {
-    model_view: mat4x4<f32>,
-    // Inverse transpose of the model-view's upper 3×3, as three columns (GL's normal matrix).
-    normal_matrix: mat3x3<f32>,
     projection: mat4x4<f32>,
     scene_ambient: vec4<f32>,
     // x = light count, y = local viewer, z = two-sided, w = separate specular
     model_flags: vec4<u32>,
-    // x = shading (0 Gouraud, 1 Phong), y = specular model (0 Blinn, 1 Phong)
+    // x = shading (0 Gouraud/flat, 1 Phong, 2 unlit), y = specular model (0 Blinn, 1 Phong)
     mode: vec4<u32>,
-    // Fog (GL 2.1 §3.10): x = equation (0 off, 1 linear, 2 exp, 3 exp2),
+    // Fog: x = equation (0 off, 1 linear, 2 exp, 3 exp2 — GL 2.1 §3.10; 4 height fog),
     // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance), computed per vertex and
     // interpolated; the factor is computed per fragment, as GL implementations do.
     fog_mode: vec4<u32>,
-    fog_params: vec4<f32>, // x = start, y = end, z = density
+    // Linear/exp/exp2: x = start, y = end, z = density.
+    // Height fog: x = extinction at the camera (1/m), y = falloff (1/m).
+    fog_params: vec4<f32>,
     fog_color: vec4<f32>,
-    front: ClassicMaterial,
-    back: ClassicMaterial,
+    // World +z in eye space (for height fog); w unused.
+    eye_up: vec4<f32>,
     lights: array<ClassicLight, MAX_LIGHTS>,
 }
 
+struct ClassicObject {
+    model_view: mat4x4<f32>,
+    // Inverse transpose of the model-view's upper 3×3, as three columns (GL's normal matrix).
+    normal_matrix: mat3x3<f32>,
+    front: ClassicMaterial,
+    back: ClassicMaterial,
+    // x = textured (GL_MODULATE); yzw unused
+    flags: vec4<u32>,
+}
+
 @group(0) @binding(0) var<uniform> frame: ClassicFrame;
+@group(0) @binding(1) var<uniform> object: ClassicObject;
+@group(0) @binding(2) var object_texture: texture_2d<f32>;
+@group(0) @binding(3) var object_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    @location(2) tex_coord: vec2<f32>,
+    // The point lit for this vertex: itself, or its triangle's provoking vertex (flat shading).
+    @location(3) shade_position: vec3<f32>,
+    @location(4) shade_normal: vec3<f32>,
 }
 
 struct VertexOut {
@@ -65,6 +84,7 @@ struct VertexOut {
     @location(4) back_primary: vec4<f32>,
     @location(5) back_secondary: vec4<f32>,
     @location(6) fog_coordinate: f32,
+    @location(7) tex_coord: vec2<f32>,
 }
 
 struct Lit {
@@ -73,10 +93,10 @@ struct Lit {
 }
 
 fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
-    var m = frame.front;
+    var m = object.front;
     var n = normalize(normal);
     if back {
-        m = frame.back;
+        m = object.back;
         n = -n;
     }
     var color = m.emission + m.ambient * frame.scene_ambient;
@@ -133,15 +153,19 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
 
 @vertex
 fn vs_main(in: VertexIn) -> VertexOut {
-    let eye = frame.model_view * vec4<f32>(in.position, 1.0);
+    let eye = object.model_view * vec4<f32>(in.position, 1.0);
     var out: VertexOut;
     out.clip = frame.projection * eye;
     out.eye_position = eye.xyz / eye.w;
-    out.eye_normal = frame.normal_matrix * in.normal;
+    out.eye_normal = object.normal_matrix * in.normal;
+    out.tex_coord = in.tex_coord;
     out.fog_coordinate = select(abs(out.eye_position.z), length(out.eye_position), frame.fog_mode.y == 1u);
     if frame.mode.x == 0u {
-        let front = shade(out.eye_position, out.eye_normal, false);
-        let back = shade(out.eye_position, out.eye_normal, true);
+        let shade_eye = object.model_view * vec4<f32>(in.shade_position, 1.0);
+        let p = shade_eye.xyz / shade_eye.w;
+        let n = object.normal_matrix * in.shade_normal;
+        let front = shade(p, n, false);
+        let back = shade(p, n, true);
         out.front_primary = front.primary;
         out.front_secondary = front.secondary;
         out.back_primary = back.primary;
@@ -157,16 +181,28 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     if frame.mode.x == 0u {
         lit.primary = select(in.front_primary, in.back_primary, back);
         lit.secondary = select(in.front_secondary, in.back_secondary, back);
-    } else {
+    } else if frame.mode.x == 1u {
         lit = shade(in.eye_position, in.eye_normal, back);
+    } else {
+        // Lighting off: the current colour, clamped; no secondary colour.
+        lit.primary = clamp(object.front.diffuse, vec4<f32>(0.0), vec4<f32>(1.0));
+        lit.secondary = vec4<f32>(0.0);
     }
-    // GL's colour sum: secondary (separate specular) added after texturing, then clamped.
-    let color = clamp(vec4<f32>(lit.primary.rgb + lit.secondary.rgb, lit.primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
-    return apply_fog(color, in.fog_coordinate);
+    // Sampled unconditionally (uniform control flow), used only when textured.
+    let texel = textureSample(object_texture, object_sampler, in.tex_coord);
+    var primary = lit.primary;
+    if object.flags.x != 0u {
+        primary = primary * texel; // GL_MODULATE
+    }
+    // GL's colour sum: the secondary (separate specular) colour added after texturing, clamped.
+    let color = clamp(vec4<f32>(primary.rgb + lit.secondary.rgb, primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
+    return apply_fog(color, in.fog_coordinate, in.eye_position);
 }
 
-// GL 2.1 eq. 3.16–3.18: f keeps the fragment colour; alpha is untouched.
-fn apply_fog(color: vec4<f32>, c: f32) -> vec4<f32> {
+// GL 2.1 eq. 3.16–3.18 (f keeps the fragment colour; alpha untouched), or height fog: the
+// transmittance exp(-τ) of the eye ray through density σ(h) = σ_cam·exp(-k·(h - h_cam)),
+// τ = σ_cam·L·(1 - exp(-k·Δh))/(k·Δh) in closed form (`HeightFog::optical_depth`).
+fn apply_fog(color: vec4<f32>, c: f32, eye_position: vec3<f32>) -> vec4<f32> {
     let mode = frame.fog_mode.x;
     if mode == 0u {
         return color;
@@ -179,8 +215,15 @@ fn apply_fog(color: vec4<f32>, c: f32) -> vec4<f32> {
         f = select((end - c) / (end - start), select(0.0, 1.0, c < end), end == start);
     } else if mode == 2u {
         f = exp(-density * c);
-    } else {
+    } else if mode == 3u {
         f = exp(-(density * c) * (density * c));
+    } else {
+        let length_m = length(eye_position);
+        let x = frame.fog_params.y * dot(eye_position, frame.eye_up.xyz);
+        // (1 - e^-x)/x, with its series near 0 where the division cancels (error < 1e-9 there;
+        // the f32 quotient's relative error beyond is < 1e-5).
+        let ratio = select((1.0 - exp(-x)) / x, 1.0 - x / 2.0 + x * x / 6.0 - x * x * x / 24.0, abs(x) < 1e-2);
+        f = exp(-frame.fog_params.x * length_m * ratio);
     }
     f = clamp(f, 0.0, 1.0);
     return vec4<f32>(mix(frame.fog_color.rgb, color.rgb, f), color.a);

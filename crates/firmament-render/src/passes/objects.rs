@@ -1,0 +1,272 @@
+//! The object pass: a frame's [`ObjectLayer`] — triangle meshes, optionally textured — lit by the
+//! OpenGL fixed-function equations (or unlit) and fogged, into a colour target with reversed-Z
+//! depth.
+//!
+//! Meshes and textures are uploaded once and kept while frames keep naming the same `Arc`s, so a
+//! time-lapse or the viewer uploads only per-object uniforms each frame.
+
+mod gpu_mesh;
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use firmament_core::Camera;
+use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading, TextureFilter};
+use firmament_core::mesh::Mesh;
+use firmament_core::texture::TextureImage;
+
+pub use self::gpu_mesh::GpuMesh;
+use self::gpu_mesh::{GpuTexture, SHADE_ATTRIBUTES, VERTEX_ATTRIBUTES, VERTEX_STRIDE, sampler};
+use crate::gpu_types::{ClassicFrameUniforms, ClassicObjectUniforms};
+use crate::passes::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
+use crate::shaders;
+use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
+
+/// A mesh uploaded for one shading style, kept alive with the `Arc` it was made from.
+#[derive(Debug)]
+struct CachedMesh {
+    _source: Arc<Mesh>,
+    gpu: GpuMesh,
+}
+
+/// A texture kept alive with the `Arc` it was made from.
+#[derive(Debug)]
+struct CachedTexture {
+    _source: Arc<TextureImage>,
+    gpu: GpuTexture,
+}
+
+/// Identity of a cached mesh: the `Arc`'s address and whether it was expanded for flat shading.
+type MeshKey = (usize, bool);
+/// Identity of an object's texture binding: the `Arc`'s address (0 = none) and the filter.
+type TextureKey = (usize, TextureFilter);
+
+/// One object's draw: its uniforms, bind group and mesh.
+#[derive(Debug)]
+struct ObjectDraw {
+    uniforms: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    texture: TextureKey,
+    mesh: Option<MeshKey>,
+}
+
+/// Draws a frame's objects.
+#[derive(Debug)]
+pub struct ObjectPass {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    frame_uniforms: wgpu::Buffer,
+    /// Bound where an object has no texture (the shader ignores it then).
+    white: GpuTexture,
+    nearest: wgpu::Sampler,
+    linear: wgpu::Sampler,
+    meshes: HashMap<MeshKey, CachedMesh>,
+    textures: HashMap<usize, CachedTexture>,
+    draws: Vec<ObjectDraw>,
+}
+
+impl ObjectPass {
+    /// Builds the pipeline for [`HDR_FORMAT`] colour and [`DEPTH_FORMAT`] depth.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        Self::with_formats(device, queue, HDR_FORMAT, DEPTH_FORMAT)
+    }
+
+    /// Builds the pipeline for other colour and depth formats.
+    pub fn with_formats(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        color: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+    ) -> Self {
+        let texture_entry = wgpu::BindGroupLayoutEntry {
+            binding: 2,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let sampler_entry = wgpu::BindGroupLayoutEntry {
+            binding: 3,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        };
+        let (pipeline, layout) = PassPipeline {
+            owner: "ObjectPass",
+            source: shaders::CLASSIC_LIGHTING,
+            entries: &[uniform_entry(0), uniform_entry(1), texture_entry, sampler_entry],
+            color,
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: depth,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: wgpu::StencilState::default(),
+                bias: wgpu::DepthBiasState::default(),
+            }),
+            vertex_buffers: &[
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: VERTEX_STRIDE,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &VERTEX_ATTRIBUTES,
+                }),
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: VERTEX_STRIDE,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &SHADE_ATTRIBUTES,
+                }),
+            ],
+            // No culling: two-sided lighting needs the back faces; GL's default front face is CCW.
+            primitive: wgpu::PrimitiveState {
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: None,
+                ..Default::default()
+            },
+            constants: &[],
+        }
+        .build(device);
+        let white = TextureImage {
+            width: 1,
+            height: 1,
+            texels: vec![[255; 4]],
+        };
+        Self {
+            pipeline,
+            layout,
+            frame_uniforms: uniform_buffer::<ClassicFrameUniforms>(device, "firmament ObjectPass frame uniforms"),
+            white: GpuTexture::new(device, queue, &white),
+            nearest: sampler(device, TextureFilter::Nearest),
+            linear: sampler(device, TextureFilter::Linear),
+            meshes: HashMap::new(),
+            textures: HashMap::new(),
+            draws: Vec::new(),
+        }
+    }
+
+    /// Uploads what `layer` needs to be seen by `camera` (whose aspect must be the target's):
+    /// new meshes and textures once, lights and every object's uniforms each call. Meshes and
+    /// textures no longer named are dropped.
+    pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, layer: &ObjectLayer, camera: &Camera) {
+        let view = camera.view_matrix();
+        let frame = ClassicFrameUniforms::new(
+            &layer.lighting,
+            &layer.fog,
+            &view,
+            &camera.projection_matrix(),
+            camera.position.z,
+        );
+        queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&frame));
+        let flat = matches!(&layer.lighting, ObjectLighting::Classic(c) if c.shading == Shading::Flat);
+
+        let mut used_meshes = Vec::with_capacity(layer.objects.len());
+        let mut used_textures = Vec::new();
+        self.draws.truncate(layer.objects.len());
+        for (i, object) in layer.objects.iter().enumerate() {
+            let mesh_key = (Arc::as_ptr(&object.mesh) as usize, flat);
+            if !self.meshes.contains_key(&mesh_key)
+                && let Some(gpu) = GpuMesh::new(device, &object.mesh, flat)
+            {
+                let cached = CachedMesh {
+                    _source: Arc::clone(&object.mesh),
+                    gpu,
+                };
+                self.meshes.insert(mesh_key, cached);
+            }
+            used_meshes.push(mesh_key);
+            let texture_key = match &object.texture {
+                None => (0, TextureFilter::Nearest),
+                Some(t) => {
+                    let key = Arc::as_ptr(&t.image) as usize;
+                    self.textures.entry(key).or_insert_with(|| CachedTexture {
+                        _source: Arc::clone(&t.image),
+                        gpu: GpuTexture::new(device, queue, &t.image),
+                    });
+                    used_textures.push(key);
+                    (key, t.filter)
+                }
+            };
+            if self.draws.get(i).is_none_or(|d| d.texture != texture_key) {
+                let uniforms = match self.draws.get(i) {
+                    Some(d) => d.uniforms.clone(),
+                    None => uniform_buffer::<ClassicObjectUniforms>(device, "firmament ObjectPass object uniforms"),
+                };
+                let draw = ObjectDraw {
+                    bind_group: self.bind_group(device, &uniforms, texture_key),
+                    uniforms,
+                    texture: texture_key,
+                    mesh: None,
+                };
+                if i < self.draws.len() {
+                    self.draws[i] = draw;
+                } else {
+                    self.draws.push(draw);
+                }
+            }
+            let draw = &mut self.draws[i];
+            draw.mesh = self.meshes.contains_key(&mesh_key).then_some(mesh_key);
+            let uniforms = ClassicObjectUniforms::new(object, &view);
+            queue.write_buffer(&draw.uniforms, 0, bytemuck::bytes_of(&uniforms));
+        }
+        self.meshes.retain(|key, _| used_meshes.contains(key));
+        self.textures.retain(|key, _| used_textures.contains(key));
+    }
+
+    fn bind_group(&self, device: &wgpu::Device, uniforms: &wgpu::Buffer, texture: TextureKey) -> wgpu::BindGroup {
+        let view = match self.textures.get(&texture.0) {
+            Some(t) => &t.gpu.view,
+            None => &self.white.view,
+        };
+        let sampler = match texture.1 {
+            TextureFilter::Nearest => &self.nearest,
+            TextureFilter::Linear => &self.linear,
+        };
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("firmament ObjectPass object bind group"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.frame_uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(sampler),
+                },
+            ],
+        })
+    }
+
+    /// Whether the last `prepare` left anything to draw.
+    pub fn is_empty(&self) -> bool {
+        self.draws.is_empty()
+    }
+
+    /// Draws the prepared objects into a render pass the caller already began (with a depth
+    /// attachment).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        for draw in &self.draws {
+            let Some(mesh) = draw.mesh.and_then(|key| self.meshes.get(&key)) else {
+                continue;
+            };
+            pass.set_bind_group(0, &draw.bind_group, &[]);
+            mesh.gpu.draw(pass);
+        }
+    }
+
+    /// Draws the prepared objects into `color` and `depth`, both loaded (clear them first).
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
+        let mut pass = begin_load_pass(encoder, "firmament ObjectPass", color, depth);
+        self.draw(&mut pass);
+    }
+}

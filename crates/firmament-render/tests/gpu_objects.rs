@@ -1,0 +1,478 @@
+//! The object pass against the f64 statement of the GL equations, pixel by pixel in linear float:
+//! within 1/255 everywhere except silhouettes and the pixels on a discontinuity (a flat-shaded
+//! edge, a texel edge under `GL_NEAREST`), where a rasterizer and a ray may pick different sides.
+
+mod objects;
+mod support;
+
+use std::sync::Arc;
+
+use firmament_core::Camera;
+use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, HeightFog};
+use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
+use firmament_core::classic::scene::{
+    ClassicLighting, LightSpace, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight, SceneObject,
+    Shading, TextureFilter, TransformStep, transform_from_steps,
+};
+use firmament_core::mesh::Mesh;
+use firmament_core::texture::TextureImage;
+use firmament_render::FrameTargets;
+use firmament_render::passes::ObjectPass;
+use firmament_render::readback::read_texture;
+use glam::{DQuat, DVec2, DVec3, DVec4};
+use objects::reference::Reference;
+
+const SIZE: u32 = 72;
+
+/// GL's eye space: at the origin looking down −z, 35° like the SuperBible, near 1, far 100.
+fn eye_camera() -> Camera {
+    Camera {
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+        fov_y: 35f64.to_radians(),
+        aspect: 1.0,
+        near: 1.0,
+        far: Some(100.0),
+    }
+}
+
+fn rgba(r: f64, g: f64, b: f64) -> DVec4 {
+    DVec4::new(r, g, b, 1.0)
+}
+
+fn superbible_material() -> Material {
+    Material {
+        ambient: rgba(0.1, 0.1, 0.1),
+        diffuse: rgba(0.0, 0.0, 1.0),
+        specular: DVec4::ONE,
+        emission: rgba(0.0, 0.0, 0.0),
+        shininess: 128.0,
+    }
+}
+
+fn eye_light(light: Light) -> SceneLight {
+    SceneLight {
+        light,
+        space: LightSpace::Eye,
+    }
+}
+
+fn superbible_light() -> SceneLight {
+    eye_light(Light {
+        position: DVec4::new(-100.0, 100.0, 100.0, 1.0),
+        ..Light::gl_default(0)
+    })
+}
+
+fn spot_light() -> SceneLight {
+    eye_light(Light {
+        position: DVec4::new(2.0, 1.0, 0.0, 1.0),
+        diffuse: rgba(1.0, 0.5, 0.2),
+        specular: rgba(0.3, 1.0, 0.3),
+        spot_direction: DVec3::new(-2.0, -1.0, -4.0),
+        spot_cutoff: 25.0,
+        spot_exponent: 4.0,
+        linear_attenuation: 0.1,
+        quadratic_attenuation: 0.02,
+        ..Light::gl_default(1)
+    })
+}
+
+/// A sphere 4 units in front of the eye, turned a little so no symmetry hides a mistake.
+fn sphere(mesh: &Arc<Mesh>, material: Material) -> SceneObject {
+    SceneObject {
+        mesh: Arc::clone(mesh),
+        model: transform_from_steps(&[
+            TransformStep::Translate(DVec3::new(0.0, 0.0, -4.0)),
+            TransformStep::Rotate {
+                degrees: 23.0,
+                axis: DVec3::X,
+            },
+            TransformStep::Rotate {
+                degrees: 17.0,
+                axis: DVec3::Y,
+            },
+        ]),
+        front: material,
+        back: Material::default(),
+        texture: None,
+    }
+}
+
+fn classic(lights: Vec<SceneLight>, model: LightModel, shading: Shading, specular: SpecularModel) -> ObjectLighting {
+    ObjectLighting::Classic(ClassicLighting {
+        lights,
+        model,
+        shading,
+        specular,
+    })
+}
+
+/// Renders `layer` with the object pass and checks every pixel against the reference, within
+/// 1/255.
+fn check(name: &str, layer: &ObjectLayer) {
+    check_within(name, layer, 1.0 / 255.0);
+}
+
+/// [`check`] with another tolerance.
+fn check_within(name: &str, layer: &ObjectLayer, tolerance: f64) {
+    let gpu = support::gpu();
+    let ctx = &gpu.ctx;
+    let mut pass = ObjectPass::new(&ctx.device, &ctx.queue);
+    let targets = FrameTargets::new(&ctx.device, SIZE, SIZE);
+    let camera = eye_camera();
+    pass.prepare(&ctx.device, &ctx.queue, layer, &camera);
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(name) });
+    support::clear_targets(&mut encoder, &targets, wgpu::Color::TRANSPARENT, 0.0);
+    pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
+    ctx.queue.submit([encoder.finish()]);
+    let bytes = read_texture(ctx, &targets.hdr).expect("readback");
+    let px: Vec<f32> = bytes
+        .chunks_exact(2)
+        .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
+        .collect();
+    let at = |x: u32, y: u32| {
+        let i = ((y * SIZE + x) * 4) as usize;
+        DVec4::new(
+            f64::from(px[i]),
+            f64::from(px[i + 1]),
+            f64::from(px[i + 2]),
+            f64::from(px[i + 3]),
+        )
+    };
+    let reference = Reference::new(layer, camera);
+    let ndc = |x: f64, y: f64| DVec2::new(x / f64::from(SIZE) * 2.0 - 1.0, 1.0 - y / f64::from(SIZE) * 2.0);
+    let (mut checked, mut skipped, mut worst) = (0usize, 0usize, 0.0f64);
+    for y in 1..SIZE - 1 {
+        for x in 1..SIZE - 1 {
+            // Silhouettes (any neighbour uncovered) are excluded, as the issue allows.
+            let interior = (0..9).all(|k| at(x + k % 3 - 1, y + k / 3 - 1).w > 0.5);
+            if !interior {
+                continue;
+            }
+            let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let Some(expected) = reference.pixel(ndc(cx, cy)) else {
+                panic!("{name}: covered pixel ({x}, {y}) misses every triangle")
+            };
+            // A discontinuity within 0.01 px (beyond a rasterizer's 1/256 px sub-pixel
+            // precision, but too close for a smooth gradient to move 1/255): either side is right.
+            let steady = [(0.01, 0.0), (-0.01, 0.0), (0.0, 0.01), (0.0, -0.01)]
+                .iter()
+                .all(|(dx, dy)| {
+                    reference
+                        .pixel(ndc(cx + dx, cy + dy))
+                        .is_some_and(|near| (near - expected).truncate().abs().max_element() < tolerance)
+                });
+            if !steady {
+                skipped += 1;
+                continue;
+            }
+            let got = at(x, y);
+            let err = (got - expected).truncate().abs().max_element();
+            worst = worst.max(err);
+            assert!(
+                err < tolerance,
+                "{name}: pixel ({x}, {y}) is {got}, the GL equations give {expected}"
+            );
+            checked += 1;
+        }
+    }
+    eprintln!("{name}: {checked} pixels within {tolerance:.2e} (worst {worst:.2e}), {skipped} on discontinuities skipped");
+    assert!(checked > 800, "{name}: only {checked} pixels checked");
+    assert!(
+        skipped * 5 < checked,
+        "{name}: {skipped} discontinuity pixels skipped of {checked}"
+    );
+}
+
+fn glt_sphere() -> Arc<Mesh> {
+    Arc::new(Mesh::glt_sphere(1.0, 26, 13).expect("valid sphere"))
+}
+
+#[test]
+fn superbible_ads_and_phong() {
+    let mesh = glt_sphere();
+    let model = LightModel {
+        ambient: DVec4::ONE,
+        ..LightModel::default()
+    };
+    for (name, shading) in [
+        ("superbible gouraud", Shading::Gouraud),
+        ("superbible phong", Shading::Phong),
+    ] {
+        let layer = ObjectLayer {
+            objects: vec![sphere(&mesh, superbible_material())],
+            lighting: classic(vec![superbible_light()], model, shading, SpecularModel::Blinn),
+            fog: SceneFog::None,
+        };
+        check(name, &layer);
+    }
+}
+
+#[test]
+fn spots_attenuation_and_viewers() {
+    let mesh = glt_sphere();
+    let local = LightModel {
+        local_viewer: true,
+        separate_specular: true,
+        ..LightModel::default()
+    };
+    let cases = [
+        (
+            "spot, local viewer, separate specular, phong",
+            local,
+            Shading::Phong,
+            SpecularModel::Phong,
+        ),
+        (
+            "spot, infinite viewer, gouraud",
+            LightModel::default(),
+            Shading::Gouraud,
+            SpecularModel::Blinn,
+        ),
+        (
+            "spot, local viewer, blinn, gouraud",
+            local,
+            Shading::Gouraud,
+            SpecularModel::Blinn,
+        ),
+    ];
+    for (name, model, shading, specular) in cases {
+        let layer = ObjectLayer {
+            objects: vec![sphere(&mesh, superbible_material())],
+            lighting: classic(vec![superbible_light(), spot_light()], model, shading, specular),
+            fog: SceneFog::None,
+        };
+        check(name, &layer);
+    }
+}
+
+#[test]
+fn flat_shading_takes_the_last_vertex() {
+    // A coarse sphere: big triangles whose three vertices light very differently.
+    let mesh = Arc::new(Mesh::glt_sphere(1.0, 8, 6).expect("valid sphere"));
+    let layer = ObjectLayer {
+        objects: vec![sphere(&mesh, superbible_material())],
+        lighting: classic(
+            vec![superbible_light(), spot_light()],
+            LightModel::default(),
+            Shading::Flat,
+            SpecularModel::Blinn,
+        ),
+        fog: SceneFog::None,
+    };
+    check("flat", &layer);
+}
+
+#[test]
+fn all_eight_lights_at_once() {
+    let mesh = glt_sphere();
+    let mut lights = Vec::new();
+    for i in 0..8u32 {
+        let a = f64::from(i) * std::f64::consts::TAU / 8.0;
+        let color = rgba(
+            0.2 + 0.1 * f64::from(i % 3),
+            0.15 * f64::from(i % 4),
+            0.3 - 0.03 * f64::from(i),
+        );
+        lights.push(eye_light(Light {
+            ambient: color * 0.1,
+            diffuse: color,
+            specular: color,
+            // Alternate directional and positional, with attenuation on the positional ones.
+            position: if i % 2 == 0 {
+                DVec4::new(a.cos(), a.sin(), 0.7, 0.0)
+            } else {
+                DVec4::new(3.0 * a.cos(), 3.0 * a.sin(), -2.0, 1.0)
+            },
+            linear_attenuation: 0.05 * f64::from(i % 2),
+            quadratic_attenuation: 0.01 * f64::from(i % 2),
+            ..Light::gl_default(i as usize)
+        }));
+    }
+    let material = Material {
+        shininess: 20.0,
+        specular: rgba(0.8, 0.8, 0.8),
+        ..Material::default()
+    };
+    let layer = ObjectLayer {
+        objects: vec![sphere(&mesh, material)],
+        lighting: classic(lights, LightModel::default(), Shading::Phong, SpecularModel::Blinn),
+        fog: SceneFog::None,
+    };
+    check("8 lights", &layer);
+}
+
+/// A quad seen from both sides: the left one shows its front, the right one its back.
+fn two_quads(front: Material, back: Material) -> Vec<SceneObject> {
+    let quad = Arc::new(Mesh::quad(1.6, 4).expect("valid quad"));
+    [(-0.9, 30.0), (0.9, 150.0)]
+        .into_iter()
+        .map(|(x, degrees)| SceneObject {
+            mesh: Arc::clone(&quad),
+            model: transform_from_steps(&[
+                TransformStep::Translate(DVec3::new(x, 0.0, -4.0)),
+                TransformStep::Rotate {
+                    degrees,
+                    axis: DVec3::Y,
+                },
+            ]),
+            front,
+            back,
+            texture: None,
+        })
+        .collect()
+}
+
+#[test]
+fn two_sided_lighting_on_and_off() {
+    let front = Material {
+        diffuse: rgba(0.9, 0.3, 0.1),
+        specular: rgba(0.5, 0.5, 0.5),
+        shininess: 10.0,
+        ..Material::default()
+    };
+    let back = Material {
+        diffuse: rgba(0.1, 0.4, 0.9),
+        ..Material::default()
+    };
+    let light = eye_light(Light {
+        position: DVec4::new(0.0, 0.5, 1.0, 1.0),
+        ..Light::gl_default(0)
+    });
+    for (name, two_side) in [("two-sided on", true), ("two-sided off", false)] {
+        let model = LightModel {
+            two_side,
+            local_viewer: true,
+            ..LightModel::default()
+        };
+        let layer = ObjectLayer {
+            objects: two_quads(front, back),
+            lighting: classic(vec![light], model, Shading::Phong, SpecularModel::Blinn),
+            fog: SceneFog::None,
+        };
+        check(name, &layer);
+    }
+}
+
+#[test]
+fn textures_modulate_before_the_separate_specular() {
+    let mesh = glt_sphere();
+    // GL leaves the precision of GL_LINEAR filtering to the implementation: llvmpipe blends
+    // 8-bit texels with 8-bit weights and rounds the result to 8 bits, up to about 1/255 off on
+    // its own. Linear cases get that on top of the equations' 1/255; nearest ones get 1/255.
+    let linear_tolerance = 2.0 / 255.0;
+    let image =
+        Arc::new(TextureImage::checkerboard(16, 4, [255, 230, 200, 255], [40, 90, 160, 255]).expect("valid texture"));
+    let material = Material {
+        diffuse: rgba(0.9, 0.9, 0.9),
+        ..superbible_material()
+    };
+    for (name, filter, separate_specular) in [
+        ("texture linear, separate specular", TextureFilter::Linear, true),
+        ("texture nearest, single colour", TextureFilter::Nearest, false),
+    ] {
+        let mut object = sphere(&mesh, material);
+        object.texture = Some(ObjectTexture {
+            image: Arc::clone(&image),
+            filter,
+        });
+        let model = LightModel {
+            separate_specular,
+            ..LightModel::default()
+        };
+        let layer = ObjectLayer {
+            objects: vec![object],
+            lighting: classic(vec![superbible_light()], model, Shading::Gouraud, SpecularModel::Blinn),
+            fog: SceneFog::None,
+        };
+        let tolerance = match filter {
+            TextureFilter::Linear => linear_tolerance,
+            TextureFilter::Nearest => 1.0 / 255.0,
+        };
+        check_within(name, &layer, tolerance);
+    }
+    // Lighting off: the colour passed through, clamped, then textured.
+    let mut object = sphere(
+        &mesh,
+        Material {
+            diffuse: DVec4::new(1.5, 0.5, 0.25, 1.0),
+            ..Material::default()
+        },
+    );
+    object.texture = Some(ObjectTexture {
+        image,
+        filter: TextureFilter::Linear,
+    });
+    let layer = ObjectLayer {
+        objects: vec![object],
+        lighting: ObjectLighting::Unlit,
+        fog: SceneFog::None,
+    };
+    check_within("unlit, textured", &layer, linear_tolerance);
+}
+
+#[test]
+fn every_fog_mode_and_coordinate() {
+    let mesh = glt_sphere();
+    let color = rgba(0.7, 0.6, 0.5);
+    let fogs = [
+        (
+            "linear, eye-plane depth",
+            FogMode::Linear { start: 3.2, end: 4.8 },
+            FogCoordinate::EyePlaneDepth,
+        ),
+        (
+            "linear, eye distance",
+            FogMode::Linear { start: 3.0, end: 5.0 },
+            FogCoordinate::EyeDistance,
+        ),
+        (
+            "exp, eye-plane depth",
+            FogMode::Exp { density: 0.25 },
+            FogCoordinate::EyePlaneDepth,
+        ),
+        (
+            "exp2, eye distance",
+            FogMode::Exp2 { density: 0.3 },
+            FogCoordinate::EyeDistance,
+        ),
+    ];
+    for (name, mode, coordinate) in fogs {
+        let layer = ObjectLayer {
+            objects: vec![sphere(&mesh, superbible_material())],
+            lighting: classic(
+                vec![superbible_light(), spot_light()],
+                LightModel::default(),
+                Shading::Gouraud,
+                SpecularModel::Blinn,
+            ),
+            fog: SceneFog::Classic(Fog {
+                mode,
+                coordinate,
+                color,
+            }),
+        };
+        check(name, &layer);
+    }
+    let layer = ObjectLayer {
+        objects: vec![sphere(&mesh, superbible_material())],
+        lighting: classic(
+            vec![superbible_light()],
+            LightModel::default(),
+            Shading::Phong,
+            SpecularModel::Blinn,
+        ),
+        fog: SceneFog::Height {
+            fog: HeightFog {
+                density: 0.2,
+                falloff: 1.5,
+                base_height: -0.5,
+            },
+            color,
+        },
+    };
+    check("height fog", &layer);
+}

@@ -1,0 +1,3 @@
+//! Shared pieces of the object-pass tests.
+
+pub(crate) mod reference;
