@@ -70,6 +70,18 @@ impl Default for Exposure {
     }
 }
 
+/// How display values are stored in an 8-bit image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Encoding {
+    /// The sRGB transfer function (what a display expects of linear light).
+    #[default]
+    Srgb,
+    /// Stored as they are, `round(255·v)`: what an 8-bit OpenGL framebuffer without
+    /// `GL_FRAMEBUFFER_SRGB` holds, so classic scenes give the GL program's pixels.
+    None,
+}
+
 /// How a frame's HDR radiance becomes a display image.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DisplaySettings {
@@ -77,6 +89,8 @@ pub struct DisplaySettings {
     pub exposure: Exposure,
     /// The tone curve.
     pub tone_curve: ToneCurve,
+    /// How 8-bit outputs store the result.
+    pub encoding: Encoding,
 }
 
 impl DisplaySettings {

@@ -1,5 +1,5 @@
-//! Benchmarks of the atmosphere pass: per-pass GPU time, and the LUT path against the
-//! brute-force per-pixel march.
+//! Benchmarks: the atmosphere pass (per-pass GPU time, and the LUT path against the brute-force
+//! per-pixel march) and the object pass (Gouraud against Phong shading).
 //!
 //! Each pass is submitted alone and waited for. Where the device has timestamp queries inside
 //! command encoders ([`TIMESTAMP_FEATURES`], requested by [`GpuContext`] whenever the adapter
@@ -13,11 +13,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use firmament_core::Camera;
+use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading};
 use firmament_core::frame::AtmosphereSky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, SkyMethod};
+use crate::passes::{AtmospherePass, ObjectPass, SkyMethod};
 use crate::readback::{decode_f16, read_texture};
 use crate::targets::FrameTargets;
 
@@ -315,5 +316,146 @@ pub fn bench_atmosphere(
         lut_frame_ms,
         march_frame_ms,
         difference,
+    })
+}
+
+/// Median milliseconds of the object pass drawing the same objects with Gouraud and with Phong
+/// shading (classic lighting, all lights on).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectBench {
+    /// Adapter name and backend.
+    pub adapter: String,
+    /// Image size, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Frames timed per figure (the median is reported).
+    pub frames: u32,
+    /// Objects drawn.
+    pub objects: usize,
+    /// Triangles drawn, all objects together.
+    pub triangles: usize,
+    /// Lights on.
+    pub lights: usize,
+    /// How the times were measured.
+    pub timing: Timing,
+    /// Lit per vertex.
+    pub gouraud_ms: f64,
+    /// Lit per fragment.
+    pub phong_ms: f64,
+}
+
+/// `count` GLTools spheres of `slices × stacks` (1000 triangles each at 25 × 20) in a square grid
+/// filling the view of the 45° camera at the origin looking down −z, lit by 8 lights of every
+/// kind: the object benchmark's scene (issue 5: 1000 spheres, about 1 M triangles).
+pub fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLayer, Camera), RenderError> {
+    use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
+    use firmament_core::classic::scene::{ClassicLighting, LightSpace, SceneFog, SceneLight, SceneObject};
+    use glam::{DMat4, DQuat, DVec3, DVec4};
+    let mesh = Arc::new(firmament_core::mesh::Mesh::glt_sphere(0.4, slices, stacks)?);
+    let side = (count as f64).sqrt().ceil() as usize;
+    let objects = (0..count)
+        .map(|i| {
+            let (x, y) = ((i % side) as f64, (i / side) as f64);
+            let centre = DVec3::new(x - (side as f64 - 1.0) / 2.0, y - (side as f64 - 1.0) / 2.0, -40.0);
+            SceneObject {
+                mesh: Arc::clone(&mesh),
+                model: DMat4::from_translation(centre),
+                front: Material {
+                    specular: DVec4::new(0.8, 0.8, 0.8, 1.0),
+                    shininess: 40.0,
+                    ..Material::default()
+                },
+                back: Material::default(),
+                texture: None,
+            }
+        })
+        .collect();
+    let lights = (0..8)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / 8.0;
+            SceneLight {
+                light: Light {
+                    diffuse: DVec4::new(0.3, 0.3, 0.3, 1.0),
+                    specular: DVec4::new(0.3, 0.3, 0.3, 1.0),
+                    position: if i % 2 == 0 {
+                        DVec4::new(a.cos(), a.sin(), 1.0, 0.0)
+                    } else {
+                        DVec4::new(10.0 * a.cos(), 10.0 * a.sin(), -30.0, 1.0)
+                    },
+                    spot_cutoff: if i % 4 == 1 { 60.0 } else { 180.0 },
+                    linear_attenuation: 0.01,
+                    ..Light::gl_default(i)
+                },
+                space: LightSpace::Eye,
+            }
+        })
+        .collect();
+    let layer = ObjectLayer {
+        objects,
+        lighting: ObjectLighting::Classic(ClassicLighting {
+            lights,
+            model: LightModel::default(),
+            shading: Shading::Gouraud,
+            specular: SpecularModel::Blinn,
+        }),
+        fog: SceneFog::None,
+    };
+    let camera = Camera {
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+        fov_y: 45f64.to_radians(),
+        aspect: 16.0 / 9.0,
+        near: 1.0,
+        far: Some(100.0),
+    };
+    Ok((layer, camera))
+}
+
+/// Times the object pass on `layer` seen by `camera` at `width` × `height`, once with Gouraud
+/// and once with Phong shading (other classic settings as given; unlit layers are timed as is).
+pub fn bench_objects(
+    ctx: &GpuContext,
+    layer: &ObjectLayer,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+    frames: u32,
+) -> Result<ObjectBench, RenderError> {
+    ctx.check_image_size(width, height)?;
+    let camera = Camera {
+        aspect: f64::from(width) / f64::from(height),
+        ..*camera
+    };
+    let targets = FrameTargets::new(&ctx.device, width, height);
+    let mut pass = ObjectPass::new(&ctx.device, &ctx.queue);
+    let mut time = |shading: Shading| {
+        let mut layer = layer.clone();
+        if let ObjectLighting::Classic(c) = &mut layer.lighting {
+            c.shading = shading;
+        }
+        pass.prepare(&ctx.device, &ctx.queue, &layer, &camera);
+        median_ms(ctx, frames, &targets.hdr, |e| {
+            clear_depth(e, &targets, 0.0);
+            pass.record(e, &targets.hdr_view, &targets.depth_view);
+        })
+    };
+    let gouraud_ms = time(Shading::Gouraud);
+    let phong_ms = time(Shading::Phong);
+    let info = ctx.adapter.get_info();
+    Ok(ObjectBench {
+        adapter: format!("{} ({:?})", info.name, info.backend),
+        width,
+        height,
+        frames,
+        objects: layer.objects.len(),
+        triangles: layer.objects.iter().map(|o| o.mesh.triangle_count()).sum(),
+        lights: match &layer.lighting {
+            ObjectLighting::Classic(c) => c.lights.len(),
+            ObjectLighting::Unlit => 0,
+        },
+        timing: timing(ctx),
+        gouraud_ms,
+        phong_ms,
     })
 }

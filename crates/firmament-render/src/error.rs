@@ -34,6 +34,9 @@ pub enum RenderError {
         /// The device's largest 2D texture side, pixels.
         max: u32,
     },
+    /// A value given to the renderer broke its rule.
+    #[error("{0}")]
+    Invalid(#[from] firmament_core::CoreError),
     /// Reading the image back from the GPU failed.
     #[error("reading the image back from the GPU failed: {0}")]
     Readback(String),

@@ -221,12 +221,7 @@ mod tests {
             ]
         );
         let tonemap = validate("tonemap", TONEMAP);
-        assert_layout!(
-            tonemap,
-            "Tonemap",
-            TonemapUniforms,
-            [exposure, curve, encode_srgb, _pad]
-        );
+        assert_layout!(tonemap, "Tonemap", TonemapUniforms, [exposure, curve, transfer, _pad]);
         let classic = validate("classic_lighting", CLASSIC_LIGHTING);
         assert_layout!(
             classic,

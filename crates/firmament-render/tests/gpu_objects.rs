@@ -179,7 +179,9 @@ fn check_within(name: &str, layer: &ObjectLayer, tolerance: f64) {
             checked += 1;
         }
     }
-    eprintln!("{name}: {checked} pixels within {tolerance:.2e} (worst {worst:.2e}), {skipped} on discontinuities skipped");
+    eprintln!(
+        "{name}: {checked} pixels within {tolerance:.2e} (worst {worst:.2e}), {skipped} on discontinuities skipped"
+    );
     assert!(checked > 800, "{name}: only {checked} pixels checked");
     assert!(
         skipped * 5 < checked,
@@ -475,4 +477,69 @@ fn every_fog_mode_and_coordinate() {
         },
     };
     check("height fog", &layer);
+}
+
+#[test]
+fn the_renderer_writes_the_equations_colours_as_8_bit_gl_pixels() {
+    // Through the whole frame path — objects, clear colour, tonemap with no curve and display
+    // encoding "none" — each pixel is round(255·c), as in an 8-bit GL framebuffer.
+    let mesh = glt_sphere();
+    let layer = ObjectLayer {
+        objects: vec![sphere(&mesh, superbible_material())],
+        lighting: classic(
+            vec![superbible_light()],
+            LightModel {
+                ambient: DVec4::ONE,
+                local_viewer: true,
+                ..LightModel::default()
+            },
+            Shading::Phong,
+            SpecularModel::Phong,
+        ),
+        fog: SceneFog::None,
+    };
+    let frame = firmament_core::Frame {
+        camera: eye_camera(),
+        sky: firmament_core::frame::Sky::Clear(firmament_core::LinearRgb::new(0.0, 0.0, 0.0)),
+        display: firmament_core::display::DisplaySettings {
+            encoding: firmament_core::display::Encoding::None,
+            ..Default::default()
+        },
+        objects: layer.clone(),
+    };
+    let mut gpu = support::gpu();
+    let support::Gpu { ctx, renderer } = &mut *gpu;
+    let image = renderer.render_ldr(ctx, &frame, SIZE, SIZE).expect("render");
+    let reference = Reference::new(&layer, eye_camera());
+    let (mut checked, mut worst) = (0, 0i32);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let got = image.pixel(x, y).expect("inside");
+            let ndc = DVec2::new(
+                (f64::from(x) + 0.5) / f64::from(SIZE) * 2.0 - 1.0,
+                1.0 - (f64::from(y) + 0.5) / f64::from(SIZE) * 2.0,
+            );
+            // The background, or a silhouette pixel that only one of ray and rasterizer covers.
+            let Some(expected) = reference.pixel(ndc) else {
+                continue;
+            };
+            if got[..3] == [0, 0, 0] {
+                continue;
+            }
+            for c in 0..3 {
+                let want = (expected[c].clamp(0.0, 1.0) * 255.0).round() as i32;
+                let diff = (i32::from(got[c]) - want).abs();
+                worst = worst.max(diff);
+                assert!(
+                    diff <= 1,
+                    "pixel ({x}, {y}) channel {c}: {} vs round(255·{})",
+                    got[c],
+                    expected[c]
+                );
+            }
+            checked += 1;
+        }
+    }
+    eprintln!("8-bit GL pixels: {checked} checked, worst {worst} LSB");
+    assert!(checked > 1500, "only {checked} pixels");
 }

@@ -30,6 +30,7 @@ mod color;
 mod error;
 mod layers;
 mod model;
+mod objects;
 mod presets;
 mod spectrum;
 mod to_frame;
@@ -42,6 +43,11 @@ pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection,
     MiePhaseName, PlanetSection, RenderSection, Scene, SeedSection, SkyModelName, SkySection, SunEntry, SunSection,
     TimeSection,
+};
+pub use model::{
+    CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
+    LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
+    TextureEntry, TransformEntry,
 };
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;
@@ -75,7 +81,12 @@ pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String])
     for item in overrides {
         layers::apply_override(&mut table, item)?;
     }
-    let scene = model::from_table(table)?;
+    let mut scene = model::from_table(table)?;
+    if let SceneSource::Text { origin, .. } = source
+        && let Some(folder) = std::path::Path::new(origin).parent()
+    {
+        scene.base_dir = folder.to_path_buf();
+    }
     validate::validate(&scene)?;
     Ok(scene)
 }

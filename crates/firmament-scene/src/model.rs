@@ -1,11 +1,17 @@
 //! The scene file's data model: plain serde structs, parsed strictly.
 
 mod atmosphere;
+mod objects;
 
 use serde::Deserialize;
 
 pub use self::atmosphere::{
     AtmosphereModelName, AtmosphereSection, Body, MiePhaseName, PlanetSection, SeedSection, SunEntry,
+};
+pub use self::objects::{
+    CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
+    LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
+    TextureEntry, TransformEntry,
 };
 use crate::color::SceneColor;
 use crate::error::{SceneError, did_you_mean};
@@ -38,6 +44,21 @@ pub struct Scene {
     /// array, a layer's list replaces the one below it as a whole.
     #[serde(default)]
     pub suns: Vec<SunEntry>,
+    /// How objects are lit.
+    pub lighting: LightingSection,
+    /// The lights of classic lighting, 0 to 8, `glLight` style. A layer's list replaces the one
+    /// below it as a whole.
+    #[serde(default)]
+    pub lights: Vec<LightEntry>,
+    /// Objects in front of the sky, drawn in order. A layer's list replaces the one below it.
+    #[serde(default)]
+    pub objects: Vec<ObjectEntry>,
+    /// Fog over objects.
+    pub fog: FogSection,
+    /// The folder relative mesh and texture paths are taken from: the scene file's folder (the
+    /// working directory for presets and text without a file).
+    #[serde(skip)]
+    pub base_dir: std::path::PathBuf,
 }
 
 /// `[render]`: the image.
@@ -112,6 +133,9 @@ pub struct DisplaySection {
     pub ev100: Option<f64>,
     /// `"none"` (clamp), `"aces_fitted"` or `"pbr_neutral"`.
     pub tone_curve: firmament_core::display::ToneCurve,
+    /// How PNG pixels store the result: `"srgb"` (default) or `"none"` (`round(255·v)`, as an
+    /// 8-bit GL framebuffer holds it; classic presets use it).
+    pub encoding: firmament_core::display::Encoding,
 }
 
 /// The sky models a scene can choose.
@@ -122,6 +146,8 @@ pub enum SkyModelName {
     Gradient,
     /// The physically based atmosphere of `[planet]` and `[atmosphere]`, lit by `[[suns]]`.
     Atmosphere,
+    /// One colour, `sky.clear_color` (a GL program's `glClearColor`).
+    Clear,
 }
 
 /// `[sky]`.
@@ -130,6 +156,8 @@ pub enum SkyModelName {
 pub struct SkySection {
     /// Which sky model draws the sky.
     pub model: SkyModelName,
+    /// The background of `model = "clear"`, linear RGB(A) as given to `glClearColor`.
+    pub clear_color: GlColor,
     /// The gradient sky's layout and keyframes.
     pub gradient: GradientSection,
 }

@@ -81,6 +81,21 @@ pub const PRESETS: &[Preset] = &[
         summary: "the seed's own model: its Mars from the ground, looking west at the low Sun",
         toml: include_str!("presets/seed-mars.toml"),
     },
+    Preset {
+        name: "superbible-ads",
+        summary: "classic: the SuperBible's blue sphere, ADS lighting per vertex (Gouraud)",
+        toml: include_str!("presets/superbible-ads.toml"),
+    },
+    Preset {
+        name: "superbible-phong",
+        summary: "classic: the SuperBible's blue sphere, ADS lighting per fragment (Phong)",
+        toml: include_str!("presets/superbible-phong.toml"),
+    },
+    Preset {
+        name: "fixed-function-tour",
+        summary: "classic: every light type, two-sided lighting, separate specular, textures and fog",
+        toml: include_str!("presets/fixed-function-tour.toml"),
+    },
 ];
 
 /// How many presets may build on each other before we call it a loop.

@@ -90,6 +90,7 @@ impl Scene {
         DisplaySettings {
             exposure,
             tone_curve: self.display.tone_curve,
+            encoding: self.display.encoding,
         }
     }
 
@@ -119,7 +120,8 @@ impl Scene {
     }
 
     /// Everything needed to draw the scene at `time` (its own time when `None`; the atmosphere's
-    /// suns do not move with it).
+    /// suns do not move with it, objects' spins do). Builds the built-in meshes and loads mesh
+    /// and texture files, so a bad or missing file is reported here.
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
         let time = match time {
             Some(t) => t,
@@ -147,12 +149,16 @@ impl Scene {
                 AtmosphereModelName::Physical => Sky::Atmosphere(self.atmosphere_sky()?),
                 AtmosphereModelName::Seed => Sky::Seed(self.seed_sky()?),
             },
+            SkyModelName::Clear => {
+                let [r, g, b, _] = self.sky.clear_color.rgba();
+                Sky::Clear(firmament_core::LinearRgb::new(r, g, b))
+            }
         };
         Ok(Frame {
             camera: self.camera(),
             sky,
             display: self.display_settings(),
-            objects: firmament_core::classic::scene::ObjectLayer::default(),
+            objects: crate::objects::object_layer(self, time)?,
         })
     }
 }

@@ -193,5 +193,12 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     if scene.sky.model == SkyModelName::Atmosphere {
         crate::atmosphere::camera_above_surface(scene, &planet)?;
     }
-    Ok(())
+    let clear = scene.sky.clear_color.rgba();
+    check(
+        clear.iter().all(|c| c.is_finite() && *c >= 0.0),
+        "sky.clear_color",
+        format!("{clear:?}"),
+        "every component must be a finite number >= 0",
+    )?;
+    crate::objects::validate(scene)
 }

@@ -114,6 +114,11 @@ pub(crate) struct BenchArgs {
     /// Frames timed per figure (the median is reported), 1 to 1000.
     #[arg(long, value_name = "N", default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub(crate) frames: u32,
+    /// Time the object pass instead: Gouraud against Phong on the scene's objects, or, for a
+    /// scene without objects, N spheres of 1000 triangles lit by 8 lights.
+    #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "1000",
+          value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub(crate) objects: Option<u32>,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub(crate) json: bool,

@@ -529,3 +529,55 @@ fn sky_sample_rejects_bad_angles_and_altitudes() {
         assert!(stderr(&out).contains(message), "{args:?}: {}", stderr(&out));
     }
 }
+
+#[test]
+fn classic_scenes_render_gl_pixels_and_bad_meshes_fail_cleanly() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = firmament(
+        dir.path(),
+        &[
+            "render",
+            "--preset",
+            "superbible-ads",
+            "--width",
+            "80",
+            "--height",
+            "60",
+            "-o",
+            "ads.png",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let image = image::open(dir.path().join("ads.png")).expect("a PNG").to_rgb8();
+    // The clear colour at the corner; the blue sphere in the middle; no sRGB encoding, so the
+    // lit blue is the equation's value: ambient 0.1 + diffuse (n·L) — well below sRGB's lift.
+    assert_eq!(image.get_pixel(0, 0).0, [0, 0, 0]);
+    let centre = image.get_pixel(40, 30).0;
+    assert!(
+        centre[2] > 100 && centre[0] < 40 && centre[0] == centre[1],
+        "{centre:?}"
+    );
+
+    std::fs::write(
+        dir.path().join("broken.toml"),
+        "[[objects]]\nmesh = { kind = \"file\", path = \"missing.obj\" }\n",
+    )
+    .expect("write scene");
+    let before = files_in(dir.path());
+    let out = firmament(dir.path(), &["render", "broken.toml", "-o", "broken.png"]);
+    assert!(!out.status.success());
+    let message = stderr(&out);
+    assert!(
+        message.contains("objects[0].mesh.path") && message.contains("missing.obj"),
+        "{message}"
+    );
+    assert_eq!(files_in(dir.path()), before, "no output file");
+    let out = firmament(dir.path(), &["check", "broken.toml"]);
+    assert!(!out.status.success() && stderr(&out).contains("objects[0].mesh.path"));
+    let out = firmament(dir.path(), &["check", "--preset", "fixed-function-tour"]);
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("5 objects"),
+        "{}",
+        stderr(&out)
+    );
+}

@@ -8,7 +8,7 @@
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::color::LinearRgb;
-use firmament_core::display::{DisplaySettings, ToneCurve};
+use firmament_core::display::{DisplaySettings, Encoding, ToneCurve};
 use firmament_core::gradient_sky::{Blend, GradientSkyState};
 use firmament_core::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
@@ -114,8 +114,9 @@ pub struct TonemapUniforms {
     pub exposure: f32,
     /// 0 none, 1 ACES fitted, 2 PBR Neutral.
     pub curve: u32,
-    /// 1 when the shader must apply the sRGB transfer function itself.
-    pub encode_srgb: u32,
+    /// 0 none, 1 linear → sRGB in the shader, 2 sRGB → linear (cancels an `*Srgb` output's
+    /// encoding for [`Encoding::None`]).
+    pub transfer: u32,
     /// Padding to 16 bytes.
     pub _pad: u32,
 }
@@ -130,7 +131,11 @@ impl TonemapUniforms {
                 ToneCurve::AcesFitted => 1,
                 ToneCurve::PbrNeutral => 2,
             },
-            encode_srgb: u32::from(!output_format.is_srgb()),
+            transfer: match (display.encoding, output_format.is_srgb()) {
+                (Encoding::Srgb, false) => 1,
+                (Encoding::None, true) => 2,
+                (Encoding::Srgb, true) | (Encoding::None, false) => 0,
+            },
             _pad: 0,
         }
     }

@@ -165,11 +165,17 @@ fn vs_main(in: VertexIn) -> VertexOut {
         let p = shade_eye.xyz / shade_eye.w;
         let n = object.normal_matrix * in.shade_normal;
         let front = shade(p, n, false);
-        let back = shade(p, n, true);
         out.front_primary = front.primary;
         out.front_secondary = front.secondary;
-        out.back_primary = back.primary;
-        out.back_secondary = back.secondary;
+        // The back colours are only read with two-sided lighting; don't pay for them otherwise.
+        if frame.model_flags.z != 0u {
+            let back = shade(p, n, true);
+            out.back_primary = back.primary;
+            out.back_secondary = back.secondary;
+        } else {
+            out.back_primary = front.primary;
+            out.back_secondary = front.secondary;
+        }
     }
     return out;
 }

@@ -3,12 +3,14 @@
 //
 // Conventions: the input texture holds linear scene radiance (Rgba16Float), read texel for texel
 // (same size as the output). Curves are the f64 references in `firmament_core::display`; keep the
-// two in step. `encode_srgb` is 1 when the output format is not itself an `*Srgb` format.
+// two in step. `transfer`: 1 applies the sRGB encoding here (the output format does not);
+// 2 applies its inverse so that an `*Srgb` output's own encoding cancels (display encoding
+// "none": the stored bytes are round(255·v)); 0 leaves values as they are.
 
 struct Tonemap {
     exposure: f32,
     curve: u32,       // 0 none (clamp), 1 ACES fitted (Hill), 2 Khronos PBR Neutral
-    encode_srgb: u32, // 1: apply the sRGB transfer function here
+    transfer: u32, // 0 none, 1 linear → sRGB, 2 sRGB → linear
     _pad: u32,
 }
 
@@ -63,6 +65,12 @@ fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     return select(high, low, c <= vec3<f32>(0.0031308));
 }
 
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    let low = c / 12.92;
+    let high = pow((c + 0.055) / 1.055, vec3<f32>(2.4));
+    return select(high, low, c <= vec3<f32>(0.04045));
+}
+
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let texel = vec2<i32>(floor(in.clip.xy));
@@ -75,8 +83,10 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     }
     // NaN-safe clamp: max/min with a NaN operand may return either, so test explicitly.
     c = select(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(0.0), c != c);
-    if params.encode_srgb == 1u {
+    if params.transfer == 1u {
         c = linear_to_srgb(c);
+    } else if params.transfer == 2u {
+        c = srgb_to_linear(c);
     }
     return vec4<f32>(c, 1.0);
 }

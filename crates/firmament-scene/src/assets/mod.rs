@@ -1,14 +1,60 @@
 //! Mesh and texture files named by a scene: Wavefront OBJ, glTF 2.0 and images.
 //!
-//! (Stub: filled in by the loaders work.)
+//! [`load_model`] reads `.obj` (with its `.mtl` materials), `.gltf` (external or base64 `data:`
+//! buffers and images) and `.glb` files into [`LoadedMesh`]es; [`load_texture`] reads an image
+//! file into a [`TextureImage`]. Every failure is a [`SceneError::Asset`] naming the scene key,
+//! the path and the reason; malformed files never panic.
+//!
+//! # Conventions
+//! - **Units**: positions are taken as metres, as stored (glTF's unit is the metre; OBJ has none).
+//!   Nothing is rescaled, recentred or re-oriented (glTF's +Y up stays +Y).
+//! - **Winding**: counter-clockwise front faces in both formats, as in [`Mesh`]; triangles are
+//!   kept as the file orders them.
+//! - **Texture coordinates** have `(0, 0)` at the lower left, as in OpenGL and [`Mesh`]. OBJ
+//!   already uses that convention; glTF puts `(0, 0)` at the top left, so its `v` becomes
+//!   `t = 1 − v`. Images are flipped the matching way: a [`TextureImage`]'s row 0 is the bottom
+//!   row of the picture. Missing texture coordinates are `(0, 0)` for every vertex.
+//! - **Texels** are converted to 8-bit RGBA and used as stored (no sRGB decoding); 16-bit and
+//!   floating-point images are scaled to 0–255 (floats clamped to `[0, 1]` first).
+//! - **Colours**: an OBJ material's `Kd` (alpha from `d`, else 1) or a glTF material's
+//!   `baseColorFactor` become [`LoadedMesh::base_color`], as the file gives them.
+//! - **Transforms**: a glTF mesh's [`LoadedMesh::transform`] is its node's world matrix in the
+//!   file (mesh → file root), the node transforms (matrix or translation·rotation·scale)
+//!   composed from the scene root down; OBJ meshes have the identity.
+//!
+//! # What is repaired, and logged (`tracing`)
+//! - **No normals**: smooth vertex normals are computed, area-weighted (each vertex gets the sum
+//!   of the unnormalised cross products of the triangles that use it, normalised); `info`.
+//! - **Zero-length or non-finite normals** in the file: replaced by the computed normal for those
+//!   vertices; `warn`. Other file normals that are not unit length are normalised; `debug`.
+//! - A vertex whose computed normal is still zero — no triangle of non-zero area uses it, or the
+//!   cross products of its triangles cancel (two faces back to back) — gets `(0, 0, 1)`; `info`.
+//! - **Degenerate triangles** (a repeated index, or exactly zero area in `f64`) are dropped;
+//!   `info` with how many. A mesh left without triangles is an error.
+//! - glTF primitives that are not triangle lists (points, lines, strips, fans) are skipped;
+//!   `warn`. A file left without triangles is an error.
+//! - A missing or malformed `.mtl` file, or a diffuse map (`map_Kd`) that cannot be loaded, is
+//!   not an error: the OBJ loads without that material or texture; `warn`. (A glTF file is one
+//!   asset: a missing buffer or image file is an error.)
+//!
+//! Non-finite positions or texture coordinates, indices out of range and accessors that do not
+//! fit their buffers are errors. Every returned mesh passes [`Mesh::validate`].
 
+mod gltf;
+mod obj;
+mod texture_file;
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
-use glam::DMat4;
+use glam::{DMat4, DVec3};
 
 use crate::error::SceneError;
+
+/// The file extensions [`load_model`] reads (compared case-insensitively).
+pub const MODEL_EXTENSIONS: [&str; 3] = ["obj", "gltf", "glb"];
 
 /// One mesh of a model file, with what the file says about its look.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,24 +72,308 @@ pub struct LoadedMesh {
 /// Loads every mesh of an OBJ (`.obj`) or glTF (`.gltf`, `.glb`) file; `key` names the scene
 /// key for messages.
 ///
+/// OBJ gives one mesh per object or group (and per material change within one); glTF one mesh
+/// per triangle-list primitive of every mesh node in the default scene (else the first scene,
+/// else every root node). See the [module documentation](self) for the conventions and repairs.
+///
 /// # Errors
 /// [`SceneError::Asset`] naming `key`, the path and the reason.
 pub fn load_model(key: &str, path: &Path) -> Result<Vec<LoadedMesh>, SceneError> {
-    Err(SceneError::Asset {
+    let error = |reason: String| SceneError::Asset {
         key: key.to_owned(),
         path: path.display().to_string(),
-        reason: "model loading is not implemented yet".to_owned(),
-    })
+        reason,
+    };
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    let loader: fn(&Path) -> Result<Vec<LoadedMesh>, String> = match extension.as_str() {
+        "obj" => obj::load,
+        "gltf" | "glb" => gltf::load,
+        _ => {
+            let found = if extension.is_empty() {
+                "no extension".to_owned()
+            } else {
+                format!("extension `.{extension}`")
+            };
+            return Err(error(format!(
+                "unsupported model format ({found}); supported extensions are: {}",
+                MODEL_EXTENSIONS.map(|e| format!(".{e}")).join(", ")
+            )));
+        }
+    };
+    guarded(|| loader(path)).map_err(error)
 }
 
 /// Loads an image file (PNG, …) as a texture, bottom row first.
 ///
+/// Reads PNG, JPEG and OpenEXR (the formats the `image` crate is built with here), converts to
+/// 8-bit RGBA and flips the rows so that row 0 is the bottom of the picture (`t = 0`).
+///
 /// # Errors
-/// [`SceneError::Asset`] naming `key`, the path and the reason.
+/// [`SceneError::Asset`] naming `key`, the path and the reason: the file cannot be read or
+/// decoded, or a side is 0 or more than [`MAX_TEXTURE_SIDE`](firmament_core::texture::MAX_TEXTURE_SIDE).
 pub fn load_texture(key: &str, path: &Path) -> Result<TextureImage, SceneError> {
-    Err(SceneError::Asset {
+    guarded(|| texture_file::read(path)).map_err(|reason| SceneError::Asset {
         key: key.to_owned(),
         path: path.display().to_string(),
-        reason: "texture loading is not implemented yet".to_owned(),
+        reason,
     })
+}
+
+/// Runs a loader, turning a panic inside a parser dependency into an error: the parsers are
+/// third-party code fed with user files, and a malformed file must not bring the program down.
+fn guarded<T>(load: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    catch_unwind(AssertUnwindSafe(load)).unwrap_or_else(|_| {
+        Err("the file is malformed: its parser failed on it (panicked; see the message above)".to_owned())
+    })
+}
+
+/// Reads a whole file, with the operating system's reason on failure.
+fn read_file(path: &Path, what: &str) -> Result<Vec<u8>, String> {
+    std::fs::read(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => format!("{what} {} does not exist", path.display()),
+        _ => format!("cannot read {what} {}: {e}", path.display()),
+    })
+}
+
+/// A mesh as a file gives it, before the repairs of [`finish_mesh`].
+#[derive(Debug, Clone, Default)]
+struct RawMesh {
+    /// Vertex positions.
+    positions: Vec<[f32; 3]>,
+    /// Per-vertex normals, if the file has them (one per position).
+    normals: Option<Vec<[f32; 3]>>,
+    /// Per-vertex texture coordinates, OpenGL convention, if the file has them.
+    tex_coords: Option<Vec<[f32; 2]>>,
+    /// Triangle list.
+    indices: Vec<u32>,
+}
+
+/// Checks a [`RawMesh`] and repairs what the [module documentation](self) lists, logging it;
+/// `file` and `label` (which mesh of the file) name it in messages.
+fn finish_mesh(raw: RawMesh, file: &Path, label: &str) -> Result<Mesh, String> {
+    let file = file.display();
+    let n = raw.positions.len();
+    if n == 0 {
+        return Err(format!("{label} has no vertices"));
+    }
+    if let Some((i, p)) = raw
+        .positions
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(format!("{label}: vertex {i} has a non-finite position {p:?}"));
+    }
+    let tex_coords = match raw.tex_coords {
+        None => vec![[0.0; 2]; n],
+        Some(t) if t.len() != n => {
+            return Err(format!("{label}: {} texture coordinates for {n} vertices", t.len()));
+        }
+        Some(t) => {
+            if let Some((i, t)) = t.iter().enumerate().find(|(_, t)| !t.iter().all(|c| c.is_finite())) {
+                return Err(format!("{label}: vertex {i} has non-finite texture coordinates {t:?}"));
+            }
+            t
+        }
+    };
+    if let Some(normals) = &raw.normals {
+        if normals.len() != n {
+            return Err(format!("{label}: {} normals for {n} vertices", normals.len()));
+        }
+    }
+    if !raw.indices.len().is_multiple_of(3) {
+        return Err(format!(
+            "{label}: {} indices, not a whole number of triangles",
+            raw.indices.len()
+        ));
+    }
+    if let Some(i) = raw.indices.iter().find(|&&i| i as usize >= n) {
+        return Err(format!(
+            "{label}: index {i} is out of range (the mesh has {n} vertices)"
+        ));
+    }
+
+    // Drop degenerate triangles; sum the others' unnormalised normals (twice their area) per vertex.
+    let position = |i: u32| DVec3::from(raw.positions[i as usize].map(f64::from));
+    let mut indices = Vec::with_capacity(raw.indices.len());
+    let mut sums = vec![DVec3::ZERO; n];
+    let mut dropped = 0_usize;
+    for triangle in raw.indices.chunks_exact(3) {
+        let (a, b, c) = (triangle[0], triangle[1], triangle[2]);
+        let cross = (position(b) - position(a)).cross(position(c) - position(a));
+        if a == b || b == c || a == c || cross == DVec3::ZERO {
+            dropped += 1;
+            continue;
+        }
+        indices.extend_from_slice(triangle);
+        for v in triangle {
+            sums[*v as usize] += cross;
+        }
+    }
+    let total = raw.indices.len() / 3;
+    if indices.is_empty() {
+        return Err(if total == 0 {
+            format!("{label} has no triangles")
+        } else {
+            format!("{label} has no triangles left: all {total} are degenerate (zero area or a repeated vertex)")
+        });
+    }
+    if dropped > 0 {
+        tracing::info!(
+            "{file}: {label}: dropped {dropped} of {total} triangles as degenerate (zero area or a repeated vertex)"
+        );
+    }
+
+    let mut fallbacks = 0_usize;
+    let mut computed = |v: usize| -> [f32; 3] {
+        let sum = sums[v];
+        if sum == DVec3::ZERO {
+            fallbacks += 1;
+            [0.0, 0.0, 1.0]
+        } else {
+            // `sum` is finite (products of f32 coordinates cannot overflow an f64) and non-zero.
+            sum.normalize().as_vec3().to_array()
+        }
+    };
+    let normals = match raw.normals {
+        None => {
+            tracing::info!("{file}: {label} has no normals; computing smooth area-weighted vertex normals");
+            (0..n).map(&mut computed).collect()
+        }
+        Some(given) => {
+            let (mut replaced, mut renormalised) = (0_usize, 0_usize);
+            let normals = given
+                .iter()
+                .enumerate()
+                .map(|(v, normal)| {
+                    let d = DVec3::from(normal.map(f64::from));
+                    let length = d.length();
+                    if !length.is_finite() || length == 0.0 {
+                        replaced += 1;
+                        computed(v)
+                    } else if (length - 1.0).abs() > 1e-6 {
+                        renormalised += 1;
+                        (d / length).as_vec3().to_array()
+                    } else {
+                        *normal
+                    }
+                })
+                .collect();
+            if replaced > 0 {
+                tracing::warn!(
+                    "{file}: {label}: {replaced} vertex normals are zero or not finite; replaced by computed smooth normals"
+                );
+            }
+            if renormalised > 0 {
+                tracing::debug!("{file}: {label}: normalised {renormalised} vertex normals that were not unit length");
+            }
+            normals
+        }
+    };
+    if fallbacks > 0 {
+        tracing::info!(
+            "{file}: {label}: {fallbacks} vertices have no triangle of non-zero area to take a normal from (or their \
+             triangles' normals cancel); they get the normal (0, 0, 1)"
+        );
+    }
+
+    let mesh = Mesh {
+        positions: raw.positions,
+        normals,
+        tex_coords,
+        indices,
+    };
+    mesh.validate().map_err(|e| format!("{label}: {e}"))?;
+    Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+
+    fn is_unit(normal: [f32; 3]) -> bool {
+        (f64::from(Vec3::from(normal).length()) - 1.0).abs() < 1e-6
+    }
+
+    fn raw(positions: &[[f32; 3]], indices: &[u32]) -> RawMesh {
+        RawMesh {
+            positions: positions.to_vec(),
+            indices: indices.to_vec(),
+            ..RawMesh::default()
+        }
+    }
+
+    const FILE: &str = "test.obj";
+
+    #[test]
+    fn computed_normals_are_area_weighted() {
+        // Vertex 0 is shared by a triangle of area 2 facing +z and one of area 0.5 facing +y.
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0],
+        ];
+        let mesh = finish_mesh(raw(&positions, &[0, 1, 2, 0, 3, 4]), Path::new(FILE), "mesh").expect("valid");
+        let expected = DVec3::new(0.0, 0.5, 2.0).normalize();
+        assert!((DVec3::from(mesh.normals[0].map(f64::from)) - expected).length() < 1e-7);
+        assert_eq!(mesh.normals[1], [0.0, 0.0, 1.0]);
+        assert_eq!(mesh.normals[3], [0.0, 1.0, 0.0]);
+        assert_eq!(mesh.tex_coords, vec![[0.0; 2]; 5]);
+        assert!(mesh.normals.iter().all(|n| is_unit(*n)));
+    }
+
+    #[test]
+    fn degenerate_triangles_are_dropped_and_lonely_vertices_get_plus_z() {
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [5.0, 5.0, 5.0],
+        ];
+        // (0, 1, 3) is collinear, (1, 1, 2) repeats a vertex; vertex 3 is only in a degenerate one, 4 in none.
+        let mesh = finish_mesh(raw(&positions, &[0, 1, 2, 0, 1, 3, 1, 1, 2]), Path::new(FILE), "mesh").expect("valid");
+        assert_eq!(mesh.indices, [0, 1, 2]);
+        assert_eq!(mesh.normals[3], [0.0, 0.0, 1.0]);
+        assert_eq!(mesh.normals[4], [0.0, 0.0, 1.0]);
+        // Seen from -z the triangle is counter-clockwise: its normal is still +z by the cross product.
+        let flipped = finish_mesh(raw(&positions, &[0, 2, 1]), Path::new(FILE), "mesh").expect("valid");
+        assert_eq!(flipped.normals[0], [0.0, 0.0, -1.0]);
+    }
+
+    #[test]
+    fn file_normals_are_repaired() {
+        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let mut m = raw(&positions, &[0, 1, 2]);
+        m.normals = Some(vec![[0.0, 0.0, 0.0], [0.0, 3.0, 4.0], [f32::NAN, 0.0, 1.0]]);
+        let mesh = finish_mesh(m, Path::new(FILE), "mesh").expect("valid");
+        assert_eq!(mesh.normals[0], [0.0, 0.0, 1.0]);
+        assert_eq!(mesh.normals[1], [0.0, 0.6, 0.8]);
+        assert_eq!(mesh.normals[2], [0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn broken_meshes_are_errors() {
+        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let error = |m: RawMesh| finish_mesh(m, Path::new(FILE), "mesh `x`").expect_err("broken");
+        assert!(error(raw(&positions, &[0, 1, 1])).contains("all 1 are degenerate"));
+        assert!(error(raw(&positions, &[])).contains("no triangles"));
+        assert!(error(raw(&positions, &[0, 1, 3])).contains("index 3 is out of range"));
+        assert!(error(raw(&positions, &[0, 1])).contains("2 indices"));
+        assert!(error(raw(&[], &[])).contains("no vertices"));
+        let mut nan = raw(&positions, &[0, 1, 2]);
+        nan.positions[1][2] = f32::INFINITY;
+        assert!(error(nan).contains("vertex 1 has a non-finite position"));
+        let mut tex = raw(&positions, &[0, 1, 2]);
+        tex.tex_coords = Some(vec![[0.0, 0.0]; 2]);
+        assert!(error(tex).contains("2 texture coordinates for 3 vertices"));
+    }
 }

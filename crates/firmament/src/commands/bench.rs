@@ -1,14 +1,18 @@
-//! `firmament bench`: the atmosphere's per-pass times on this machine's adapter.
+//! `firmament bench`: the atmosphere's per-pass times, or the object pass's Gouraud and Phong
+//! times (`--objects`), on this machine's adapter.
 
 use anyhow::{Context, Result, bail};
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
-use firmament_render::bench::{AtmosphereBench, bench_atmosphere};
+use firmament_render::bench::{AtmosphereBench, ObjectBench, bench_atmosphere, bench_objects, sphere_grid};
 
 use crate::cli::BenchArgs;
 
 /// Loads the scene (an atmosphere preset by default), times the passes and prints the figures.
 pub(crate) fn run(args: &BenchArgs) -> Result<()> {
+    if let Some(count) = args.objects {
+        return run_objects(args, count);
+    }
     let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
     let extra = vec![
         format!("render.width={}", args.width),
@@ -83,4 +87,63 @@ fn json(b: &AtmosphereBench) -> String {
         "difference_worst": b.difference.1,
     })
     .to_string()
+}
+
+/// `--objects`: the scene's objects (if a scene is given and has some), else the sphere grid.
+fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
+    let (layer, camera) = match args
+        .scene
+        .as_deref()
+        .or(args.scene_args.preset.as_deref().map(std::path::Path::new))
+    {
+        Some(_) => {
+            let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
+                .context("cannot build the scene")?;
+            let frame = scene.frame_at(None)?;
+            if frame.objects.objects.is_empty() {
+                bail!("bench --objects times the object pass: the scene has no [[objects]]");
+            }
+            (frame.objects, frame.camera)
+        }
+        None => sphere_grid(count as usize, 25, 20)?,
+    };
+    let ctx = GpuContext::headless(args.backend.into())?;
+    let result = bench_objects(&ctx, &layer, &camera, args.width, args.height, args.frames)?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "adapter": result.adapter,
+                "width": result.width,
+                "height": result.height,
+                "frames": result.frames,
+                "objects": result.objects,
+                "triangles": result.triangles,
+                "lights": result.lights,
+                "timing": result.timing.describe(),
+                "gouraud_ms": result.gouraud_ms,
+                "phong_ms": result.phong_ms,
+            })
+        );
+    } else {
+        print_objects(&result);
+    }
+    Ok(())
+}
+
+fn print_objects(b: &ObjectBench) {
+    println!(
+        "{} — {}x{}, {} objects, {} triangles, {} lights, median of {} frames, {}",
+        b.adapter,
+        b.width,
+        b.height,
+        b.objects,
+        b.triangles,
+        b.lights,
+        b.frames,
+        b.timing.describe()
+    );
+    println!("  {:<30} {:>10.3} ms", "Gouraud (lit per vertex)", b.gouraud_ms);
+    println!("  {:<30} {:>10.3} ms", "Phong (lit per fragment)", b.phong_ms);
+    println!("  Phong / Gouraud: {:.2}x", b.phong_ms / b.gouraud_ms);
 }

@@ -15,8 +15,17 @@ pub(crate) fn run(args: &CheckArgs) -> Result<()> {
     };
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
         .with_context(|| format!("{what} is not a valid scene"))?;
+    // Builds the meshes and loads the mesh and texture files, so those are checked too.
+    let frame = scene
+        .frame_at(None)
+        .with_context(|| format!("{what} is not a valid scene"))?;
+    let objects = match frame.objects.objects.len() {
+        0 => String::new(),
+        1 => ", 1 object".to_owned(),
+        n => format!(", {n} objects"),
+    };
     println!(
-        "{what}: ok (preset {}, {}x{}, {})",
+        "{what}: ok (preset {}, {}x{}, {}{objects})",
         scene.preset.as_deref().unwrap_or("default"),
         scene.render.width,
         scene.render.height,
@@ -29,6 +38,7 @@ pub(crate) fn run(args: &CheckArgs) -> Result<()> {
 fn sky_summary(scene: &Scene) -> String {
     match scene.sky.model {
         SkyModelName::Gradient => format!("gradient sky at {}", scene.time.time_of_day),
+        SkyModelName::Clear => "clear colour".to_owned(),
         SkyModelName::Atmosphere => {
             let suns = match scene.suns.len() {
                 1 => "1 sun".to_owned(),

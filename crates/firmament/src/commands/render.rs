@@ -4,6 +4,7 @@ use anyhow::{Context, Result, bail};
 use firmament_core::Frame;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::color::{LinearRgb, linear_to_srgb};
+use firmament_core::display::Encoding;
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use firmament_render::headless::HeadlessRenderer;
@@ -118,7 +119,14 @@ fn reference_hdr(radiance: &[LinearRgb], width: u32, height: u32) -> Image<f32> 
 /// The reference through the scene's exposure and tone curve, sRGB-encoded like the GPU's
 /// tonemap pass (the core's display model is what that pass is tested against).
 fn reference_ldr(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32) -> Image<u8> {
-    let encode = |v: f64| (linear_to_srgb(v.clamp(0.0, 1.0)) * 255.0).round() as u8;
+    let encode = |v: f64| {
+        let v = v.clamp(0.0, 1.0);
+        let v = match frame.display.encoding {
+            Encoding::Srgb => linear_to_srgb(v),
+            Encoding::None => v,
+        };
+        (v * 255.0).round() as u8
+    };
     Image {
         width,
         height,

@@ -1,0 +1,117 @@
+//! Image files and embedded images → [`TextureImage`]: decoded with the `image` crate (PNG,
+//! JPEG, OpenEXR), converted to 8-bit RGBA as stored (no sRGB decoding; 16-bit channels scaled,
+//! floats clamped to `[0, 1]` and scaled) and flipped so that row 0 is the bottom of the picture,
+//! `t = 0`, as `glTexImage2D` takes it.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use firmament_core::texture::{MAX_TEXTURE_SIDE, TextureImage};
+use image::{ImageFormat, ImageReader, Limits};
+
+/// The formats the workspace builds the `image` crate with, for messages.
+const FORMATS: &str = "PNG, JPEG and OpenEXR";
+
+/// Reads and decodes an image file (the format from its contents, else its extension).
+pub(super) fn read(path: &Path) -> Result<TextureImage, String> {
+    let bytes = super::read_file(path, "image file")?;
+    decode(&bytes, ImageFormat::from_path(path).ok())
+}
+
+/// Decodes an encoded image; `hint` is the format to assume when the contents do not tell.
+pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>) -> Result<TextureImage, String> {
+    let guessed = ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read the image: {e}"))?
+        .format();
+    let Some(format) = guessed.or(hint) else {
+        return Err(format!(
+            "not an image file of a known format (firmament reads {FORMATS})"
+        ));
+    };
+    let failed = |e: image::ImageError| format!("cannot decode the {format:?} image: {e} (firmament reads {FORMATS})");
+
+    // Check the size from the header before decoding the pixels.
+    let (width, height) = ImageReader::with_format(Cursor::new(bytes), format)
+        .into_dimensions()
+        .map_err(failed)?;
+    check_side("width", width)?;
+    check_side("height", height)?;
+
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
+    let mut limits = Limits::default();
+    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    // An 8192² RGBA image of 32-bit floats is 1 GiB.
+    limits.max_alloc = Some(3 << 29);
+    reader.limits(limits);
+    let rgba = reader.decode().map_err(failed)?.into_rgba8();
+    let (width, height) = rgba.dimensions();
+    check_side("width", width)?;
+    check_side("height", height)?;
+
+    let row_bytes = width as usize * 4;
+    let texels: Vec<[u8; 4]> = rgba
+        .as_raw()
+        .chunks_exact(row_bytes)
+        .rev()
+        .flat_map(|row| row.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]))
+        .collect();
+    let texture = TextureImage { width, height, texels };
+    texture.validate().map_err(|e| format!("bad image: {e}"))?;
+    Ok(texture)
+}
+
+fn check_side(name: &str, side: u32) -> Result<(), String> {
+    if (1..=MAX_TEXTURE_SIDE).contains(&side) {
+        Ok(())
+    } else {
+        Err(format!(
+            "the image {name} is {side} pixels; textures must be 1 to {MAX_TEXTURE_SIDE} pixels on a side"
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use image::{Rgba, RgbaImage};
+
+    use super::*;
+
+    fn png(image: &RgbaImage) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        image
+            .write_to(&mut Cursor::new(&mut bytes), ImageFormat::Png)
+            .expect("encodes");
+        bytes
+    }
+
+    #[test]
+    fn rows_are_flipped() {
+        // Top row red, bottom row blue, in file order (row 0 at the top).
+        let image = RgbaImage::from_fn(2, 3, |x, y| match y {
+            0 => Rgba([255, 0, 0, 255]),
+            2 => Rgba([0, 0, 255, 128]),
+            _ => Rgba([0, x as u8, 0, 255]),
+        });
+        let texture = decode(&png(&image), None).expect("decodes");
+        assert_eq!((texture.width, texture.height), (2, 3));
+        assert_eq!(texture.texel(0, 0), Some([0, 0, 255, 128]));
+        assert_eq!(texture.texel(1, 1), Some([0, 1, 0, 255]));
+        assert_eq!(texture.texel(1, 2), Some([255, 0, 0, 255]));
+    }
+
+    #[test]
+    fn bad_images_are_errors() {
+        let error = decode(b"not an image", None).expect_err("garbage");
+        assert!(error.contains("not an image file of a known format"), "{error}");
+        let error = decode(b"not an image", Some(ImageFormat::Png)).expect_err("garbage");
+        assert!(error.contains("cannot decode the Png image"), "{error}");
+        let mut truncated = png(&RgbaImage::new(4, 4));
+        truncated.truncate(truncated.len() / 2);
+        assert!(decode(&truncated, None).is_err());
+        let wide = png(&RgbaImage::new(MAX_TEXTURE_SIDE + 1, 1));
+        let error = decode(&wide, None).expect_err("too wide");
+        assert!(error.contains("width is 8193 pixels"), "{error}");
+    }
+}
