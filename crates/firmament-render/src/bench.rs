@@ -431,7 +431,7 @@ pub fn bench_objects(
     let mut pass = ObjectPass::new(&ctx.device, &ctx.queue);
     let mut time = |shading: Shading| {
         let mut layer = layer.clone();
-        if let ObjectLighting::Classic(c) = &mut layer.lighting {
+        if let ObjectLighting::Classic(c) | ObjectLighting::Sky(c) = &mut layer.lighting {
             c.shading = shading;
         }
         pass.prepare(&ctx.device, &ctx.queue, &layer, &camera);
@@ -450,10 +450,7 @@ pub fn bench_objects(
         frames,
         objects: layer.objects.len(),
         triangles: layer.objects.iter().map(|o| o.mesh.triangle_count()).sum(),
-        lights: match &layer.lighting {
-            ObjectLighting::Classic(c) => c.lights.len(),
-            ObjectLighting::Unlit => 0,
-        },
+        lights: layer.lighting.equations().map_or(0, |c| c.lights.len()),
         timing: timing(ctx),
         gouraud_ms,
         phong_ms,

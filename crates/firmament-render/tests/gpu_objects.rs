@@ -543,3 +543,40 @@ fn the_renderer_writes_the_equations_colours_as_8_bit_gl_pixels() {
     eprintln!("8-bit GL pixels: {checked} checked, worst {worst} LSB");
     assert!(checked > 1500, "only {checked} pixels");
 }
+
+#[test]
+fn sky_lit_objects_keep_radiance_above_one() {
+    // Under a physical sky the same equations run in radiance units with no clamping: a sun
+    // brighter than 1 must give pixels brighter than 1, exactly as the unclamped equations say.
+    let mesh = glt_sphere();
+    let sun = eye_light(Light {
+        position: DVec4::new(-0.5, 0.6, 1.0, 0.0),
+        diffuse: rgba(3.0, 2.6, 2.2),
+        specular: rgba(3.0, 2.6, 2.2),
+        ambient: rgba(0.0, 0.0, 0.0),
+        ..Light::gl_default(0)
+    });
+    let material = Material {
+        ambient: rgba(0.6, 0.5, 0.4),
+        diffuse: rgba(0.6, 0.5, 0.4),
+        specular: rgba(0.3, 0.3, 0.3),
+        shininess: 30.0,
+        ..Material::default()
+    };
+    let lighting = ClassicLighting {
+        lights: vec![sun],
+        model: LightModel {
+            ambient: rgba(0.4, 0.5, 0.7),
+            local_viewer: true,
+            ..LightModel::default()
+        },
+        shading: Shading::Phong,
+        specular: SpecularModel::Blinn,
+    };
+    let layer = ObjectLayer {
+        objects: vec![sphere(&mesh, material)],
+        lighting: ObjectLighting::Sky(lighting),
+        fog: SceneFog::None,
+    };
+    check("sky-lit, unclamped", &layer);
+}

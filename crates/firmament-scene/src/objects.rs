@@ -12,6 +12,7 @@ use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, MAX_CLASSIC_LIGHTS, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight,
     SceneObject, Shading, TextureFilter, TransformStep, transform_from_steps,
 };
+use firmament_core::classic::sky_light::sky_lighting;
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3, DVec4};
@@ -19,8 +20,9 @@ use glam::{DMat4, DVec3, DVec4};
 use crate::assets;
 use crate::error::SceneError;
 use crate::model::{
-    FilterName, FogCoordinateName, FogModeName, GlColor, LightEntry, LightSpaceName, LightingModelName, MaterialEntry,
-    MeshEntry, ObjectEntry, Scene, ShadingName, SpecularName, TextureEntry, TransformEntry,
+    AtmosphereModelName, FilterName, FogCoordinateName, FogModeName, GlColor, LightEntry, LightSpaceName,
+    LightingModelName, MaterialEntry, MeshEntry, ObjectEntry, Scene, ShadingName, SkyModelName, SpecularName,
+    TextureEntry, TransformEntry,
 };
 use crate::validate::{check, in_range, non_negative};
 
@@ -321,7 +323,8 @@ fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject
     Ok(out)
 }
 
-fn lighting(scene: &Scene) -> Result<ObjectLighting, SceneError> {
+/// The objects' lighting; `light_sky` false skips the sky's (costly) irradiance for validation.
+fn lighting(scene: &Scene, light_sky: bool) -> Result<ObjectLighting, SceneError> {
     let l = &scene.lighting;
     check(
         scene.lights.len() <= MAX_CLASSIC_LIGHTS,
@@ -335,26 +338,46 @@ fn lighting(scene: &Scene) -> Result<ObjectLighting, SceneError> {
         .enumerate()
         .map(|(i, e)| light(i, e))
         .collect::<Result<Vec<_>, _>>()?;
+    let shading = match l.shading {
+        ShadingName::Flat => Shading::Flat,
+        ShadingName::Gouraud => Shading::Gouraud,
+        ShadingName::Phong => Shading::Phong,
+    };
+    let specular = match l.specular {
+        SpecularName::Blinn => SpecularModel::Blinn,
+        SpecularName::Phong => SpecularModel::Phong,
+    };
+    let model = LightModel {
+        ambient: color("lighting.ambient", l.ambient)?,
+        local_viewer: l.local_viewer,
+        two_side: l.two_side,
+        separate_specular: l.separate_specular,
+    };
     Ok(match l.model {
         LightingModelName::Unlit => ObjectLighting::Unlit,
         LightingModelName::Classic => ObjectLighting::Classic(ClassicLighting {
             lights,
-            model: LightModel {
-                ambient: color("lighting.ambient", l.ambient)?,
-                local_viewer: l.local_viewer,
-                two_side: l.two_side,
-                separate_specular: l.separate_specular,
-            },
-            shading: match l.shading {
-                ShadingName::Flat => Shading::Flat,
-                ShadingName::Gouraud => Shading::Gouraud,
-                ShadingName::Phong => Shading::Phong,
-            },
-            specular: match l.specular {
-                SpecularName::Blinn => SpecularModel::Blinn,
-                SpecularName::Phong => SpecularModel::Phong,
-            },
+            model,
+            shading,
+            specular,
         }),
+        LightingModelName::Sky => {
+            check(
+                scene.sky.model == SkyModelName::Atmosphere && scene.atmosphere.model == AtmosphereModelName::Physical,
+                "lighting.model",
+                "\"sky\"",
+                "objects lit by the sky need the physical atmosphere (sky.model = \"atmosphere\", atmosphere.model = \"physical\")",
+            )?;
+            if !light_sky {
+                // Validation only: the reference's sky irradiance is computed when the frame is.
+                return Ok(ObjectLighting::Unlit);
+            }
+            let camera = glam::DVec3::from_array(scene.camera.position);
+            let mut lit = sky_lighting(&scene.atmosphere_sky()?, camera, shading, specular);
+            lit.model.two_side = l.two_side;
+            lit.model.separate_specular = l.separate_specular;
+            ObjectLighting::Sky(lit)
+        }
     })
 }
 
@@ -419,7 +442,7 @@ fn fog(scene: &Scene) -> Result<SceneFog, SceneError> {
 /// Checks every rule of `[lighting]`, `[[lights]]`, `[[objects]]` and `[fog]` without loading
 /// files (loading happens in [`object_layer`]).
 pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
-    lighting(scene)?;
+    lighting(scene, false)?;
     fog(scene)?;
     objects(scene, TimeOfDay::MIDNIGHT, false)?;
     Ok(())
@@ -430,7 +453,7 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
 pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay) -> Result<ObjectLayer, SceneError> {
     Ok(ObjectLayer {
         objects: objects(scene, time, true)?,
-        lighting: lighting(scene)?,
+        lighting: lighting(scene, true)?,
         fog: fog(scene)?,
     })
 }

@@ -82,6 +82,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/seed-mars.toml"),
     },
     Preset {
+        name: "earth-objects",
+        summary: "atmosphere: spheres and blocks on a street, lit by the Sun and sky, fading with distance",
+        toml: include_str!("presets/earth-objects.toml"),
+    },
+    Preset {
         name: "superbible-ads",
         summary: "classic: the SuperBible's blue sphere, ADS lighting per vertex (Gouraud)",
         toml: include_str!("presets/superbible-ads.toml"),

@@ -179,6 +179,10 @@ fn bad_values_name_the_key_and_the_rule() {
         ),
         ("[lighting]\nshading = \"toon\"\n".to_owned(), "lighting.shading"),
         (
+            "[lighting]\nmodel = \"sky\"\n".to_owned(),
+            "lighting.model = \"sky\": objects lit by the sky need the physical atmosphere",
+        ),
+        (
             "[[lights]]\nposition = [0.0, 0.0, 0.0, 0.0]\n".to_owned(),
             "lights[0].position",
         ),
@@ -224,4 +228,25 @@ texture = { file = "tex.png", filter = "nearest" }
     assert_eq!(object.mesh.normals[0], [0.0, 0.0, 1.0]);
     let texture = object.texture.as_ref().expect("textured");
     assert_eq!(texture.image.texel(1, 0), Some([0, 0, 255, 255]));
+}
+
+#[test]
+fn sky_lighting_comes_from_the_atmosphere_suns() {
+    let scene = load(SceneSource::Preset("earth-objects"), None, &[]).expect("valid");
+    let frame = scene.frame_at(None).expect("frame");
+    let ObjectLighting::Sky(lighting) = &frame.objects.lighting else {
+        panic!("sky lighting")
+    };
+    assert_eq!(lighting.lights.len(), 1);
+    let sun = lighting.lights[0];
+    assert_eq!(sun.space, LightSpace::World);
+    assert_eq!(sun.light.position.w, 0.0);
+    // The Sun 20° up in the south-west: its light comes from there.
+    let d = sun.light.position.truncate();
+    assert!(
+        (d.z - 20f64.to_radians().sin()).abs() < 1e-9 && d.x < 0.0 && d.y < 0.0,
+        "{d}"
+    );
+    assert!(sun.light.diffuse.y > lighting.model.ambient.y && lighting.model.ambient.y > 0.0);
+    assert!(!frame.objects.lighting.clamps());
 }

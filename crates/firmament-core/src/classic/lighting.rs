@@ -170,6 +170,17 @@ impl Lighting<'_> {
     /// Lights a point at eye-space `position` with eye-space `normal` (normalised here, like
     /// `GL_NORMALIZE`). `front_facing` selects the material when two-sided lighting is on.
     pub fn shade(&self, position: DVec3, normal: DVec3, front_facing: bool) -> LitColor {
+        let lit = self.shade_unclamped(position, normal, front_facing);
+        let clamp = |c: DVec4| c.clamp(DVec4::ZERO, DVec4::ONE);
+        LitColor {
+            primary: clamp(lit.primary),
+            secondary: clamp(lit.secondary),
+        }
+    }
+
+    /// [`Self::shade`] without GL's clamping to [0, 1]: the same equation in radiance units, for
+    /// objects lit by a physical sky.
+    pub fn shade_unclamped(&self, position: DVec3, normal: DVec3, front_facing: bool) -> LitColor {
         let back = self.model.two_side && !front_facing;
         let (m, n) = if back {
             (&self.back, -normal.normalize_or_zero())
@@ -227,11 +238,9 @@ impl Lighting<'_> {
         } else {
             (color + spec_rgb, DVec4::ZERO)
         };
-        let alpha = m.diffuse.w;
-        let clamp = |c: DVec4| c.clamp(DVec4::ZERO, DVec4::ONE);
         LitColor {
-            primary: clamp(DVec4::new(primary.x, primary.y, primary.z, alpha)),
-            secondary: clamp(DVec4::new(secondary.x, secondary.y, secondary.z, 0.0)),
+            primary: DVec4::new(primary.x, primary.y, primary.z, m.diffuse.w),
+            secondary: DVec4::new(secondary.x, secondary.y, secondary.z, 0.0),
         }
     }
 }

@@ -8,3 +8,4 @@
 pub mod fog;
 pub mod lighting;
 pub mod scene;
+pub mod sky_light;

@@ -94,6 +94,24 @@ pub enum ObjectLighting {
     Unlit,
     /// The OpenGL 2.1 fixed-function equations.
     Classic(ClassicLighting),
+    /// The same equations in radiance units and without GL's clamping to [0, 1]: objects under a
+    /// physical atmosphere, lit by its suns and sky ([`super::sky_light::sky_lighting`]).
+    Sky(ClassicLighting),
+}
+
+impl ObjectLighting {
+    /// The lights, light model, shading and specular model, unless lighting is off.
+    pub fn equations(&self) -> Option<&ClassicLighting> {
+        match self {
+            Self::Unlit => None,
+            Self::Classic(c) | Self::Sky(c) => Some(c),
+        }
+    }
+
+    /// Whether colours are clamped to [0, 1] as GL does (not for [`Self::Sky`]'s radiance).
+    pub fn clamps(&self) -> bool {
+        !matches!(self, Self::Sky(_))
+    }
 }
 
 /// Texture filtering, for both magnification and minification (no mipmaps).

@@ -55,7 +55,8 @@ pub struct ClassicFrameUniforms {
     pub scene_ambient: [f32; 4],
     /// Light count, local viewer, two-sided, separate specular.
     pub model_flags: [u32; 4],
-    /// Shading (0 Gouraud or flat, 1 Phong, 2 unlit), specular model (0 Blinn, 1 Phong).
+    /// Shading (0 Gouraud or flat, 1 Phong, 2 unlit), specular model (0 Blinn, 1 Phong),
+    /// radiance (1: no clamping to [0, 1], objects under a physical sky).
     pub mode: [u32; 4],
     /// Fog equation (0 off, 1 linear, 2 exp, 3 exp2, 4 height), coordinate (0 eye-plane depth,
     /// 1 distance).
@@ -119,9 +120,9 @@ impl ClassicFrameUniforms {
             },
             ..Self::zeroed()
         };
-        match lighting {
-            ObjectLighting::Unlit => uniforms.mode = [2, 0, 0, 0],
-            ObjectLighting::Classic(classic) => {
+        match lighting.equations() {
+            None => uniforms.mode = [2, 0, 0, 0],
+            Some(classic) => {
                 for (slot, scene_light) in uniforms.lights.iter_mut().zip(&classic.lights) {
                     let l = scene_light.in_eye_space(view);
                     let cos_cutoff = if l.spot_cutoff == 180.0 {
@@ -161,7 +162,7 @@ impl ClassicFrameUniforms {
                         SpecularModel::Blinn => 0,
                         SpecularModel::Phong => 1,
                     },
-                    0,
+                    u32::from(!lighting.clamps()),
                     0,
                 ];
             }

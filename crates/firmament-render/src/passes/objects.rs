@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use firmament_core::Camera;
-use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading, TextureFilter};
+use firmament_core::classic::scene::{ObjectLayer, Shading, TextureFilter};
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 
@@ -158,7 +158,7 @@ impl ObjectPass {
             camera.position.z,
         );
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&frame));
-        let flat = matches!(&layer.lighting, ObjectLighting::Classic(c) if c.shading == Shading::Flat);
+        let flat = layer.lighting.equations().is_some_and(|c| c.shading == Shading::Flat);
 
         let mut used_meshes = Vec::with_capacity(layer.objects.len());
         let mut used_textures = Vec::new();

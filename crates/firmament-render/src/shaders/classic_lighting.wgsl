@@ -35,7 +35,8 @@ struct ClassicFrame {
     scene_ambient: vec4<f32>,
     // x = light count, y = local viewer, z = two-sided, w = separate specular
     model_flags: vec4<u32>,
-    // x = shading (0 Gouraud/flat, 1 Phong, 2 unlit), y = specular model (0 Blinn, 1 Phong)
+    // x = shading (0 Gouraud/flat, 1 Phong, 2 unlit), y = specular model (0 Blinn, 1 Phong),
+    // z = 1: radiance under a physical sky, never clamped to [0, 1]
     mode: vec4<u32>,
     // Fog: x = equation (0 off, 1 linear, 2 exp, 3 exp2 — GL 2.1 §3.10; 4 height fog),
     // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance), computed per vertex and
@@ -146,8 +147,10 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
         out.primary = vec4<f32>(color.rgb + spec.rgb, m.diffuse.a);
         out.secondary = vec4<f32>(0.0);
     }
-    out.primary = clamp(out.primary, vec4<f32>(0.0), vec4<f32>(1.0));
-    out.secondary = clamp(out.secondary, vec4<f32>(0.0), vec4<f32>(1.0));
+    if frame.mode.z == 0u {
+        out.primary = clamp(out.primary, vec4<f32>(0.0), vec4<f32>(1.0));
+        out.secondary = clamp(out.secondary, vec4<f32>(0.0), vec4<f32>(1.0));
+    }
     return out;
 }
 
@@ -200,8 +203,12 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     if object.flags.x != 0u {
         primary = primary * texel; // GL_MODULATE
     }
-    // GL's colour sum: the secondary (separate specular) colour added after texturing, clamped.
-    let color = clamp(vec4<f32>(primary.rgb + lit.secondary.rgb, primary.a), vec4<f32>(0.0), vec4<f32>(1.0));
+    // GL's colour sum: the secondary (separate specular) colour added after texturing, clamped
+    // (radiance under a physical sky is not).
+    var color = vec4<f32>(primary.rgb + lit.secondary.rgb, clamp(primary.a, 0.0, 1.0));
+    if frame.mode.z == 0u {
+        color = clamp(color, vec4<f32>(0.0), vec4<f32>(1.0));
+    }
     return apply_fog(color, in.fog_coordinate, in.eye_position);
 }
 

@@ -7,7 +7,7 @@
 
 use firmament_core::Camera;
 use firmament_core::classic::lighting::{Light, Lighting, Material};
-use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, SceneFog, SceneObject, Shading};
+use firmament_core::classic::scene::{ObjectLayer, SceneFog, SceneObject, Shading};
 use glam::{DMat3, DVec2, DVec3, DVec4};
 
 /// One object's triangles in eye space.
@@ -49,10 +49,10 @@ impl<'a> Reference<'a> {
     /// Prepares `layer` as seen by `camera` (with the target's aspect).
     pub(crate) fn new(layer: &'a ObjectLayer, camera: Camera) -> Self {
         let view = camera.view_matrix();
-        let lights = match &layer.lighting {
-            ObjectLighting::Classic(c) => c.lights.iter().map(|l| l.in_eye_space(&view)).collect(),
-            ObjectLighting::Unlit => Vec::new(),
-        };
+        let lights = layer
+            .lighting
+            .equations()
+            .map_or_else(Vec::new, |c| c.lights.iter().map(|l| l.in_eye_space(&view)).collect());
         let objects = layer
             .objects
             .iter()
@@ -84,16 +84,13 @@ impl<'a> Reference<'a> {
     }
 
     fn lighting(&self, object: &SceneObject) -> Option<Lighting<'_>> {
-        match &self.layer.lighting {
-            ObjectLighting::Unlit => None,
-            ObjectLighting::Classic(c) => Some(Lighting {
-                lights: &self.lights,
-                model: c.model,
-                front: object.front,
-                back: object.back,
-                specular: c.specular,
-            }),
-        }
+        self.layer.lighting.equations().map(|c| Lighting {
+            lights: &self.lights,
+            model: c.model,
+            front: object.front,
+            back: object.back,
+            specular: c.specular,
+        })
     }
 
     /// The colour GL's equations give at normalised device coordinates `ndc`, with its alpha;
@@ -121,11 +118,16 @@ impl<'a> Reference<'a> {
         let (primary, secondary) = match self.lighting(object.object) {
             None => (m.diffuse.clamp(DVec4::ZERO, DVec4::ONE), DVec4::ZERO),
             Some(lighting) => {
-                let shading = match &self.layer.lighting {
-                    ObjectLighting::Classic(c) => c.shading,
-                    ObjectLighting::Unlit => Shading::Gouraud,
+                let shading = self.layer.lighting.equations().map_or(Shading::Gouraud, |c| c.shading);
+                let clamps = self.layer.lighting.clamps();
+                let shade = |p: DVec3, n: DVec3| {
+                    if clamps {
+                        lighting.shade(p, n, front_facing)
+                    } else {
+                        lighting.shade_unclamped(p, n, front_facing)
+                    }
                 };
-                let lit = |i: usize| lighting.shade(object.positions[i], object.normals[i], front_facing);
+                let lit = |i: usize| shade(object.positions[i], object.normals[i]);
                 match shading {
                     Shading::Flat => {
                         let l = lit(c);
@@ -134,7 +136,7 @@ impl<'a> Reference<'a> {
                     Shading::Gouraud => (interpolate(&|i| lit(i).primary), interpolate(&|i| lit(i).secondary)),
                     Shading::Phong => {
                         let n = interpolate(&|i| object.normals[i].extend(0.0)).truncate();
-                        let l = lighting.shade(d * t, n, front_facing);
+                        let l = shade(d * t, n);
                         (l.primary, l.secondary)
                     }
                 }
@@ -150,9 +152,13 @@ impl<'a> Reference<'a> {
                 primary * texture.image.sample(st.x, st.y, texture.filter)
             }
         };
-        let color = (rgb(primary) + rgb(secondary))
-            .clamp(DVec3::ZERO, DVec3::ONE)
-            .extend(primary.w.clamp(0.0, 1.0));
+        let sum = rgb(primary) + rgb(secondary);
+        let sum = if self.layer.lighting.clamps() {
+            sum.clamp(DVec3::ZERO, DVec3::ONE)
+        } else {
+            sum
+        };
+        let color = sum.extend(primary.w.clamp(0.0, 1.0));
         let position = d * t;
         Some(match self.layer.fog {
             SceneFog::None => color,

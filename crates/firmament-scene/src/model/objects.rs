@@ -32,8 +32,12 @@ impl GlColor {
 pub enum LightingModelName {
     /// The OpenGL 2.1 fixed-function equations with `[[lights]]`.
     Classic,
-    /// Lighting off: each object's `material.diffuse` (or `color`) passed through.
+    /// Lighting off: each object's `material.diffuse` passed through.
     Unlit,
+    /// Lit by the atmosphere's `[[suns]]` (irradiance × transmittance) and sky (irradiance as the
+    /// ambient term), in radiance units; needs `sky.model = "atmosphere"`. `[[lights]]` and
+    /// `lighting.ambient` are not used.
+    Sky,
 }
 
 /// `lighting.shading`.
@@ -62,7 +66,7 @@ pub enum SpecularName {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightingSection {
-    /// `"classic"` or `"unlit"`.
+    /// `"classic"`, `"unlit"` or `"sky"`.
     pub model: LightingModelName,
     /// `"flat"`, `"gouraud"` or `"phong"`.
     pub shading: ShadingName,
