@@ -18,7 +18,7 @@ use firmament_core::frame::AtmosphereSky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, ObjectPass, SkyMethod};
+use crate::passes::{AtmospherePass, ObjectPass, SkyMethod, begin_clear_pass};
 use crate::readback::{decode_f16, read_texture};
 use crate::targets::FrameTargets;
 
@@ -152,19 +152,7 @@ fn median_ms(
 
 /// Clears the depth target to `depth` (reversed-Z) in a pass of its own.
 fn clear_depth(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, depth: f32) {
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("firmament bench depth clear"),
-        color_attachments: &[],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &targets.depth_view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(depth),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
-        ..Default::default()
-    });
+    begin_clear_pass(encoder, "firmament bench depth clear", None, &targets.depth_view, depth);
 }
 
 /// How this device's benchmarks are timed.

@@ -6,7 +6,7 @@ use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass};
+use crate::passes::{AtmospherePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass};
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
 
 /// The sky passes a frame can use.
@@ -105,27 +105,13 @@ impl Renderer {
             _ => wgpu::Color::BLACK,
         };
         {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("firmament Renderer main pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &targets.hdr_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(DEPTH_CLEAR),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
+            let mut pass = begin_clear_pass(
+                encoder,
+                "firmament Renderer main pass",
+                Some((&targets.hdr_view, clear)),
+                &targets.depth_view,
+                DEPTH_CLEAR,
+            );
             // Opaque objects first; the sky then fills only what is left.
             self.objects.draw(&mut pass);
             match self.sky {

@@ -5,6 +5,12 @@
 const FULLSCREEN: &str = include_str!("shaders/common/fullscreen.wgsl");
 /// Shared ray/ellipsoid intersection (`common/ellipsoid.wgsl`).
 const ELLIPSOID: &str = include_str!("shaders/common/ellipsoid.wgsl");
+/// Shared planet-frame view ray (`common/view_ray.wgsl`), after the ellipsoid include it needs.
+const VIEW_RAY: &str = concat!(
+    include_str!("shaders/common/ellipsoid.wgsl"),
+    "\n",
+    include_str!("shaders/common/view_ray.wgsl")
+);
 
 /// The gradient sky pass, with its includes.
 pub const SKY_GRADIENT: &str = concat!(
@@ -26,10 +32,12 @@ pub const SEED_SKY: &str = concat!(
     "\n",
     include_str!("shaders/common/ellipsoid.wgsl"),
     "\n",
+    include_str!("shaders/common/view_ray.wgsl"),
+    "\n",
     include_str!("shaders/seed_sky.wgsl")
 );
 
-/// Composes an atmosphere pass: the full-screen triangle, the ellipsoid intersection, the atmosphere includes in dependency
+/// Composes an atmosphere pass: the full-screen triangle, the ellipsoid intersection and view ray, the atmosphere includes in dependency
 /// order (`common`, `luts`, `view`), then the entry file.
 macro_rules! atmosphere_shader {
     ($($include:literal),* ; $entry:literal) => {
@@ -37,6 +45,8 @@ macro_rules! atmosphere_shader {
             include_str!("shaders/common/fullscreen.wgsl"),
             "\n",
             include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
+            include_str!("shaders/common/view_ray.wgsl"),
             "\n",
             $(include_str!(concat!("shaders/atmosphere/", $include, ".wgsl")), "\n",)*
             include_str!(concat!("shaders/atmosphere/", $entry, ".wgsl"))
@@ -87,6 +97,7 @@ pub const ALL: &[(&str, &str)] = &[
 pub const INCLUDES: &[(&str, &str)] = &[
     ("common/fullscreen", FULLSCREEN),
     ("common/ellipsoid", ELLIPSOID),
+    ("common/view_ray", VIEW_RAY),
     (
         "atmosphere/common",
         concat!(
@@ -109,6 +120,8 @@ pub const INCLUDES: &[(&str, &str)] = &[
         "atmosphere/view",
         concat!(
             include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
+            include_str!("shaders/common/view_ray.wgsl"),
             "\n",
             include_str!("shaders/atmosphere/common.wgsl"),
             "\n",

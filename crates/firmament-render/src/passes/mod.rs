@@ -3,6 +3,7 @@
 //! caller already began).
 
 pub mod atmosphere;
+mod far_plane;
 pub mod objects;
 pub mod seed_sky;
 pub mod sky_gradient;
@@ -42,6 +43,39 @@ pub(crate) fn begin_load_pass<'e>(
             view: depth,
             depth_ops: Some(wgpu::Operations {
                 load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    })
+}
+
+/// Begins a render pass that clears `depth` to `depth_value` (reversed-Z) and, if given, a colour
+/// view to its colour.
+pub(crate) fn begin_clear_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    color: Option<(&wgpu::TextureView, wgpu::Color)>,
+    depth: &wgpu::TextureView,
+    depth_value: f32,
+) -> wgpu::RenderPass<'e> {
+    let color_attachment = color.map(|(view, clear)| wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(clear),
+            store: wgpu::StoreOp::Store,
+        },
+    });
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[color_attachment],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(depth_value),
                 store: wgpu::StoreOp::Store,
             }),
             stencil_ops: None,

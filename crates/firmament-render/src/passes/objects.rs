@@ -7,7 +7,7 @@
 
 mod gpu_mesh;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use firmament_core::Camera;
@@ -47,7 +47,7 @@ struct ObjectDraw {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     texture: TextureKey,
-    mesh: Option<MeshKey>,
+    mesh: MeshKey,
 }
 
 /// Draws a frame's objects.
@@ -160,8 +160,8 @@ impl ObjectPass {
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&frame));
         let flat = layer.lighting.equations().is_some_and(|c| c.shading == Shading::Flat);
 
-        let mut used_meshes = Vec::with_capacity(layer.objects.len());
-        let mut used_textures = Vec::new();
+        let mut used_meshes = HashSet::new();
+        let mut used_textures = HashSet::new();
         self.draws.truncate(layer.objects.len());
         for (i, object) in layer.objects.iter().enumerate() {
             let mesh_key = (Arc::as_ptr(&object.mesh) as usize, flat);
@@ -174,7 +174,7 @@ impl ObjectPass {
                 };
                 self.meshes.insert(mesh_key, cached);
             }
-            used_meshes.push(mesh_key);
+            used_meshes.insert(mesh_key);
             let texture_key = match &object.texture {
                 None => (0, TextureFilter::Nearest),
                 Some(t) => {
@@ -183,7 +183,7 @@ impl ObjectPass {
                         _source: Arc::clone(&t.image),
                         gpu: GpuTexture::new(device, queue, &t.image),
                     });
-                    used_textures.push(key);
+                    used_textures.insert(key);
                     (key, t.filter)
                 }
             };
@@ -196,7 +196,7 @@ impl ObjectPass {
                     bind_group: self.bind_group(device, &uniforms, texture_key),
                     uniforms,
                     texture: texture_key,
-                    mesh: None,
+                    mesh: mesh_key,
                 };
                 if i < self.draws.len() {
                     self.draws[i] = draw;
@@ -205,7 +205,7 @@ impl ObjectPass {
                 }
             }
             let draw = &mut self.draws[i];
-            draw.mesh = self.meshes.contains_key(&mesh_key).then_some(mesh_key);
+            draw.mesh = mesh_key;
             let uniforms = ClassicObjectUniforms::new(object, &view);
             queue.write_buffer(&draw.uniforms, 0, bytemuck::bytes_of(&uniforms));
         }
@@ -256,7 +256,8 @@ impl ObjectPass {
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_pipeline(&self.pipeline);
         for draw in &self.draws {
-            let Some(mesh) = draw.mesh.and_then(|key| self.meshes.get(&key)) else {
+            // Absent only when the mesh could not be uploaded (no triangles).
+            let Some(mesh) = self.meshes.get(&draw.mesh) else {
                 continue;
             };
             pass.set_bind_group(0, &draw.bind_group, &[]);

@@ -16,7 +16,7 @@ use firmament_core::Camera;
 use firmament_core::frame::SeedSky;
 
 use crate::gpu_types::SeedSkyUniforms;
-use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -27,9 +27,7 @@ const SEED_BLEND: wgpu::BlendState = wgpu::BlendState::PREMULTIPLIED_ALPHA_BLEND
 /// Draws the seed's atmosphere behind everything already in the depth buffer.
 #[derive(Debug)]
 pub struct SeedSkyPass {
-    pipeline: wgpu::RenderPipeline,
-    uniforms: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
+    sky: FarPlaneDraw<SeedSkyUniforms>,
 }
 
 impl SeedSkyPass {
@@ -40,49 +38,24 @@ impl SeedSkyPass {
 
     /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        let (pipeline, layout) = PassPipeline {
-            owner: "SeedSkyPass",
-            source: shaders::SEED_SKY,
-            entries: &[uniform_entry(0)],
-            color,
-            depth_stencil: Some(far_plane_depth_state(depth)),
-            vertex_buffers: &[],
-            primitive: wgpu::PrimitiveState::default(),
-            constants: &[],
-        }
-        .build_blended(device, Some(SEED_BLEND));
-        let uniforms = uniform_buffer::<SeedSkyUniforms>(device, "firmament SeedSkyPass uniforms");
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("firmament SeedSkyPass bind group"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniforms.as_entire_binding(),
-            }],
-        });
         Self {
-            pipeline,
-            uniforms,
-            bind_group,
+            sky: FarPlaneDraw::new(device, "SeedSkyPass", shaders::SEED_SKY, color, depth, Some(SEED_BLEND)),
         }
     }
 
     /// Uploads the seed's parameters, stars and the camera's view for this frame.
     pub fn prepare(&self, queue: &wgpu::Queue, sky: &SeedSky, camera: &Camera) {
         let data = SeedSkyUniforms::new(sky, camera);
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&data));
+        self.sky.write(queue, &data);
     }
 
     /// Draws into a render pass the caller already began (with a depth attachment).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        self.sky.draw(pass);
     }
 
     /// Draws into `color` (loaded, not cleared) behind what `depth` already holds.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
-        let mut pass = begin_load_pass(encoder, "firmament SeedSkyPass", color, depth);
-        self.draw(&mut pass);
+        self.sky.record(encoder, color, depth);
     }
 }

@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
@@ -15,9 +15,7 @@ use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 /// geometry (saving the fill of hidden sky) or first, on a cleared depth buffer.
 #[derive(Debug)]
 pub struct GradientSkyPass {
-    pipeline: wgpu::RenderPipeline,
-    uniforms: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
+    sky: FarPlaneDraw<GradientSkyUniforms>,
 }
 
 impl GradientSkyPass {
@@ -28,49 +26,24 @@ impl GradientSkyPass {
 
     /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
     pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
-        let (pipeline, layout) = PassPipeline {
-            owner: "GradientSkyPass",
-            source: shaders::SKY_GRADIENT,
-            entries: &[uniform_entry(0)],
-            color,
-            depth_stencil: Some(far_plane_depth_state(depth)),
-            vertex_buffers: &[],
-            primitive: wgpu::PrimitiveState::default(),
-            constants: &[],
-        }
-        .build(device);
-        let uniforms = uniform_buffer::<GradientSkyUniforms>(device, "firmament GradientSkyPass uniforms");
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("firmament GradientSkyPass bind group"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniforms.as_entire_binding(),
-            }],
-        });
         Self {
-            pipeline,
-            uniforms,
-            bind_group,
+            sky: FarPlaneDraw::new(device, "GradientSkyPass", shaders::SKY_GRADIENT, color, depth, None),
         }
     }
 
     /// Uploads the sky's colours and the camera's view rotation for this frame.
     pub fn prepare(&self, queue: &wgpu::Queue, sky: &GradientSkyState, camera: &Camera) {
         let data = GradientSkyUniforms::new(sky, camera);
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&data));
+        self.sky.write(queue, &data);
     }
 
     /// Draws into a render pass the caller already began (with a depth attachment).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        self.sky.draw(pass);
     }
 
     /// Draws into `color` (loaded, not cleared) behind what `depth` already holds.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
-        let mut pass = begin_load_pass(encoder, "firmament GradientSkyPass", color, depth);
-        self.draw(&mut pass);
+        self.sky.record(encoder, color, depth);
     }
 }

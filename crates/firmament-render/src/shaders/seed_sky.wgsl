@@ -3,7 +3,7 @@
 // seed document 000_643abe256ac7a513.txt (lines 285–476, uniforms 477–495, CPU side 498–553),
 // mirroring firmament_core::atmosphere::seed::SeedAtmosphere::color step for step (the f64
 // reference the GPU test compares with).
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, common/view_ray.wgsl.
 //
 // Conventions
 // - Planet frame (the seed's "ellipsoid space"): origin at the planet centre, x and y in the
@@ -124,40 +124,11 @@ fn star_on_ray(start: vec3<f32>, d: vec3<f32>, star: SeedStar) -> bool {
     return -along + sqrt(disc) >= 0.0;
 }
 
-// A view ray in the planet frame: the line's point `origin`, unit `direction`, and the camera at
-// parameter `near` (0 unless the camera is far), with the camera's ellipsoid terms when near = 0.
-struct ViewRay {
-    origin: vec3<f32>,
-    direction: vec3<f32>,
-    near: f32,
-    c_surface: f32,
-    c_top: f32,
-}
-
-// As atmosphere/sky.wgsl's `view_ray`: with dn = (x·tan_x, y·tan_y, −1), the centre at s·cn
-// (s its depth, cn = (cx, cy, −1)) and δ = dn − cn, the closest point is s·(δ − (δ·d̂)d̂) and the
-// camera sits at t = −s·(|dn| − δ·d̂).
+// This pass's view ray (common/view_ray.wgsl), the seed's "correction 1": the direction is
+// normalised in the planet frame.
 fn view_ray(ndc: vec2<f32>) -> ViewRay {
-    let tangent = ndc * seed.camera_shape.zw;
-    let dn = vec3<f32>(tangent, -1.0);
-    let d_view = normalize(dn);
-    let rotation = mat3x3<f32>(seed.view_to_planet[0].xyz, seed.view_to_planet[1].xyz, seed.view_to_planet[2].xyz);
-    var ray: ViewRay;
-    ray.direction = normalize(rotation * d_view); // correction 1
-    if seed.center.w > 0.5 {
-        let delta = vec3<f32>(tangent - seed.center.xy, 0.0);
-        let along = dot(delta, d_view);
-        ray.origin = rotation * (seed.center.z * (delta - along * d_view));
-        ray.near = -seed.center.z * (length(dn) - along);
-        ray.c_surface = ellipsoid_c(ray.origin, seed.radii.xyz);
-        ray.c_top = ellipsoid_c(ray.origin, top_radii());
-    } else {
-        ray.origin = seed.camera.xyz;
-        ray.near = 0.0;
-        ray.c_surface = seed.camera_shape.x;
-        ray.c_top = seed.camera_shape.y;
-    }
-    return ray;
+    let planet = PlanetView(seed.view_to_planet, seed.camera, seed.camera_shape, seed.center);
+    return planet_view_ray(ndc, planet, seed.radii.xyz, top_radii());
 }
 
 // The seed's `atmosphere()`, lines 388–472: (rgb, alpha).

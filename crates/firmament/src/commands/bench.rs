@@ -91,21 +91,16 @@ fn json(b: &AtmosphereBench) -> String {
 
 /// `--objects`: the scene's objects (if a scene is given and has some), else the sphere grid.
 fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
-    let (layer, camera) = match args
-        .scene
-        .as_deref()
-        .or(args.scene_args.preset.as_deref().map(std::path::Path::new))
-    {
-        Some(_) => {
-            let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
-                .context("cannot build the scene")?;
-            let frame = scene.frame_at(None)?;
-            if frame.objects.objects.is_empty() {
-                bail!("bench --objects times the object pass: the scene has no [[objects]]");
-            }
-            (frame.objects, frame.camera)
+    let (layer, camera) = if args.scene.is_some() || args.scene_args.preset.is_some() {
+        let scene =
+            super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new()).context("cannot build the scene")?;
+        let frame = scene.frame_at(None)?;
+        if frame.objects.objects.is_empty() {
+            bail!("bench --objects times the object pass: the scene has no [[objects]]");
         }
-        None => sphere_grid(count as usize, 25, 20)?,
+        (frame.objects, frame.camera)
+    } else {
+        sphere_grid(count as usize, 25, 20)?
     };
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_objects(&ctx, &layer, &camera, args.width, args.height, args.frames)?;

@@ -8,11 +8,7 @@ use crate::cli::CheckArgs;
 /// Validates a scene file (or a preset, or the default scene) and prints a one-line summary of
 /// what it describes.
 pub(crate) fn run(args: &CheckArgs) -> Result<()> {
-    let what = match (&args.scene, &args.scene_args.preset) {
-        (Some(path), _) => path.display().to_string(),
-        (None, Some(preset)) => format!("preset `{preset}`"),
-        (None, None) => "the default scene".to_owned(),
-    };
+    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
         .with_context(|| format!("{what} is not a valid scene"))?;
     // Builds the meshes and loads the mesh and texture files, so those are checked too.

@@ -41,6 +41,15 @@ pub(crate) fn load_scene(file: Option<&std::path::Path>, args: &SceneArgs, extra
     Ok(scene?)
 }
 
+/// How messages name the scene: its file, its preset, or the default scene.
+pub(crate) fn describe_scene(file: Option<&std::path::Path>, args: &SceneArgs) -> String {
+    match (file, &args.preset) {
+        (Some(path), _) => path.display().to_string(),
+        (None, Some(preset)) => format!("preset `{preset}`"),
+        (None, None) => "the default scene".to_owned(),
+    }
+}
+
 /// `args`, with `preset` as the preset when neither a scene file nor a preset was given (for the
 /// commands that need an atmosphere scene by default).
 pub(crate) fn with_default_preset(args: &SceneArgs, scene: Option<&std::path::Path>, preset: &str) -> SceneArgs {

@@ -30,11 +30,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         // Quoted, so the scene's own validation names the rule for a bad time.
         extra.push(format!("time.time_of_day=\"{}\"", time.replace('"', "")));
     }
-    let what = match (&args.scene, &args.scene_args.preset) {
-        (Some(path), _) => path.display().to_string(),
-        (None, Some(preset)) => format!("preset `{preset}`"),
-        (None, None) => "the default scene".to_owned(),
-    };
+    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let frame = scene.frame_at(None)?;
@@ -60,12 +56,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
                 sky.radiance(camera.position, camera.view_direction(ndc))
             })
             .collect();
-        match format {
-            OutputFormat::Png => write_png(&args.output, &reference_ldr(&radiance, &frame, width, height))?,
-            OutputFormat::Exr => write_exr(&args.output, &reference_hdr(&radiance, width, height))?,
-        }
-        tracing::info!("wrote {}", args.output.display());
-        return Ok(());
+        return write_reference(&args.output, format, &radiance, &frame, width, height);
     }
     if args.reference {
         let Sky::Atmosphere(sky) = &frame.sky else {
@@ -86,12 +77,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             .into_iter()
             .map(|s| conversion.linear_srgb(s))
             .collect();
-        match format {
-            OutputFormat::Png => write_png(&args.output, &reference_ldr(&radiance, &frame, width, height))?,
-            OutputFormat::Exr => write_exr(&args.output, &reference_hdr(&radiance, width, height))?,
-        }
-        tracing::info!("wrote {}", args.output.display());
-        return Ok(());
+        return write_reference(&args.output, format, &radiance, &frame, width, height);
     }
     let ctx = GpuContext::headless(args.backend.into())?;
     tracing::info!("rendering {what} at {width}x{height}, {}", scene.time.time_of_day);
@@ -101,6 +87,23 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         OutputFormat::Exr => write_exr(&args.output, &renderer.render_hdr(&ctx, &frame, width, height)?)?,
     }
     tracing::info!("wrote {}", args.output.display());
+    Ok(())
+}
+
+/// Writes a reference image (linear sRGB radiance per pixel) like the GPU path writes its own.
+fn write_reference(
+    output: &std::path::Path,
+    format: OutputFormat,
+    radiance: &[LinearRgb],
+    frame: &Frame,
+    width: u32,
+    height: u32,
+) -> Result<()> {
+    match format {
+        OutputFormat::Png => write_png(output, &reference_ldr(radiance, frame, width, height))?,
+        OutputFormat::Exr => write_exr(output, &reference_hdr(radiance, width, height))?,
+    }
+    tracing::info!("wrote {}", output.display());
     Ok(())
 }
 

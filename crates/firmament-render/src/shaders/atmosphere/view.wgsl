@@ -1,10 +1,11 @@
 // atmosphere/view.wgsl — shared include of the view-dependent atmosphere passes: the camera, the
-// suns, the sky-view LUT mapping and the ray march. Needs atmosphere/common.wgsl and luts.wgsl.
+// suns, the sky-view LUT mapping and the ray march. Needs common/view_ray.wgsl,
+// atmosphere/common.wgsl and luts.wgsl.
 //
 // Conventions: as atmosphere/common.wgsl; every position and direction is in the planet frame,
 // positions relative to the planet centre. The camera position is f32 (its altitude and its
 // ellipsoid terms come exactly from f64); a camera far away never appears in a position at all
-// (see `view_ray` below).
+// (see common/view_ray.wgsl).
 
 const MAX_SUNS: u32 = 8u;
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
@@ -102,41 +103,10 @@ fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
     return frame.up * cos(zenith) + horizontal * sin(zenith);
 }
 
-// A view ray in the planet frame, as the part of the line that lies in front of the camera.
-struct ViewRay {
-    origin: vec3<f32>,
-    direction: vec3<f32>,
-    near: f32,         // smallest t in front of the camera
-    c_surface: f32,    // |origin/a|² − 1 against the surface and the top
-    c_top: f32,
-}
-
-// Far from the planet the camera's own position is useless in f32 (at 100 AU its rounding is a
-// sizeable fraction of the planet), so the ray starts at its closest approach to the centre,
-// computed from the small, exact offset between the pixel and the centre on the image plane:
-// with dn = (x·tan_x, y·tan_y, −1), the centre at s·cn (s its depth, cn = (cx, cy, −1)) and
-// δ = dn − cn, the closest point is s·(δ − (δ·d̂)d̂) and the camera sits at t = −s·(|dn| − δ·d̂).
+// This pass's view ray (common/view_ray.wgsl).
 fn view_ray(ndc: vec2<f32>) -> ViewRay {
-    let tangent = ndc * view.camera_shape.zw;
-    let dn = vec3<f32>(tangent, -1.0);
-    let d_view = normalize(dn);
-    let rotation = mat3x3<f32>(view.view_to_planet[0].xyz, view.view_to_planet[1].xyz, view.view_to_planet[2].xyz);
-    var ray: ViewRay;
-    ray.direction = normalize(rotation * d_view);
-    if view.center.w > 0.5 {
-        let delta = vec3<f32>(tangent - view.center.xy, 0.0);
-        let along = dot(delta, d_view);
-        ray.origin = rotation * (view.center.z * (delta - along * d_view));
-        ray.near = -view.center.z * (length(dn) - along);
-        ray.c_surface = ellipsoid_c(ray.origin, atmosphere.radii.xyz);
-        ray.c_top = ellipsoid_c(ray.origin, top_radii());
-    } else {
-        ray.origin = view.camera.xyz;
-        ray.near = 0.0;
-        ray.c_surface = view.camera_shape.x;
-        ray.c_top = view.camera_shape.y;
-    }
-    return ray;
+    let planet = PlanetView(view.view_to_planet, view.camera, view.camera_shape, view.center);
+    return planet_view_ray(ndc, planet, atmosphere.radii.xyz, top_radii());
 }
 
 // The radiance of the lit ground at p (normal `up`) from suns [first, first + count): direct
