@@ -58,6 +58,10 @@ pub struct Mesh {
     pub tex_coords: Vec<[f32; 2]>,
     /// Triangle list: three indices into the vertex arrays per triangle.
     pub indices: Vec<u32>,
+    /// Per-vertex fog coordinates (GL's `glFogCoordPointer`), one per position, or empty when
+    /// the mesh has none. Read only by fog whose coordinate is
+    /// [`FogCoordinate::Vertex`](crate::classic::fog::FogCoordinate::Vertex).
+    pub fog_coords: Vec<f32>,
 }
 
 impl Mesh {
@@ -207,8 +211,10 @@ impl Mesh {
     /// ring `j` (odd) for `i = 0..=slices`. The quad strip `v0, v1, …` gives quads
     /// `(v2k, v2k+1, v2k+3, v2k+2)` (OpenGL 2.1 §2.6.1), counter-clockwise seen from outside. How
     /// a quad becomes triangles is left to the implementation (for a convex quad either diagonal
-    /// covers the same pixels; only interpolation differs); we split it from its first vertex
-    /// into `(v2k, v2k+1, v2k+3)` and `(v2k, v2k+3, v2k+2)`, which keeps its winding. At the poles
+    /// covers the same pixels; only interpolation differs); we split it along `v2k`–`v2k+3`, as
+    /// Mesa does, into `(v2k, v2k+1, v2k+3)` and `(v2k+2, v2k, v2k+3)`: both keep the quad's
+    /// winding and end on `v2k+3`, the quad's provoking vertex for flat shading (GL 2.1 table 2.2:
+    /// vertex `2i + 2` of quad `i`, counting from 1), so a flat-shaded quad is one colour. At the poles
     /// two of a quad's corners coincide, so one triangle of each pole quad has exactly zero area
     /// (the first at the north pole, the second at the south pole): `2·slices·stacks` triangles,
     /// `2·slices` of them degenerate.
@@ -411,6 +417,16 @@ impl Mesh {
         }
         if let Some(t) = self.tex_coords.iter().find(|t| !t.iter().all(|c| c.is_finite())) {
             return invalid("mesh.tex_coords", format!("{t:?}"), "must be finite");
+        }
+        if !self.fog_coords.is_empty() && self.fog_coords.len() != n {
+            return invalid(
+                "mesh.fog_coords",
+                format!("{} fog coordinates for {n} positions", self.fog_coords.len()),
+                "needs one fog coordinate per position, or none",
+            );
+        }
+        if let Some(c) = self.fog_coords.iter().find(|c| !c.is_finite()) {
+            return invalid("mesh.fog_coords", c.to_string(), "must be finite");
         }
         let off_unit = |v: &[f32; 3]| {
             let length = DVec3::from(v.map(f64::from)).length();
@@ -689,13 +705,14 @@ impl Immediate {
         }
     }
 
-    /// `GL_QUAD_STRIP` `v0, v1, …`: quads `(v2k, v2k+1, v2k+3, v2k+2)`, each split from its first
-    /// corner into `(v2k, v2k+1, v2k+3)` and `(v2k, v2k+3, v2k+2)`.
+    /// `GL_QUAD_STRIP` `v0, v1, …`: quads `(v2k, v2k+1, v2k+3, v2k+2)`, each split along
+    /// `v2k`–`v2k+3` into `(v2k, v2k+1, v2k+3)` and `(v2k+2, v2k, v2k+3)`: both end on the quad's
+    /// provoking vertex `v2k+3`, so flat shading colours the whole quad as GL does.
     fn end_quad_strip(&mut self) {
         let f = self.first;
         for k in 0..(self.count() / 2).saturating_sub(1) {
             let [a, b, c, d] = [2 * k, 2 * k + 1, 2 * k + 3, 2 * k + 2].map(|v| f + v);
-            self.mesh.indices.extend_from_slice(&[a, b, c, a, c, d]);
+            self.mesh.indices.extend_from_slice(&[a, b, c, d, a, c]);
         }
     }
 }
@@ -956,7 +973,18 @@ mod tests {
         assert_eq!(m.tex_coords[1], [1.0, 1.0]);
         // Longitude runs from +y towards +x.
         assert!(m.positions[2][0] > 0.0 && m.positions[2][1] > 0.0);
-        assert_eq!(m.indices[..6], [0, 1, 3, 0, 3, 2]);
+        assert_eq!(m.indices[..6], [0, 1, 3, 2, 0, 3]);
+    }
+
+    #[test]
+    fn glu_sphere_quads_flat_shade_as_one_colour() {
+        // GL flat-shades a quad-strip quad with its last vertex (v2k+3): both triangles of each
+        // quad must end on it, the split diagonal being v2k–v2k+3.
+        let m = Mesh::glu_sphere(1.0, 8, 4).expect("valid");
+        for (q, quad) in m.indices.chunks_exact(6).enumerate() {
+            assert_eq!(quad[2], quad[5], "quad {q}: {quad:?}");
+            assert_eq!([quad[0], quad[2]], [quad[4], quad[5]], "quad {q}: one diagonal");
+        }
     }
 
     #[test]

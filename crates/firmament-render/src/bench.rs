@@ -347,15 +347,16 @@ pub fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLaye
             let (x, y) = ((i % side) as f64, (i / side) as f64);
             let centre = DVec3::new(x - (side as f64 - 1.0) / 2.0, y - (side as f64 - 1.0) / 2.0, -40.0);
             SceneObject {
-                mesh: Arc::clone(&mesh),
-                model: DMat4::from_translation(centre),
-                front: Material {
-                    specular: DVec4::new(0.8, 0.8, 0.8, 1.0),
-                    shininess: 40.0,
-                    ..Material::default()
-                },
                 back: Material::default(),
-                texture: None,
+                ..SceneObject::new(
+                    Arc::clone(&mesh),
+                    DMat4::from_translation(centre),
+                    Material {
+                        specular: DVec4::new(0.8, 0.8, 0.8, 1.0),
+                        shininess: 40.0,
+                        ..Material::default()
+                    },
+                )
             }
         })
         .collect();

@@ -8,7 +8,7 @@ mod support;
 use std::sync::Arc;
 
 use firmament_core::Camera;
-use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, HeightFog};
+use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, FogSun, HeightFog};
 use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
 use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight, SceneObject,
@@ -80,22 +80,20 @@ fn spot_light() -> SceneLight {
 
 /// A sphere 4 units in front of the eye, turned a little so no symmetry hides a mistake.
 fn sphere(mesh: &Arc<Mesh>, material: Material) -> SceneObject {
+    let model = transform_from_steps(&[
+        TransformStep::Translate(DVec3::new(0.0, 0.0, -4.0)),
+        TransformStep::Rotate {
+            degrees: 23.0,
+            axis: DVec3::X,
+        },
+        TransformStep::Rotate {
+            degrees: 17.0,
+            axis: DVec3::Y,
+        },
+    ]);
     SceneObject {
-        mesh: Arc::clone(mesh),
-        model: transform_from_steps(&[
-            TransformStep::Translate(DVec3::new(0.0, 0.0, -4.0)),
-            TransformStep::Rotate {
-                degrees: 23.0,
-                axis: DVec3::X,
-            },
-            TransformStep::Rotate {
-                degrees: 17.0,
-                axis: DVec3::Y,
-            },
-        ]),
-        front: material,
         back: Material::default(),
-        texture: None,
+        ..SceneObject::new(Arc::clone(mesh), model, material)
     }
 }
 
@@ -312,18 +310,18 @@ fn two_quads(front: Material, back: Material) -> Vec<SceneObject> {
     let quad = Arc::new(Mesh::quad(1.6, 4).expect("valid quad"));
     [(-0.9, 30.0), (0.9, 150.0)]
         .into_iter()
-        .map(|(x, degrees)| SceneObject {
-            mesh: Arc::clone(&quad),
-            model: transform_from_steps(&[
+        .map(|(x, degrees)| {
+            let model = transform_from_steps(&[
                 TransformStep::Translate(DVec3::new(x, 0.0, -4.0)),
                 TransformStep::Rotate {
                     degrees,
                     axis: DVec3::Y,
                 },
-            ]),
-            front,
-            back,
-            texture: None,
+            ]);
+            SceneObject {
+                back,
+                ..SceneObject::new(Arc::clone(&quad), model, front)
+            }
         })
         .collect()
 }
@@ -459,7 +457,7 @@ fn every_fog_mode_and_coordinate() {
         };
         check(name, &layer);
     }
-    let layer = ObjectLayer {
+    let height_fog = |sun| ObjectLayer {
         objects: vec![sphere(&mesh, superbible_material())],
         lighting: classic(
             vec![superbible_light()],
@@ -474,9 +472,17 @@ fn every_fog_mode_and_coordinate() {
                 base_height: -0.5,
             },
             color,
+            sun,
         },
     };
-    check("height fog", &layer);
+    check("height fog", &height_fog(None));
+    // Sunlight in-scattered around the sun's direction, which passes just left of the sphere.
+    let layer = height_fog(Some(FogSun {
+        direction: DVec3::new(-0.15, 0.05, -1.0).normalize(),
+        color: rgba(0.6, 0.4, 0.1),
+        exponent: 6.0,
+    }));
+    check("height fog, sun in-scattering", &layer);
 }
 
 #[test]
@@ -575,8 +581,72 @@ fn sky_lit_objects_keep_radiance_above_one() {
     };
     let layer = ObjectLayer {
         objects: vec![sphere(&mesh, material)],
-        lighting: ObjectLighting::Sky(lighting),
+        lighting: ObjectLighting::Sky(lighting.clone()),
         fog: SceneFog::None,
     };
     check("sky-lit, unclamped", &layer);
+
+    // Each object sees the sun through the air at its own place: its own light colours replace
+    // the frame's (a reddened beam on one sphere, the frame's on the other).
+    let mut reddened = sphere(&mesh, material);
+    reddened.model = glam::DMat4::from_translation(DVec3::new(-0.7, 0.0, -5.0));
+    reddened.light_colors = vec![rgba(2.4, 0.9, 0.2)];
+    let mut plain = sphere(&mesh, material);
+    plain.model = glam::DMat4::from_translation(DVec3::new(0.7, 0.0, -5.0));
+    let layer = ObjectLayer {
+        objects: vec![reddened, plain],
+        lighting: ObjectLighting::Sky(lighting),
+        fog: SceneFog::None,
+    };
+    check("sky-lit, per-object sun colours", &layer);
+}
+
+#[test]
+fn vertex_fog_coordinates_from_the_mesh_or_the_object() {
+    // GL_FOG_COORD: the left quad's mesh carries a fog coordinate per vertex (rising with x, and
+    // negative at one edge: used as it is, its factor clamps to 1); the right quad's mesh has
+    // none, so all its vertices take the object's current fog coordinate.
+    let mut graded = Mesh::quad(1.6, 4).expect("valid quad");
+    graded.fog_coords = graded.positions.iter().map(|p| 2.0 + 4.0 * p[0] + p[1]).collect();
+    let plain = Arc::new(Mesh::quad(1.6, 4).expect("valid quad"));
+    let material = Material {
+        diffuse: rgba(0.9, 0.7, 0.2),
+        ..Material::default()
+    };
+    let left = SceneObject::new(
+        Arc::new(graded),
+        glam::DMat4::from_translation(DVec3::new(-0.9, 0.0, -4.0)),
+        material,
+    );
+    let right = SceneObject {
+        fog_coord: 3.7,
+        ..SceneObject::new(
+            plain,
+            glam::DMat4::from_translation(DVec3::new(0.9, 0.0, -4.0)),
+            material,
+        )
+    };
+    for (name, mode) in [
+        (
+            "vertex fog coordinate, linear",
+            FogMode::Linear { start: 1.0, end: 5.0 },
+        ),
+        ("vertex fog coordinate, exp", FogMode::Exp { density: 0.3 }),
+    ] {
+        let layer = ObjectLayer {
+            objects: vec![left.clone(), right.clone()],
+            lighting: classic(
+                vec![superbible_light()],
+                LightModel::default(),
+                Shading::Gouraud,
+                SpecularModel::Blinn,
+            ),
+            fog: SceneFog::Classic(Fog {
+                mode,
+                coordinate: FogCoordinate::Vertex,
+                color: rgba(0.2, 0.3, 0.8),
+            }),
+        };
+        check(name, &layer);
+    }
 }

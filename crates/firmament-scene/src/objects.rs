@@ -6,13 +6,13 @@ use std::path::Path;
 use std::sync::Arc;
 
 use firmament_core::TimeOfDay;
-use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, HeightFog};
+use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, FogSun, HeightFog};
 use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
 use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, MAX_CLASSIC_LIGHTS, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight,
     SceneObject, Shading, TextureFilter, TransformStep, transform_from_steps,
 };
-use firmament_core::classic::sky_light::sky_lighting;
+use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3, DVec4};
@@ -317,6 +317,8 @@ fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject
                 front: with_base(front),
                 back: with_base(back),
                 texture,
+                fog_coord: entry.fog_coord,
+                light_colors: Vec::new(),
             });
         }
     }
@@ -373,7 +375,7 @@ fn lighting(scene: &Scene, light_sky: bool) -> Result<ObjectLighting, SceneError
                 return Ok(ObjectLighting::Unlit);
             }
             let camera = glam::DVec3::from_array(scene.camera.position);
-            let mut lit = sky_lighting(&scene.atmosphere_sky()?, camera, shading, specular);
+            let mut lit = SkyLight::new(&scene.atmosphere_sky()?).lighting(camera, shading, specular);
             lit.model.two_side = l.two_side;
             lit.model.separate_specular = l.separate_specular;
             ObjectLighting::Sky(lit)
@@ -387,6 +389,7 @@ fn fog(scene: &Scene) -> Result<SceneFog, SceneError> {
     let coordinate = match f.coordinate {
         FogCoordinateName::EyePlaneDepth => FogCoordinate::EyePlaneDepth,
         FogCoordinateName::EyeDistance => FogCoordinate::EyeDistance,
+        FogCoordinateName::Vertex => FogCoordinate::Vertex,
     };
     let classic = |mode| {
         Ok(SceneFog::Classic(Fog {
@@ -434,9 +437,51 @@ fn fog(scene: &Scene) -> Result<SceneFog, SceneError> {
                     base_height: f.base_height,
                 },
                 color: fog_color,
+                sun: fog_sun(scene)?,
             })
         }
     }
+}
+
+/// The height fog's sun in-scattering, if `fog.sun_color` asks for it.
+fn fog_sun(scene: &Scene) -> Result<Option<FogSun>, SceneError> {
+    let f = &scene.fog;
+    let Some(sun_color) = f.sun_color else {
+        return Ok(None);
+    };
+    let color = color("fog.sun_color", sun_color)?;
+    check(
+        f.sun_exponent.is_finite() && f.sun_exponent >= 1.0,
+        "fog.sun_exponent",
+        f.sun_exponent,
+        "must be a finite number >= 1",
+    )?;
+    let direction = match f.sun_direction {
+        Some(d) => {
+            let d = finite3("fog.sun_direction", d, "must be a finite direction")?;
+            check(
+                d.length() > 0.0,
+                "fog.sun_direction",
+                format!("{d}"),
+                "must not be zero",
+            )?;
+            d.normalize()
+        }
+        None => {
+            check(
+                !scene.suns.is_empty(),
+                "fog.sun_direction",
+                "(absent)",
+                "is needed when the scene has no [[suns]] to take it from",
+            )?;
+            scene.atmosphere_sky()?.suns[0].direction.normalize()
+        }
+    };
+    Ok(Some(FogSun {
+        direction,
+        color,
+        exponent: f.sun_exponent,
+    }))
 }
 
 /// Checks every rule of `[lighting]`, `[[lights]]`, `[[objects]]` and `[fog]` without loading
@@ -451,9 +496,19 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
 /// The scene's objects at `time` (for spins), their lighting and fog; builds the built-in meshes
 /// and loads mesh and texture files.
 pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay) -> Result<ObjectLayer, SceneError> {
+    let mut objects = objects(scene, time, true)?;
+    let lighting = lighting(scene, true)?;
+    if let ObjectLighting::Sky(_) = lighting {
+        // Each object sees the suns through the air at its own origin.
+        let sky = scene.atmosphere_sky()?;
+        let light = SkyLight::new(&sky);
+        for object in &mut objects {
+            object.light_colors = light.sun_colors(object.model.transform_point3(DVec3::ZERO));
+        }
+    }
     Ok(ObjectLayer {
-        objects: objects(scene, time, true)?,
-        lighting: lighting(scene, true)?,
+        objects,
+        lighting,
         fog: fog(scene)?,
     })
 }

@@ -392,6 +392,39 @@ fn gltf_mesh_instanced_twice_and_given_normals() {
 }
 
 #[test]
+fn gltf_fog_coordinates_come_from_the_fog_coord_attribute() {
+    let dir = TempDir::new().expect("temp dir");
+    let mut data = triangle_buffer();
+    // _FOG_COORD at 68: one scalar per vertex (GL_FOG_COORD).
+    data.extend(le_bytes(&[0.5, -1.0, 7.25]));
+    let mut document = triangle_document(embedded_buffer(&data));
+    document["accessors"]
+        .as_array_mut()
+        .expect("array")
+        .push(json!({ "bufferView": 3, "componentType": 5126, "count": 3, "type": "SCALAR" }));
+    document["bufferViews"]
+        .as_array_mut()
+        .expect("array")
+        .push(json!({ "buffer": 0, "byteOffset": 68, "byteLength": 12 }));
+    document["meshes"][0]["primitives"][0]["attributes"]["_FOG_COORD"] = json!(3);
+    let path = write(&dir, "fogged.gltf", document.to_string());
+    assert_eq!(load(&path)[0].mesh.fog_coords, [0.5, -1.0, 7.25]);
+    // Without the attribute there are none.
+    let plain = write(
+        &dir,
+        "plain.gltf",
+        triangle_document(embedded_buffer(&triangle_buffer())).to_string(),
+    );
+    assert!(load(&plain)[0].mesh.fog_coords.is_empty());
+    // A vector where a scalar belongs is an error naming the attribute.
+    document["accessors"][3]["type"] = json!("VEC3");
+    document["accessors"][3]["count"] = json!(1);
+    let path = write(&dir, "bad_fog.gltf", document.to_string());
+    let message = reason(load_model(KEY, &path), &path);
+    assert!(message.contains("_FOG_COORD"), "{message}");
+}
+
+#[test]
 fn broken_gltf_files_are_errors() {
     let dir = TempDir::new().expect("temp dir");
     let good = triangle_document(embedded_buffer(&triangle_buffer()));

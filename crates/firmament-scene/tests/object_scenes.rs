@@ -249,4 +249,80 @@ fn sky_lighting_comes_from_the_atmosphere_suns() {
     );
     assert!(sun.light.diffuse.y > lighting.model.ambient.y && lighting.model.ambient.y > 0.0);
     assert!(!frame.objects.lighting.clamps());
+    // Every object has the sun's colour at its own origin: near the camera, about the camera's.
+    for object in &frame.objects.objects {
+        let own = object.light_colors[0];
+        assert!(
+            (own.y / sun.light.diffuse.y - 1.0).abs() < 0.05,
+            "{own} vs {}",
+            sun.light.diffuse
+        );
+    }
+}
+
+#[test]
+fn vertex_fog_coordinates_and_height_fog_sun() {
+    let text = r#"
+[fog]
+mode = "linear"
+start = 1.0
+end = 5.0
+coordinate = "vertex"
+[[objects]]
+mesh = { kind = "quad", size = 1.0, subdivisions = 1 }
+fog_coord = 2.5
+"#
+    .to_string();
+    let frame = from_text(&text).expect("valid").frame_at(None).expect("frame");
+    let SceneFog::Classic(fog) = frame.objects.fog else {
+        panic!("classic fog")
+    };
+    assert_eq!(fog.coordinate, FogCoordinate::Vertex);
+    assert_eq!(frame.objects.objects[0].fog_coord, 2.5);
+
+    let height = |extra: &str| {
+        format!("[fog]\nmode = \"height\"\ndensity = 0.01\nfalloff = 0.1\nsun_color = [1.0, 0.8, 0.5]\n{extra}{SPHERE}")
+    };
+    let frame = from_text(&height("sun_direction = [0.0, 2.0, 0.0]\nsun_exponent = 4.0\n"))
+        .expect("valid")
+        .frame_at(None)
+        .expect("frame");
+    let SceneFog::Height { sun: Some(sun), .. } = frame.objects.fog else {
+        panic!("height fog with a sun")
+    };
+    assert_eq!(sun.direction, DVec3::Y);
+    assert_eq!(sun.exponent, 4.0);
+    assert_eq!(sun.color, DVec4::new(1.0, 0.8, 0.5, 1.0));
+    // Without a direction it is the first sun's.
+    let preset = load(
+        SceneSource::Preset("earth-objects"),
+        None,
+        &[
+            "fog.mode=\"height\"".to_owned(),
+            "fog.sun_color=[1.0, 1.0, 1.0]".to_owned(),
+        ],
+    )
+    .expect("valid");
+    let frame = preset.frame_at(None).expect("frame");
+    let SceneFog::Height { sun: Some(sun), .. } = frame.objects.fog else {
+        panic!("height fog with a sun")
+    };
+    assert!(
+        (sun.direction.z - 20f64.to_radians().sin()).abs() < 1e-9,
+        "{}",
+        sun.direction
+    );
+
+    for (extra, key, rule) in [
+        ("sun_exponent = 0.5\n", "fog.sun_exponent", ">= 1"),
+        (
+            "sun_direction = [0.0, 0.0, 0.0]\n",
+            "fog.sun_direction",
+            "must not be zero",
+        ),
+        ("", "fog.sun_direction", "no [[suns]]"),
+    ] {
+        let message = error(&format!("[sky]\nmodel = \"clear\"\n{}", height(extra)));
+        assert!(message.contains(key) && message.contains(rule), "{message}");
+    }
 }

@@ -35,14 +35,19 @@ pub enum FogCoordinate {
     EyePlaneDepth,
     /// The true eye distance `|p_eye|` (no extra haze at the edges of a wide field of view).
     EyeDistance,
+    /// `GL_FOG_COORD`: the vertex's own fog coordinate, used as it is (no absolute value): the
+    /// mesh's per-vertex array, or the object's current fog coordinate where the mesh has none.
+    Vertex,
 }
 
 impl FogCoordinate {
-    /// The fog coordinate of an eye-space point.
-    pub fn of(self, eye_position: DVec3) -> f64 {
+    /// The fog coordinate of a vertex at eye-space `eye_position` whose own fog coordinate
+    /// (`glFogCoord`) is `vertex`.
+    pub fn of(self, eye_position: DVec3, vertex: f64) -> f64 {
         match self {
             Self::EyePlaneDepth => eye_position.z.abs(),
             Self::EyeDistance => eye_position.length(),
+            Self::Vertex => vertex,
         }
     }
 }
@@ -121,6 +126,29 @@ impl HeightFog {
     }
 }
 
+/// Sunlight scattered towards the eye by a height fog, strongest looking at the sun: the fog's
+/// in-scattered colour becomes `color + sun.color · max(v·l, 0)^exponent` for a view direction
+/// `v` and a direction to the sun `l` (Unreal Engine's directional in-scattering of its
+/// exponential height fog, a Henyey-Greenstein-like lobe without normalisation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FogSun {
+    /// Unit direction towards the sun, world frame.
+    pub direction: DVec3,
+    /// Colour added at the centre of the lobe (the fog colour's units).
+    pub color: DVec4,
+    /// Lobe exponent, >= 1 (larger = tighter around the sun).
+    pub exponent: f64,
+}
+
+impl FogSun {
+    /// The in-scattered colour seen along unit world direction `view` through a fog of colour
+    /// `fog_color`; alpha is the fog colour's.
+    pub fn inscattered(&self, fog_color: DVec4, view: DVec3) -> DVec4 {
+        let lobe = view.dot(self.direction).max(0.0).powf(self.exponent);
+        (fog_color.truncate() + self.color.truncate() * lobe).extend(fog_color.w)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,8 +172,11 @@ mod tests {
     #[test]
     fn eye_distance_versus_plane_depth() {
         let p = DVec3::new(3.0, 0.0, -4.0);
-        assert_eq!(FogCoordinate::EyePlaneDepth.of(p), 4.0);
-        assert_eq!(FogCoordinate::EyeDistance.of(p), 5.0);
+        assert_eq!(FogCoordinate::EyePlaneDepth.of(p, 7.0), 4.0);
+        assert_eq!(FogCoordinate::EyeDistance.of(p, 7.0), 5.0);
+        assert_eq!(FogCoordinate::Vertex.of(p, -7.0), -7.0);
+        // A negative coordinate is kept; the factor's clamp keeps the colour.
+        assert_eq!(FogMode::Exp { density: 0.5 }.factor(-7.0), 1.0);
     }
 
     #[test]
@@ -172,6 +203,16 @@ mod tests {
             assert!(((closed - sum) / sum).abs() < 1e-8, "{from} → {to}: {closed} vs {sum}");
         }
         let uniform = HeightFog { falloff: 0.0, ..fog };
+        let sun = FogSun {
+            direction: DVec3::X,
+            color: DVec4::new(1.0, 0.5, 0.0, 0.0),
+            exponent: 4.0,
+        };
+        let grey = DVec4::new(0.2, 0.2, 0.2, 1.0);
+        assert_eq!(sun.inscattered(grey, DVec3::X), DVec4::new(1.2, 0.7, 0.2, 1.0));
+        assert_eq!(sun.inscattered(grey, DVec3::NEG_X), grey);
+        let half = sun.inscattered(grey, DVec3::new(1.0, 1.0, 0.0).normalize());
+        assert!((half.x - (0.2 + 0.25)).abs() < 1e-12, "{half}");
         assert!(
             (uniform.transmittance(DVec3::ZERO, DVec3::new(0.0, 100.0, 50.0)) - (-0.02 * 125f64.sqrt() * 10.0).exp())
                 .abs()

@@ -15,7 +15,7 @@ use std::sync::Arc;
 
 use glam::{DMat4, DVec3, DVec4};
 
-use super::fog::{Fog, HeightFog};
+use super::fog::{Fog, FogSun, HeightFog};
 use super::lighting::{Light, LightModel, Material, SpecularModel};
 use crate::mesh::Mesh;
 use crate::texture::TextureImage;
@@ -146,6 +146,30 @@ pub struct SceneObject {
     pub back: Material,
     /// Optional texture.
     pub texture: Option<ObjectTexture>,
+    /// GL's current fog coordinate (`glFogCoord`), used for every vertex when fog takes the
+    /// vertex's coordinate and the mesh has no per-vertex array; GL's initial value is 0.
+    pub fog_coord: f64,
+    /// Light colours for this object alone, replacing each light's diffuse and specular colour
+    /// (index by index; lights past the end keep theirs). Set under a physical sky, where a sun's
+    /// light is what its transmittance lets through *at the object*
+    /// ([`super::sky_light::SkyLight::sun_colors`]); empty otherwise.
+    pub light_colors: Vec<DVec4>,
+}
+
+impl SceneObject {
+    /// An untextured object with one material on both sides, GL's current fog coordinate 0 and
+    /// the frame's own light colours.
+    pub fn new(mesh: Arc<Mesh>, model: DMat4, material: Material) -> Self {
+        Self {
+            mesh,
+            model,
+            front: material,
+            back: material,
+            texture: None,
+            fog_coord: 0.0,
+            light_colors: Vec::new(),
+        }
+    }
 }
 
 /// Fog over objects.
@@ -162,6 +186,8 @@ pub enum SceneFog {
         fog: HeightFog,
         /// In-scattered colour (the fog's own colour; GL units).
         color: DVec4,
+        /// Optional sunlight in-scattered around the sun's direction.
+        sun: Option<FogSun>,
     },
 }
 

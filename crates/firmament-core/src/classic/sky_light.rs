@@ -3,17 +3,19 @@
 //! Y is luminance, cd/m²), so objects and sky share one exposure.
 //!
 //! With a white Lambertian material (diffuse and ambient = albedo `ρ`) the fixed-function equation
-//! then gives the radiance `ρ/π · (E_sun·T·cos θ + E_sky)`: the lights' diffuse and specular
-//! colours are `E_sun·T/π` — the sun's irradiance at the top of the atmosphere through the
-//! transmittance from the point towards it — and the scene ambient is `E_sky/π`, the irradiance of
-//! the whole sky on a horizontal surface. Both are taken at one point (the camera: objects are
-//! small next to the atmosphere's scale heights), so nothing varies across an object but the
-//! equations' own terms. Aerial perspective between the object and the camera is the renderer's.
+//! then gives the radiance `ρ/π · (E_sun·T·cos θ + E_sky)`: a sun's diffuse and specular colour is
+//! `E_sun·T/π` — its irradiance at the top of the atmosphere through the transmittance from the
+//! **object** towards it ([`SkyLight::sun_colors`], one value per object at its origin, so a tower
+//! on a hill keeps the sun after the street below has lost it) — and the scene ambient is
+//! `E_sky/π`, the irradiance of the whole sky on a horizontal surface, taken once at the camera
+//! (it changes over kilometres of altitude; the direct beam changes across a terminator). Aerial
+//! perspective between the object and the camera is the renderer's.
 
 use glam::{DVec3, DVec4};
 
 use super::lighting::{Light, LightModel, SpecularModel};
 use super::scene::{ClassicLighting, LightSpace, SceneLight, Shading};
+use crate::atmosphere::SpectralConversion;
 use crate::atmosphere::reference::{Reference, ReferenceSettings};
 use crate::frame::AtmosphereSky;
 
@@ -21,53 +23,88 @@ use crate::frame::AtmosphereSky;
 /// (3 % at 1024), plenty for an ambient term.
 pub const SKY_IRRADIANCE_PATHS: usize = 1024;
 
-/// The classic lighting that `sky`'s suns and sky give objects near `point` (world frame, metres).
-/// Lights are world-space directional lights with no ambient of their own; the model has a local
-/// viewer (real highlights depend on where the eye is).
-pub fn sky_lighting(sky: &AtmosphereSky, point: DVec3, shading: Shading, specular: SpecularModel) -> ClassicLighting {
-    let settings = ReferenceSettings {
-        paths: SKY_IRRADIANCE_PATHS,
-        ..ReferenceSettings::default()
-    };
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
-    let planet = &sky.atmosphere.planet;
-    let conversion = sky.atmosphere.spectral_conversion();
-    let rgb = |spectrum: DVec3| {
-        let c = conversion.linear_srgb(spectrum / std::f64::consts::PI);
+/// The light a physical sky gives objects: build once per frame, then ask per point.
+#[derive(Debug)]
+pub struct SkyLight<'a> {
+    sky: &'a AtmosphereSky,
+    reference: Reference,
+    conversion: SpectralConversion,
+}
+
+impl<'a> SkyLight<'a> {
+    /// The light of `sky`'s suns and atmosphere.
+    pub fn new(sky: &'a AtmosphereSky) -> Self {
+        let settings = ReferenceSettings {
+            paths: SKY_IRRADIANCE_PATHS,
+            ..ReferenceSettings::default()
+        };
+        Self {
+            sky,
+            reference: Reference::new(sky.atmosphere, &sky.suns, settings),
+            conversion: sky.atmosphere.spectral_conversion(),
+        }
+    }
+
+    /// A spectral irradiance as a GL colour of radiance from a Lambertian reflector, `E/π`.
+    fn rgb(&self, spectrum: DVec3) -> DVec4 {
+        let c = self.conversion.linear_srgb(spectrum / std::f64::consts::PI);
         DVec4::new(c.r.max(0.0), c.g.max(0.0), c.b.max(0.0), 1.0)
-    };
-    let at = planet.to_planet_frame(point);
-    let lights = sky
-        .suns
-        .iter()
-        .map(|sun| {
-            let direction = sun.direction.normalize();
-            let transmittance = reference.transmittance_to_space(at, planet.direction_to_planet_frame(direction));
-            let color = rgb(sun.irradiance * transmittance);
-            SceneLight {
+    }
+
+    /// Each sun's light colour at `point` (world frame, metres): `E·T/π`, black when the sun is
+    /// below the point's horizon.
+    pub fn sun_colors(&self, point: DVec3) -> Vec<DVec4> {
+        let planet = &self.sky.atmosphere.planet;
+        let at = planet.to_planet_frame(point);
+        self.sky
+            .suns
+            .iter()
+            .map(|sun| {
+                let towards = planet.direction_to_planet_frame(sun.direction.normalize());
+                self.rgb(sun.irradiance * self.reference.transmittance_to_space(at, towards))
+            })
+            .collect()
+    }
+
+    /// The classic lighting for objects seen from `camera` (world frame, metres): one
+    /// world-space directional light per sun, coloured as at the camera (objects replace that
+    /// with [`Self::sun_colors`] at their own origin), no ambient of its own; the sky's
+    /// irradiance at the camera as the scene ambient; a local viewer (real highlights depend on
+    /// where the eye is).
+    pub fn lighting(&self, camera: DVec3, shading: Shading, specular: SpecularModel) -> ClassicLighting {
+        let lights = self
+            .sky
+            .suns
+            .iter()
+            .zip(self.sun_colors(camera))
+            .map(|(sun, color)| SceneLight {
                 light: Light {
                     ambient: DVec4::new(0.0, 0.0, 0.0, 1.0),
                     diffuse: color,
                     specular: color,
-                    position: direction.extend(0.0),
+                    position: sun.direction.normalize().extend(0.0),
                     ..Light::gl_default(0)
                 },
                 space: LightSpace::World,
-            }
-        })
-        .collect();
-    let ambient = rgb(reference.ground_irradiance(point).sky);
-    ClassicLighting {
-        lights,
-        model: LightModel {
-            ambient,
-            local_viewer: true,
-            two_side: false,
-            separate_specular: false,
-        },
-        shading,
-        specular,
+            })
+            .collect();
+        ClassicLighting {
+            lights,
+            model: LightModel {
+                ambient: self.rgb(self.reference.ground_irradiance(camera).sky),
+                local_viewer: true,
+                two_side: false,
+                separate_specular: false,
+            },
+            shading,
+            specular,
+        }
     }
+}
+
+/// [`SkyLight::lighting`] in one call.
+pub fn sky_lighting(sky: &AtmosphereSky, camera: DVec3, shading: Shading, specular: SpecularModel) -> ClassicLighting {
+    SkyLight::new(sky).lighting(camera, shading, specular)
 }
 
 #[cfg(test)]
@@ -105,5 +142,26 @@ mod tests {
         };
         let dark = sky_lighting(&set, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         assert_eq!(dark.lights[0].light.diffuse.truncate(), DVec3::ZERO);
+    }
+
+    #[test]
+    fn a_sun_just_below_the_street_s_horizon_still_lights_a_mountain_top() {
+        let mut earth = presets::earth();
+        earth.planet = earth.planet.posed_at(45f64.to_radians(), 0.0);
+        // 1° below the horizon of the surface: the sun's grazing ray clears a point 3 km up
+        // (the horizon dips by about 1.8° there).
+        let sky = AtmosphereSky {
+            atmosphere: earth,
+            suns: vec![presets::earth_sun(
+                DVec3::new(0.0, 1.0, -(1f64.to_radians().tan())).normalize(),
+            )],
+        };
+        let light = SkyLight::new(&sky);
+        let street = light.sun_colors(DVec3::new(0.0, 0.0, 2.0))[0];
+        let summit = light.sun_colors(DVec3::new(0.0, 0.0, 3000.0))[0];
+        assert_eq!(street.truncate(), DVec3::ZERO);
+        assert!(summit.x > 0.0 && summit.x > summit.z, "a red sunset beam: {summit}");
+        let lit = light.lighting(DVec3::new(0.0, 0.0, 2.0), Shading::Gouraud, SpecularModel::Blinn);
+        assert_eq!(lit.lights[0].light.diffuse, street);
     }
 }

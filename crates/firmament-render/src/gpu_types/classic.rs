@@ -59,7 +59,7 @@ pub struct ClassicFrameUniforms {
     /// radiance (1: no clamping to [0, 1], objects under a physical sky).
     pub mode: [u32; 4],
     /// Fog equation (0 off, 1 linear, 2 exp, 3 exp2, 4 height), coordinate (0 eye-plane depth,
-    /// 1 distance).
+    /// 1 distance, 2 the vertex's own), sun in-scattering (1 on, height fog).
     pub fog_mode: [u32; 4],
     /// Linear/exp/exp2: start, end, density. Height: extinction at the camera (1/m), falloff (1/m).
     pub fog_params: [f32; 4],
@@ -67,6 +67,10 @@ pub struct ClassicFrameUniforms {
     pub fog_color: [f32; 4],
     /// World +z in eye space (height fog).
     pub eye_up: [f32; 4],
+    /// Height fog's sun: unit direction to it in eye space, `w` = lobe exponent.
+    pub fog_sun: [f32; 4],
+    /// Height fog's sun: in-scattered colour at the lobe's centre.
+    pub fog_sun_color: [f32; 4],
     /// Lights in eye space; only the first `model_flags[0]` are used.
     pub lights: [ClassicLightUniform; MAX_CLASSIC_LIGHTS],
 }
@@ -83,8 +87,13 @@ pub struct ClassicObjectUniforms {
     pub front: ClassicMaterialUniform,
     /// Back material.
     pub back: ClassicMaterialUniform,
-    /// Textured (`GL_MODULATE`), then unused.
+    /// Textured (`GL_MODULATE`), the mesh has per-vertex fog coordinates, how many of
+    /// `light_colors` replace the lights' colours, unused.
     pub flags: [u32; 4],
+    /// `x` = the object's current fog coordinate (`glFogCoord`); `yzw` unused.
+    pub fog_coord: [f32; 4],
+    /// This object's own light colours (diffuse and specular), the first `flags.z` used.
+    pub light_colors: [[f32; 4]; MAX_CLASSIC_LIGHTS],
 }
 
 fn v4(v: glam::DVec4) -> [f32; 4] {
@@ -178,6 +187,7 @@ impl ClassicFrameUniforms {
                 let coordinate = match f.coordinate {
                     FogCoordinate::EyePlaneDepth => 0,
                     FogCoordinate::EyeDistance => 1,
+                    FogCoordinate::Vertex => 2,
                 };
                 uniforms.fog_mode = [equation, coordinate, 0, 0];
                 uniforms.fog_params = match f.mode {
@@ -186,11 +196,16 @@ impl ClassicFrameUniforms {
                 };
                 uniforms.fog_color = v4(f.color);
             }
-            SceneFog::Height { fog, color } => {
+            SceneFog::Height { fog, color, sun } => {
                 let at_camera = fog.density * (-fog.falloff * (camera_height - fog.base_height)).exp();
-                uniforms.fog_mode = [4, 0, 0, 0];
+                uniforms.fog_mode = [4, 0, u32::from(sun.is_some()), 0];
                 uniforms.fog_params = [at_camera as f32, fog.falloff as f32, 0.0, 0.0];
                 uniforms.fog_color = v4(*color);
+                if let Some(sun) = sun {
+                    let d = view.transform_vector3(sun.direction).normalize_or_zero().as_vec3();
+                    uniforms.fog_sun = [d.x, d.y, d.z, sun.exponent as f32];
+                    uniforms.fog_sun_color = v4(sun.color);
+                }
             }
         }
         uniforms
@@ -198,17 +213,29 @@ impl ClassicFrameUniforms {
 }
 
 impl ClassicObjectUniforms {
-    /// The uniforms of `object` seen through world → eye `view`.
+    /// The uniforms of `object` seen through world → eye `view`. Light colours past
+    /// [`MAX_CLASSIC_LIGHTS`] are dropped.
     pub fn new(object: &SceneObject, view: &DMat4) -> Self {
         let model_view = *view * object.model;
         let normal = DMat3::from_mat4(model_view).inverse().transpose().as_mat3();
         let pad = |c: glam::Vec3| [c.x, c.y, c.z, 0.0];
+        let mut light_colors = [[0.0; 4]; MAX_CLASSIC_LIGHTS];
+        for (slot, color) in light_colors.iter_mut().zip(&object.light_colors) {
+            *slot = v4(*color);
+        }
         Self {
             model_view: model_view.as_mat4().to_cols_array_2d(),
             normal_matrix: [pad(normal.x_axis), pad(normal.y_axis), pad(normal.z_axis)],
             front: material_uniform(&object.front),
             back: material_uniform(&object.back),
-            flags: [u32::from(object.texture.is_some()), 0, 0, 0],
+            flags: [
+                u32::from(object.texture.is_some()),
+                u32::from(!object.mesh.fog_coords.is_empty()),
+                object.light_colors.len().min(MAX_CLASSIC_LIGHTS) as u32,
+                0,
+            ],
+            fog_coord: [object.fog_coord as f32, 0.0, 0.0, 0.0],
+            light_colors,
         }
     }
 }

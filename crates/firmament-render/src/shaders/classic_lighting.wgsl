@@ -39,8 +39,9 @@ struct ClassicFrame {
     // z = 1: radiance under a physical sky, never clamped to [0, 1]
     mode: vec4<u32>,
     // Fog: x = equation (0 off, 1 linear, 2 exp, 3 exp2 — GL 2.1 §3.10; 4 height fog),
-    // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance), computed per vertex and
-    // interpolated; the factor is computed per fragment, as GL implementations do.
+    // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance, 2 the vertex's own fog
+    // coordinate, GL_FOG_COORD), computed per vertex and interpolated; the factor is computed per
+    // fragment, as GL implementations do. z = 1: height fog in-scatters `fog_sun`.
     fog_mode: vec4<u32>,
     // Linear/exp/exp2: x = start, y = end, z = density.
     // Height fog: x = extinction at the camera (1/m), y = falloff (1/m).
@@ -48,6 +49,9 @@ struct ClassicFrame {
     fog_color: vec4<f32>,
     // World +z in eye space (for height fog); w unused.
     eye_up: vec4<f32>,
+    // Height fog's sun: xyz = unit direction to it (eye space), w = lobe exponent.
+    fog_sun: vec4<f32>,
+    fog_sun_color: vec4<f32>,
     lights: array<ClassicLight, MAX_LIGHTS>,
 }
 
@@ -57,8 +61,12 @@ struct ClassicObject {
     normal_matrix: mat3x3<f32>,
     front: ClassicMaterial,
     back: ClassicMaterial,
-    // x = textured (GL_MODULATE); yzw unused
+    // x = textured (GL_MODULATE), y = the mesh has per-vertex fog coordinates, z = how many
+    // `light_colors` replace the lights' diffuse and specular colours (suns at this object)
     flags: vec4<u32>,
+    // x = the object's current fog coordinate (glFogCoord), for meshes without their own
+    fog_coord: vec4<f32>,
+    light_colors: array<vec4<f32>, MAX_LIGHTS>,
 }
 
 @group(0) @binding(0) var<uniform> frame: ClassicFrame;
@@ -73,6 +81,8 @@ struct VertexIn {
     // The point lit for this vertex: itself, or its triangle's provoking vertex (flat shading).
     @location(3) shade_position: vec3<f32>,
     @location(4) shade_normal: vec3<f32>,
+    // GL_FOG_COORD from the mesh (0 where it has none; `object.flags.y` says which).
+    @location(5) fog_coord: f32,
 }
 
 struct VertexOut {
@@ -107,7 +117,11 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
     let eye = select(vec3<f32>(0.0, 0.0, 1.0), to_eye, local_viewer);
     let count = min(frame.model_flags.x, MAX_LIGHTS);
     for (var i = 0u; i < count; i = i + 1u) {
-        let light = frame.lights[i];
+        var light = frame.lights[i];
+        if i < object.flags.z {
+            light.diffuse = object.light_colors[i];
+            light.specular = object.light_colors[i];
+        }
         var to_light: vec3<f32>;
         var attenuation = 1.0;
         if light.position.w == 0.0 {
@@ -162,7 +176,11 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.eye_position = eye.xyz / eye.w;
     out.eye_normal = object.normal_matrix * in.normal;
     out.tex_coord = in.tex_coord;
-    out.fog_coordinate = select(abs(out.eye_position.z), length(out.eye_position), frame.fog_mode.y == 1u);
+    if frame.fog_mode.y == 2u {
+        out.fog_coordinate = select(object.fog_coord.x, in.fog_coord, object.flags.y != 0u);
+    } else {
+        out.fog_coordinate = select(abs(out.eye_position.z), length(out.eye_position), frame.fog_mode.y == 1u);
+    }
     if frame.mode.x == 0u {
         let shade_eye = object.model_view * vec4<f32>(in.shade_position, 1.0);
         let p = shade_eye.xyz / shade_eye.w;
@@ -214,7 +232,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
 
 // GL 2.1 eq. 3.16–3.18 (f keeps the fragment colour; alpha untouched), or height fog: the
 // transmittance exp(-τ) of the eye ray through density σ(h) = σ_cam·exp(-k·(h - h_cam)),
-// τ = σ_cam·L·(1 - exp(-k·Δh))/(k·Δh) in closed form (`HeightFog::optical_depth`).
+// τ = σ_cam·L·(1 - exp(-k·Δh))/(k·Δh) in closed form (`HeightFog::optical_depth`), in-scattering
+// the fog colour plus the sun's lobe `FogSun::inscattered`.
 fn apply_fog(color: vec4<f32>, c: f32, eye_position: vec3<f32>) -> vec4<f32> {
     let mode = frame.fog_mode.x;
     if mode == 0u {
@@ -239,5 +258,10 @@ fn apply_fog(color: vec4<f32>, c: f32, eye_position: vec3<f32>) -> vec4<f32> {
         f = exp(-frame.fog_params.x * length_m * ratio);
     }
     f = clamp(f, 0.0, 1.0);
-    return vec4<f32>(mix(frame.fog_color.rgb, color.rgb, f), color.a);
+    var fog_color = frame.fog_color.rgb;
+    if mode == 4u && frame.fog_mode.z != 0u {
+        let lobe = pow(max(dot(normalize(eye_position), frame.fog_sun.xyz), 0.0), frame.fog_sun.w);
+        fog_color = fog_color + frame.fog_sun_color.rgb * lobe;
+    }
+    return vec4<f32>(mix(fog_color, color.rgb, f), color.a);
 }

@@ -10,18 +10,18 @@ use firmament_core::classic::lighting::{Light, Lighting, Material};
 use firmament_core::classic::scene::{ObjectLayer, SceneFog, SceneObject, Shading};
 use glam::{DMat3, DVec2, DVec3, DVec4};
 
-/// One object's triangles in eye space.
+/// One object's triangles in eye space, and the lights it sees.
 struct EyeObject<'a> {
     object: &'a SceneObject,
     positions: Vec<DVec3>,
     normals: Vec<DVec3>,
+    lights: Vec<Light>,
 }
 
 /// A frame's objects prepared for ray casting.
 pub(crate) struct Reference<'a> {
     layer: &'a ObjectLayer,
     camera: Camera,
-    lights: Vec<Light>,
     objects: Vec<EyeObject<'a>>,
 }
 
@@ -60,7 +60,14 @@ impl<'a> Reference<'a> {
                 let model_view = view * object.model;
                 let normal_matrix = DMat3::from_mat4(model_view).inverse().transpose();
                 let mesh = &object.mesh;
+                // The object's own light colours replace the frame's, index by index.
+                let mut lights = lights.clone();
+                for (light, &color) in lights.iter_mut().zip(&object.light_colors) {
+                    light.diffuse = color;
+                    light.specular = color;
+                }
                 EyeObject {
+                    lights,
                     object,
                     positions: mesh
                         .positions
@@ -75,20 +82,15 @@ impl<'a> Reference<'a> {
                 }
             })
             .collect();
-        Self {
-            layer,
-            camera,
-            lights,
-            objects,
-        }
+        Self { layer, camera, objects }
     }
 
-    fn lighting(&self, object: &SceneObject) -> Option<Lighting<'_>> {
+    fn lighting<'b>(&self, object: &'b EyeObject<'_>) -> Option<Lighting<'b>> {
         self.layer.lighting.equations().map(|c| Lighting {
-            lights: &self.lights,
+            lights: &object.lights,
             model: c.model,
-            front: object.front,
-            back: object.back,
+            front: object.object.front,
+            back: object.object.back,
             specular: c.specular,
         })
     }
@@ -115,7 +117,7 @@ impl<'a> Reference<'a> {
         // Counter-clockwise seen from the eye: the face normal points back along the ray.
         let front_facing = (pb - pa).cross(pc - pa).dot(pa) < 0.0;
         let m: &Material = &object.object.front;
-        let (primary, secondary) = match self.lighting(object.object) {
+        let (primary, secondary) = match self.lighting(object) {
             None => (m.diffuse.clamp(DVec4::ZERO, DVec4::ONE), DVec4::ZERO),
             Some(lighting) => {
                 let shading = self.layer.lighting.equations().map_or(Shading::Gouraud, |c| c.shading);
@@ -163,12 +165,25 @@ impl<'a> Reference<'a> {
         Some(match self.layer.fog {
             SceneFog::None => color,
             SceneFog::Classic(fog) => {
-                let coordinate = interpolate(&|i| DVec4::splat(fog.coordinate.of(object.positions[i]))).x;
+                let mesh = &object.object.mesh;
+                let vertex_fog = |i: usize| {
+                    mesh.fog_coords
+                        .get(i)
+                        .map_or(object.object.fog_coord, |&c| f64::from(c))
+                };
+                let coordinate =
+                    interpolate(&|i| DVec4::splat(fog.coordinate.of(object.positions[i], vertex_fog(i)))).x;
                 fog.mode.apply(color, fog.color, coordinate)
             }
-            SceneFog::Height { fog, color: fog_color } => {
+            SceneFog::Height {
+                fog,
+                color: fog_color,
+                sun,
+            } => {
                 let world = self.camera.view_matrix().inverse().transform_point3(position);
                 let f = fog.transmittance(self.camera.position, world);
+                let view = (world - self.camera.position).normalize();
+                let fog_color = sun.map_or(fog_color, |sun| sun.inscattered(fog_color, view));
                 (rgb(color) * f + rgb(fog_color) * (1.0 - f)).extend(color.w)
             }
         })

@@ -420,11 +420,21 @@ impl Loader<'_> {
             }
         };
 
+        let fog_coords = self
+            .attribute(
+                primitive,
+                label,
+                Semantic::Extras("FOG_COORD".to_owned()),
+                Dimensions::Scalar,
+                Components::Float,
+            )?
+            .map(|c| c.into_iter().map(|c| c as f32).collect());
         let raw = RawMesh {
             positions,
             normals,
             tex_coords,
             indices,
+            fog_coords,
         };
         let mesh: Mesh = finish_mesh(raw, self.path, label)?;
         Ok(LoadedMesh {

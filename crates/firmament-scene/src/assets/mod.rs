@@ -18,6 +18,8 @@
 //!   floating-point images are scaled to 0–255 (floats clamped to `[0, 1]` first).
 //! - **Colours**: an OBJ material's `Kd` (alpha from `d`, else 1) or a glTF material's
 //!   `baseColorFactor` become [`LoadedMesh::base_color`], as the file gives them.
+//! - **Fog coordinates** (`GL_FOG_COORD`): a glTF primitive's application-specific `_FOG_COORD`
+//!   attribute (scalar floats, one per vertex) becomes [`Mesh::fog_coords`]; OBJ has none.
 //! - **Transforms**: a glTF mesh's [`LoadedMesh::transform`] is its node's world matrix in the
 //!   file (mesh → file root), the node transforms (matrix or translation·rotation·scale)
 //!   composed from the scene root down; OBJ meshes have the identity.
@@ -150,6 +152,8 @@ struct RawMesh {
     tex_coords: Option<Vec<[f32; 2]>>,
     /// Triangle list.
     indices: Vec<u32>,
+    /// Per-vertex fog coordinates (glTF `_FOG_COORD`), if the file has them.
+    fog_coords: Option<Vec<f32>>,
 }
 
 /// Checks a [`RawMesh`] and repairs what the [module documentation](self) lists, logging it;
@@ -286,6 +290,7 @@ fn finish_mesh(raw: RawMesh, file: &Path, label: &str) -> Result<Mesh, String> {
         normals,
         tex_coords,
         indices,
+        fog_coords: raw.fog_coords.unwrap_or_default(),
     };
     mesh.validate().map_err(|e| format!("{label}: {e}"))?;
     Ok(mesh)

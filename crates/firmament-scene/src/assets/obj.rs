@@ -87,6 +87,7 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
             normals,
             tex_coords,
             indices: m.indices,
+            fog_coords: None,
         };
         let mesh = finish_mesh(raw, path, &label)?;
 

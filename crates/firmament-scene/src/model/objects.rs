@@ -287,6 +287,11 @@ pub struct ObjectEntry {
     /// Optional spin, applied after `transform` (innermost, about the object's own origin).
     #[serde(default)]
     pub spin: Option<SpinEntry>,
+    /// GL's current fog coordinate (`glFogCoord`, default 0): the fog coordinate of every vertex
+    /// when `fog.coordinate = "vertex"` and the mesh has none of its own (a glTF mesh may carry
+    /// them as the `_FOG_COORD` attribute).
+    #[serde(default)]
+    pub fog_coord: f64,
 }
 
 /// `fog.mode`.
@@ -313,6 +318,8 @@ pub enum FogCoordinateName {
     EyePlaneDepth,
     /// `|p_eye|`.
     EyeDistance,
+    /// The vertex's own fog coordinate (`GL_FOG_COORD`).
+    Vertex,
 }
 
 /// `[fog]` over objects.
@@ -330,10 +337,25 @@ pub struct FogSection {
     /// `GL_FOG_DENSITY` (exp, exp2; per metre), or the height fog's extinction at `base_height`
     /// (1/m); >= 0.
     pub density: f64,
-    /// `"eye_plane_depth"` (GL's usual) or `"eye_distance"`.
+    /// `"eye_plane_depth"` (GL's usual), `"eye_distance"` or `"vertex"` (`GL_FOG_COORD`).
     pub coordinate: FogCoordinateName,
     /// Height fog: how fast the density falls with height, 1/m, >= 0.
     pub falloff: f64,
     /// Height fog: the world height (z) where the density is `density`, metres.
     pub base_height: f64,
+    /// Height fog: sunlight in-scattered around the sun's direction, added to `color` at the
+    /// centre of the lobe (GL RGBA); absent = none.
+    #[serde(default)]
+    pub sun_color: Option<GlColor>,
+    /// Height fog: the lobe's exponent, >= 1 (larger = tighter around the sun).
+    #[serde(default = "default_fog_sun_exponent")]
+    pub sun_exponent: f64,
+    /// Height fog: the direction towards the sun (world frame, any length > 0); absent = the
+    /// first of `[[suns]]`.
+    #[serde(default)]
+    pub sun_direction: Option<[f64; 3]>,
+}
+
+fn default_fog_sun_exponent() -> f64 {
+    8.0
 }

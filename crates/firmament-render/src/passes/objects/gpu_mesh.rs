@@ -6,12 +6,12 @@ use firmament_core::texture::TextureImage;
 use wgpu::util::DeviceExt;
 
 /// Bytes per vertex in both vertex buffers: three `f32` position, three normal, two texture
-/// coordinates (the provoking-vertex buffer leaves those two unused).
-pub(crate) const VERTEX_STRIDE: u64 = 32;
+/// coordinates, one fog coordinate (the provoking-vertex buffer leaves the last three unused).
+pub(crate) const VERTEX_STRIDE: u64 = 36;
 
-/// Slot 0: position, normal, texture coordinate.
-pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
-    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+/// Slot 0: position, normal, texture coordinate, fog coordinate (0 where the mesh has none).
+pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 5 => Float32];
 /// Slot 1: the position and normal lit for the vertex (itself, or its triangle's provoking vertex).
 pub(crate) const SHADE_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![3 => Float32x3, 4 => Float32x3];
@@ -32,9 +32,10 @@ pub struct GpuMesh {
     count: u32,
 }
 
-fn vertex(mesh: &Mesh, i: usize) -> [f32; 8] {
+fn vertex(mesh: &Mesh, i: usize) -> [f32; 9] {
     let (p, n, t) = (mesh.positions[i], mesh.normals[i], mesh.tex_coords[i]);
-    [p[0], p[1], p[2], n[0], n[1], n[2], t[0], t[1]]
+    let fog = mesh.fog_coords.get(i).copied().unwrap_or(0.0);
+    [p[0], p[1], p[2], n[0], n[1], n[2], t[0], t[1], fog]
 }
 
 impl GpuMesh {
@@ -74,7 +75,7 @@ impl GpuMesh {
                 count,
             })
         } else {
-            let vertices: Vec<[f32; 8]> = (0..mesh.positions.len()).map(|i| vertex(mesh, i)).collect();
+            let vertices: Vec<[f32; 9]> = (0..mesh.positions.len()).map(|i| vertex(mesh, i)).collect();
             Some(Self {
                 vertices: buffer(
                     "firmament GpuMesh vertices",
