@@ -261,6 +261,8 @@ mod tests {
                 fog_params,
                 fog_color,
                 eye_up,
+                fog_sun,
+                fog_sun_color,
                 lights
             ]
         );
@@ -268,7 +270,7 @@ mod tests {
             classic,
             "ClassicObject",
             ClassicObjectUniforms,
-            [model_view, normal_matrix, front, back, flags]
+            [model_view, normal_matrix, front, back, flags, fog_coord, light_colors]
         );
         let atmosphere = validate("atmosphere/sky", ATMOSPHERE_SKY);
         assert_layout!(
