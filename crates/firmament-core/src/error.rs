@@ -26,4 +26,14 @@ pub enum CoreError {
         /// The rule it broke.
         rule: &'static str,
     },
+    /// A value of an indexed item (`flare.elements[3].size`) broke its rule.
+    #[error("{field} = {value}: {rule}")]
+    InvalidItem {
+        /// The field's full name, with the item's index.
+        field: String,
+        /// The value as given.
+        value: String,
+        /// The rule it broke.
+        rule: &'static str,
+    },
 }

@@ -8,6 +8,7 @@ use crate::camera::Camera;
 use crate::classic::scene::ObjectLayer;
 use crate::color::LinearRgb;
 use crate::display::DisplaySettings;
+use crate::flare::FlareLayer;
 use crate::gradient_sky::GradientSkyState;
 
 /// The sky model drawn behind everything.
@@ -201,6 +202,8 @@ pub struct Frame {
     pub display: DisplaySettings,
     /// Objects in front of the sky, their lighting and fog.
     pub objects: ObjectLayer,
+    /// Lens flares of the suns and lights.
+    pub flares: FlareLayer,
 }
 
 #[cfg(test)]

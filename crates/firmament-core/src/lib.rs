@@ -24,6 +24,7 @@ pub mod color;
 pub mod controller;
 pub mod display;
 pub mod error;
+pub mod flare;
 pub mod frame;
 pub mod frustum;
 pub mod geometry;

@@ -445,3 +445,108 @@ pub fn bench_objects(
         phong_ms,
     })
 }
+
+/// Median milliseconds of the lens-flare passes for one source count.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlareTiming {
+    /// Sources flaring (all on screen, none hidden).
+    pub sources: usize,
+    /// The occlusion compute pass alone.
+    pub occlusion_ms: f64,
+    /// Occlusion and the element pass together.
+    pub total_ms: f64,
+}
+
+/// The lens-flare passes timed for 1, 8 and 64 sources (issue 6's benchmark).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlareBench {
+    /// Adapter name and backend.
+    pub adapter: String,
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Frames timed per figure (the median is reported).
+    pub frames: u32,
+    /// Elements per flare (the `classic` preset's).
+    pub elements: usize,
+    /// Occlusion samples per source.
+    pub samples: u32,
+    /// How the times were measured.
+    pub timing: Timing,
+    /// One row per source count.
+    pub rows: Vec<FlareTiming>,
+}
+
+/// Times the occlusion and element passes with the `classic` flare (16 elements, `samples`
+/// depth samples each) for 1, 8 and 64 point sources spread over the screen of a 45° camera.
+pub fn bench_flares(
+    ctx: &GpuContext,
+    width: u32,
+    height: u32,
+    frames: u32,
+    samples: u32,
+) -> Result<FlareBench, RenderError> {
+    use firmament_core::flare::{FlareLayer, FlareSource, LensFlare};
+    use glam::{DQuat, DVec3, DVec4};
+    ctx.check_image_size(width, height)?;
+    let camera = Camera {
+        position: DVec3::ZERO,
+        orientation: DQuat::IDENTITY,
+        fov_y: 45f64.to_radians(),
+        aspect: f64::from(width) / f64::from(height),
+        near: 1.0,
+        far: Some(1000.0),
+    };
+    let flare = LensFlare {
+        samples,
+        ..LensFlare::classic()
+    };
+    let targets = FrameTargets::new(&ctx.device, width, height);
+    let mut pass = crate::passes::FlarePass::new(&ctx.device);
+    pass.bind_depth(&ctx.device, &targets.depth_view, width, height);
+    let mut rows = Vec::new();
+    for count in [1usize, 8, 64] {
+        let sources = (0..count)
+            .map(|i| {
+                // A golden-angle spiral of lights 100 m ahead, all inside the view.
+                let r = 25.0 * ((i as f64 + 0.5) / count as f64).sqrt();
+                let a = i as f64 * 2.399_963_229_728_653;
+                FlareSource {
+                    position: DVec4::new(r * a.cos() * camera.aspect, r * a.sin(), -100.0, 1.0),
+                    radius: 1.0,
+                    color: DVec3::ONE,
+                }
+            })
+            .collect();
+        let layer = FlareLayer {
+            flare: Some(flare.clone()),
+            sources,
+        };
+        pass.prepare(&ctx.queue, &layer, &camera, 1.0, None, None);
+        let occlusion_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+            clear_depth(e, &targets, 0.0);
+            pass.record_occlusion(e);
+        });
+        let total_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+            clear_depth(e, &targets, 0.0);
+            pass.record(e, &targets.hdr_view);
+        });
+        rows.push(FlareTiming {
+            sources: count,
+            occlusion_ms,
+            total_ms,
+        });
+    }
+    let info = ctx.adapter.get_info();
+    Ok(FlareBench {
+        adapter: format!("{} ({:?})", info.name, info.backend),
+        width,
+        height,
+        frames,
+        elements: flare.elements.len(),
+        samples,
+        timing: timing(ctx),
+        rows,
+    })
+}

@@ -94,6 +94,25 @@ impl HeadlessRenderer {
         Ok(Image { width, height, pixels })
     }
 
+    /// See [`Renderer::set_flare_interval`]: seconds between frames for the flares' fade rates
+    /// (`None`, the default, for stills).
+    pub fn set_flare_interval(&mut self, seconds: Option<f64>) {
+        self.renderer.set_flare_interval(seconds);
+    }
+
+    /// The lens-flare visibility the last render computed on the GPU, one share per source the
+    /// flare pass kept (for tests: the rendering path itself never reads it back).
+    pub fn flare_visibility(&self, ctx: &GpuContext) -> Result<Vec<f32>, RenderError> {
+        let flares = self.renderer.flares();
+        let count = u64::from(flares.source_count());
+        let bytes = crate::readback::read_buffer(ctx, flares.visibility_buffer(), count * 4)?;
+        Ok(bytes
+            .chunks_exact(4)
+            .take(count as usize)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect())
+    }
+
     fn render(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
         ctx.check_image_size(width, height)?;
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);

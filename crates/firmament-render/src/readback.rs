@@ -73,18 +73,7 @@ pub fn read_texture(ctx: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<u8>
     }
 
     let slice = buffer.slice(..);
-    let (sender, receiver) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |result| {
-        // The receiver outlives the poll below; a failed send only means we already gave up.
-        let _ = sender.send(result);
-    });
-    ctx.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
-    receiver
-        .recv()
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    map_and_wait(ctx, &slice)?;
 
     let row = (width * bytes_per_pixel) as usize;
     let mapped = slice
@@ -105,6 +94,48 @@ pub fn decode_f16(bytes: &[u8]) -> Vec<f32> {
         .chunks_exact(2)
         .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
         .collect()
+}
+
+/// Maps `slice` for reading and waits until the GPU has finished with it.
+fn map_and_wait(ctx: &GpuContext, slice: &wgpu::BufferSlice<'_>) -> Result<(), RenderError> {
+    let (sender, receiver) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |result| {
+        // The receiver outlives the poll below; a failed send only means we already gave up.
+        let _ = sender.send(result);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    receiver
+        .recv()
+        .map_err(|e| RenderError::Readback(e.to_string()))?
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    Ok(())
+}
+
+/// Copies the first `size` bytes of `buffer` (which needs `COPY_SRC`) to the CPU: for tests and
+/// tools that inspect GPU-side results; no rendering path calls it.
+pub fn read_buffer(ctx: &GpuContext, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, RenderError> {
+    let size = size.min(buffer.size()).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+    let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("firmament buffer readback staging buffer"),
+        size: size.max(wgpu::COPY_BUFFER_ALIGNMENT),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("firmament buffer readback encoder"),
+    });
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+    ctx.queue.submit([encoder.finish()]);
+    let slice = staging.slice(..size);
+    map_and_wait(ctx, &slice)?;
+    let bytes = slice
+        .get_mapped_range()
+        .map_err(|e| RenderError::Readback(e.to_string()))?
+        .to_vec();
+    staging.unmap();
+    Ok(bytes)
 }
 
 #[cfg(test)]

@@ -1,12 +1,15 @@
 //! The frame renderer: objects, then the sky behind them, into HDR targets; aerial perspective
-//! over the objects when the sky is an atmosphere; tonemap → the caller's view.
+//! over the objects when the sky is an atmosphere; lens flares over everything; tonemap → the
+//! caller's view.
 
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::passes::{AtmospherePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass};
+use crate::passes::{
+    AtmospherePass, FlarePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
+};
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
 
 /// The sky passes a frame can use.
@@ -28,6 +31,9 @@ pub struct Renderer {
     /// Which sky the last `prepare` chose.
     sky: SkyKind,
     objects: ObjectPass,
+    flares: FlarePass,
+    /// Seconds between frames for the flares' fade rates; `None` renders stills.
+    flare_interval: Option<f64>,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
 }
@@ -41,6 +47,8 @@ impl Renderer {
             seed: SeedSkyPass::new(&ctx.device),
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
+            flares: FlarePass::new(&ctx.device),
+            flare_interval: None,
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
         }
@@ -53,6 +61,7 @@ impl Renderer {
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
             let targets = FrameTargets::new(&ctx.device, width, height);
             self.atmosphere.bind_depth(&ctx.device, &targets.depth_view);
+            self.flares.bind_depth(&ctx.device, &targets.depth_view, width, height);
             self.targets = Some(targets);
         }
         let camera = firmament_core::Camera {
@@ -82,6 +91,18 @@ impl Renderer {
             }
         }
         self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
+        let planet = match &frame.sky {
+            Sky::Atmosphere(sky) => Some(&sky.atmosphere.planet),
+            _ => None,
+        };
+        self.flares.prepare(
+            &ctx.queue,
+            &frame.flares,
+            &camera,
+            frame.display.exposure.multiplier,
+            planet,
+            self.flare_interval,
+        );
         if let Some(targets) = &self.targets {
             self.tonemap
                 .prepare(&ctx.device, &ctx.queue, &frame.display, &targets.hdr_view);
@@ -124,7 +145,21 @@ impl Renderer {
         if self.sky == SkyKind::Atmosphere && !self.objects.is_empty() {
             self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
         }
+        // Flares last, over everything, hidden by what the depth buffer holds.
+        self.flares.record(encoder, &targets.hdr_view);
         self.tonemap.record(encoder, output);
+    }
+
+    /// Sets the time between frames for the lens flares' fade-in and fade-out rates (a viewer's
+    /// frame interval, seconds); `None` (the default) takes each frame's visibility at once, as
+    /// stills and time-lapses should.
+    pub fn set_flare_interval(&mut self, seconds: Option<f64>) {
+        self.flare_interval = seconds;
+    }
+
+    /// The lens-flare pass (its visibility buffer, for tests and tools).
+    pub fn flares(&self) -> &FlarePass {
+        &self.flares
     }
 
     /// The HDR and depth targets of the last `prepare` (for EXR output and tests).

@@ -74,11 +74,29 @@ pub const ATMOSPHERE_AERIAL_PERSPECTIVE: &str = atmosphere_shader!("common", "lu
 /// The object pass: classic (fixed-function) lighting, textures and fog.
 pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
 
+/// The lens-flare occlusion pass (compute), with its includes.
+pub const FLARE_OCCLUSION: &str = concat!(
+    include_str!("shaders/common/ellipsoid.wgsl"),
+    "\n",
+    include_str!("shaders/flare_common.wgsl"),
+    "\n",
+    include_str!("shaders/flare_occlusion.wgsl")
+);
+
+/// The lens-flare element pass, with its include.
+pub const FLARE: &str = concat!(
+    include_str!("shaders/flare_common.wgsl"),
+    "\n",
+    include_str!("shaders/flare.wgsl")
+);
+
 /// Every composed shader by name, for validation and tooling.
 pub const ALL: &[(&str, &str)] = &[
     ("sky_gradient", SKY_GRADIENT),
     ("tonemap", TONEMAP),
     ("classic_lighting", CLASSIC_LIGHTING),
+    ("flare_occlusion", FLARE_OCCLUSION),
+    ("flare", FLARE),
     ("seed_sky", SEED_SKY),
     ("atmosphere/transmittance_lut", ATMOSPHERE_TRANSMITTANCE_LUT),
     ("atmosphere/multiscattering_lut", ATMOSPHERE_MULTISCATTERING_LUT),
@@ -98,6 +116,7 @@ pub const INCLUDES: &[(&str, &str)] = &[
     ("common/fullscreen", FULLSCREEN),
     ("common/ellipsoid", ELLIPSOID),
     ("common/view_ray", VIEW_RAY),
+    ("flare_common", include_str!("shaders/flare_common.wgsl")),
     (
         "atmosphere/common",
         concat!(
@@ -137,8 +156,8 @@ mod tests {
     use super::*;
     use crate::gpu_types::{
         AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, ClassicFrameUniforms,
-        ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, GradientSkyUniforms,
-        TonemapUniforms,
+        ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, FlareFrameUniforms,
+        FlareInstance, FlareSourceGpu, GradientSkyUniforms, TonemapUniforms,
     };
 
     fn validate(name: &str, source: &str) -> naga::Module {
@@ -272,6 +291,18 @@ mod tests {
             ClassicObjectUniforms,
             [model_view, normal_matrix, front, back, flags, fog_coord, light_colors]
         );
+        let occlusion = validate("flare_occlusion", FLARE_OCCLUSION);
+        let flare = validate("flare", FLARE);
+        for module in [&occlusion, &flare] {
+            assert_layout!(
+                module,
+                "FlareFrame",
+                FlareFrameUniforms,
+                [view_to_planet, planet_origin, planet_radii, counts, view, fade]
+            );
+        }
+        assert_layout!(occlusion, "FlareSource", FlareSourceGpu, [disc, depth]);
+        assert_layout!(flare, "InstanceIn", FlareInstance, [placement, color, shape, source]);
         let atmosphere = validate("atmosphere/sky", ATMOSPHERE_SKY);
         assert_layout!(
             atmosphere,

@@ -44,6 +44,7 @@ fn render(gpu: &mut Gpu, sky: &AtmosphereSky, camera: Camera, width: u32, height
         sky: Sky::Atmosphere(sky.clone()),
         display: DisplaySettings::default(),
         objects: Default::default(),
+        flares: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     renderer.render_hdr(ctx, &frame, width, height).expect("render")

@@ -512,6 +512,7 @@ fn the_renderer_writes_the_equations_colours_as_8_bit_gl_pixels() {
             ..Default::default()
         },
         objects: layer.clone(),
+        flares: Default::default(),
     };
     let mut gpu = support::gpu();
     let support::Gpu { ctx, renderer } = &mut *gpu;

@@ -79,6 +79,7 @@ fn compare(gpu: &mut Gpu, name: &str, sky: &SeedSky, camera: Camera) -> Comparis
         sky: Sky::Seed(sky.clone()),
         display: DisplaySettings::default(),
         objects: Default::default(),
+        flares: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     let image = renderer.render_hdr(ctx, &frame, WIDTH, HEIGHT).expect("render");
@@ -228,6 +229,7 @@ fn invalid_parameters_draw_nothing() {
         sky: Sky::Seed(sky),
         display: DisplaySettings::default(),
         objects: Default::default(),
+        flares: Default::default(),
     };
     let Gpu { ctx, renderer } = &mut *gpu;
     let image = renderer.render_hdr(ctx, &frame, 4, 3).expect("render");

@@ -53,6 +53,7 @@ fn frame(camera: Camera, sky: GradientSkyState, display: DisplaySettings) -> Fra
         sky: Sky::Gradient(sky),
         display,
         objects: Default::default(),
+        flares: Default::default(),
     }
 }
 

@@ -23,11 +23,15 @@
 //! surface). `[planet]`, `[atmosphere]` and `[[suns]]` are checked in every scene but used only by
 //! the atmosphere. `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of the
 //! physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
+//!
+//! `[flare]` (off by default) gives every sun of the sky and every `[[lights]]` entry marked
+//! `flare = true` a lens flare: a built-in preset's elements or the scene's own `flare.elements`.
 
 pub mod assets;
 mod atmosphere;
 mod color;
 mod error;
+mod flare;
 mod layers;
 mod model;
 mod objects;
@@ -45,9 +49,9 @@ pub use model::{
     TimeSection,
 };
 pub use model::{
-    CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
-    LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
-    TextureEntry, TransformEntry,
+    CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,
+    FogModeName, FogSection, GlColor, LightEntry, LightSpaceName, LightingModelName, LightingSection, MaterialEntry,
+    MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry, TextureEntry, TransformEntry,
 };
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;

@@ -1,6 +1,7 @@
 //! The scene file's data model: plain serde structs, parsed strictly.
 
 mod atmosphere;
+mod flare;
 mod objects;
 
 use serde::Deserialize;
@@ -8,6 +9,7 @@ use serde::Deserialize;
 pub use self::atmosphere::{
     AtmosphereModelName, AtmosphereSection, Body, MiePhaseName, PlanetSection, SeedSection, SunEntry,
 };
+pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
 pub use self::objects::{
     CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
     LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
@@ -55,6 +57,8 @@ pub struct Scene {
     pub objects: Vec<ObjectEntry>,
     /// Fog over objects.
     pub fog: FogSection,
+    /// Lens flares of the suns and the lights marked `flare = true`.
+    pub flare: FlareSection,
     /// The folder relative mesh and texture paths are taken from: the scene file's folder (the
     /// working directory for presets and text without a file).
     #[serde(skip)]

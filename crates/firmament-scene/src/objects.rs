@@ -43,7 +43,7 @@ fn finite3(key: &str, v: [f64; 3], rule: &str) -> Result<DVec3, SceneError> {
 }
 
 /// Light `i` of `[[lights]]`, GL's initial values where the entry says nothing.
-fn light(i: usize, entry: &LightEntry) -> Result<SceneLight, SceneError> {
+pub(crate) fn light(i: usize, entry: &LightEntry) -> Result<SceneLight, SceneError> {
     let key = |field: &str| format!("lights[{i}].{field}");
     let initial = Light::gl_default(i);
     let pick = |field: &str, c: Option<GlColor>, default: DVec4| c.map_or(Ok(default), |c| color(&key(field), c));

@@ -101,6 +101,11 @@ pub const PRESETS: &[Preset] = &[
         summary: "classic: every light type, two-sided lighting, separate specular, textures and fog",
         toml: include_str!("presets/fixed-function-tour.toml"),
     },
+    Preset {
+        name: "nehe-flare",
+        summary: "flare: NeHe lesson 44's light 50 units ahead, its classic lens flare, a tile turning in front of it",
+        toml: include_str!("presets/nehe-flare.toml"),
+    },
 ];
 
 /// How many presets may build on each other before we call it a loop.

@@ -120,7 +120,8 @@ impl Scene {
     }
 
     /// Everything needed to draw the scene at `time` (its own time when `None`; the atmosphere's
-    /// suns do not move with it, objects' spins do). Builds the built-in meshes and loads mesh
+    /// suns do not move with it, objects' spins and the gradient sky's sun do), with the lens
+    /// flares of `[flare]` and its sources (the suns, the lights marked `flare`). Builds the built-in meshes and loads mesh
     /// and texture files, so a bad or missing file is reported here.
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
         let time = match time {
@@ -154,11 +155,14 @@ impl Scene {
                 Sky::Clear(firmament_core::LinearRgb::new(r, g, b))
             }
         };
+        let camera = self.camera();
+        let flares = crate::flare::flare_layer(self, &camera, &sky)?;
         Ok(Frame {
-            camera: self.camera(),
+            camera,
             sky,
             display: self.display_settings(),
             objects: crate::objects::object_layer(self, time)?,
+            flares,
         })
     }
 }

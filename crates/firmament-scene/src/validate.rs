@@ -200,5 +200,6 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         format!("{clear:?}"),
         "every component must be a finite number >= 0",
     )?;
-    crate::objects::validate(scene)
+    crate::objects::validate(scene)?;
+    crate::flare::validate(scene)
 }

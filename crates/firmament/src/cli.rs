@@ -119,6 +119,10 @@ pub(crate) struct BenchArgs {
     #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "1000",
           value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub(crate) objects: Option<u32>,
+    /// Time the lens-flare passes instead: occlusion and elements with 1, 8 and 64 sources
+    /// (the `classic` flare, 32 depth samples each).
+    #[arg(long, conflicts_with = "objects")]
+    pub(crate) flares: bool,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub(crate) json: bool,

@@ -15,11 +15,13 @@ use glam::{DMat4, Mat4};
 
 pub mod atmosphere;
 pub mod classic;
+pub mod flare;
 mod planet_view;
 pub mod seed;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
+pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use seed::{SeedSkyUniforms, SeedStarUniform};
 
 /// `vec4<f32>` of a vector, `w` appended, rounded once.

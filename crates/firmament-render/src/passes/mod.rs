@@ -4,12 +4,14 @@
 
 pub mod atmosphere;
 mod far_plane;
+pub mod flare;
 pub mod objects;
 pub mod seed_sky;
 pub mod sky_gradient;
 pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
+pub use flare::FlarePass;
 pub use objects::{GpuMesh, ObjectPass};
 pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;

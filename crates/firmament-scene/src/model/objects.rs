@@ -124,6 +124,14 @@ pub struct LightEntry {
     /// Constant, linear and quadratic attenuation, each >= 0 (GL's initial `[1, 0, 0]`).
     #[serde(default)]
     pub attenuation: Option<[f64; 3]>,
+    /// Whether the light is a lens-flare source (drawn when `flare.enabled`).
+    #[serde(default)]
+    pub flare: bool,
+    /// The disc its flare's occlusion samples cover, > 0: a radius in metres for a positional
+    /// light (default 0.05), an angular radius in **radians** for a directional one (`w = 0`,
+    /// default 0.005, below π/2).
+    #[serde(default)]
+    pub flare_radius: Option<f64>,
 }
 
 /// A material (`glMaterial`); absent values are GL's initial ones.

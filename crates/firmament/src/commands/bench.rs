@@ -1,10 +1,12 @@
-//! `firmament bench`: the atmosphere's per-pass times, or the object pass's Gouraud and Phong
-//! times (`--objects`), on this machine's adapter.
+//! `firmament bench`: the atmosphere's per-pass times, the object pass's Gouraud and Phong
+//! times (`--objects`), or the lens-flare passes' (`--flares`), on this machine's adapter.
 
 use anyhow::{Context, Result, bail};
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
-use firmament_render::bench::{AtmosphereBench, ObjectBench, bench_atmosphere, bench_objects, sphere_grid};
+use firmament_render::bench::{
+    AtmosphereBench, FlareBench, ObjectBench, bench_atmosphere, bench_flares, bench_objects, sphere_grid,
+};
 
 use crate::cli::BenchArgs;
 
@@ -12,6 +14,9 @@ use crate::cli::BenchArgs;
 pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     if let Some(count) = args.objects {
         return run_objects(args, count);
+    }
+    if args.flares {
+        return run_flares(args);
     }
     let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
     let extra = vec![
@@ -141,4 +146,52 @@ fn print_objects(b: &ObjectBench) {
     println!("  {:<30} {:>10.3} ms", "Gouraud (lit per vertex)", b.gouraud_ms);
     println!("  {:<30} {:>10.3} ms", "Phong (lit per fragment)", b.phong_ms);
     println!("  Phong / Gouraud: {:.2}x", b.phong_ms / b.gouraud_ms);
+}
+
+/// `--flares`: the occlusion and element passes with 1, 8 and 64 sources.
+fn run_flares(args: &BenchArgs) -> Result<()> {
+    let ctx = GpuContext::headless(args.backend.into())?;
+    let result = bench_flares(&ctx, args.width, args.height, args.frames, 32)?;
+    if args.json {
+        let rows: Vec<_> = result
+            .rows
+            .iter()
+            .map(
+                |r| serde_json::json!({ "sources": r.sources, "occlusion_ms": r.occlusion_ms, "total_ms": r.total_ms }),
+            )
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({
+                "adapter": result.adapter,
+                "width": result.width,
+                "height": result.height,
+                "frames": result.frames,
+                "elements": result.elements,
+                "samples": result.samples,
+                "timing": result.timing.describe(),
+                "rows": rows,
+            })
+        );
+    } else {
+        print_flares(&result);
+    }
+    Ok(())
+}
+
+fn print_flares(b: &FlareBench) {
+    println!(
+        "{} — {}x{}, {} elements per flare, {} samples per source, median of {} frames, {}",
+        b.adapter,
+        b.width,
+        b.height,
+        b.elements,
+        b.samples,
+        b.frames,
+        b.timing.describe()
+    );
+    println!("{:>8}  {:>13}  {:>13}", "sources", "occlusion ms", "total ms");
+    for r in &b.rows {
+        println!("{:>8}  {:>13.3}  {:>13.3}", r.sources, r.occlusion_ms, r.total_ms);
+    }
 }

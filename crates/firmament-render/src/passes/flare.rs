@@ -1,0 +1,372 @@
+//! The lens-flare passes: an occlusion compute pass that samples the depth buffer (and the
+//! planet) over every source's disc and writes its visible share to a GPU buffer, and an element
+//! pass that adds each source's flare — glows, streaks, halos, ghosts along the axis through the
+//! screen centre — to the HDR target, scaled by that share. Nothing is read back to the CPU.
+//!
+//! Placement is the core's ([`firmament_core::flare`]): sources are projected and elements laid
+//! out in `f64` in `prepare`; the GPU only decides how much of each source is hidden.
+
+use firmament_core::Camera;
+use firmament_core::atmosphere::Planet;
+use firmament_core::flare::{FlareLayer, MAX_FLARE_ELEMENTS, MAX_FLARE_SOURCES, element_centers, on_screen};
+
+use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
+use crate::passes::uniform_buffer;
+use crate::shaders;
+use crate::targets::HDR_FORMAT;
+
+/// Most element quads in a frame.
+const MAX_INSTANCES: usize = MAX_FLARE_SOURCES * MAX_FLARE_ELEMENTS;
+
+/// Lens flares of a frame's suns and lights.
+#[derive(Debug)]
+pub struct FlarePass {
+    occlusion: wgpu::ComputePipeline,
+    occlusion_layout: wgpu::BindGroupLayout,
+    /// Rebuilt by [`Self::bind_depth`].
+    occlusion_bind_group: Option<wgpu::BindGroup>,
+    draw: wgpu::RenderPipeline,
+    draw_bind_group: wgpu::BindGroup,
+    frame_uniforms: wgpu::Buffer,
+    sources: wgpu::Buffer,
+    /// One `f32` per source: the visible share, kept between frames for smoothing.
+    visibility: wgpu::Buffer,
+    instances: wgpu::Buffer,
+    source_count: u32,
+    instance_count: u32,
+    depth_size: (u32, u32),
+}
+
+fn storage_entry(binding: u32, visibility: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn buffer(device: &wgpu::Device, label: &str, size: usize, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size as u64,
+        usage: usage | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// Additive blending: flares add light.
+const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Zero,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
+impl FlarePass {
+    /// Builds both pipelines for [`HDR_FORMAT`] targets.
+    pub fn new(device: &wgpu::Device) -> Self {
+        Self::with_format(device, HDR_FORMAT)
+    }
+
+    /// Builds both pipelines for colour targets of `format`.
+    pub fn with_format(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
+        use wgpu::ShaderStages as S;
+        let frame_uniforms = uniform_buffer::<FlareFrameUniforms>(device, "firmament FlarePass frame uniforms");
+        let sources = buffer(
+            device,
+            "firmament FlarePass sources",
+            MAX_FLARE_SOURCES * std::mem::size_of::<FlareSourceGpu>(),
+            wgpu::BufferUsages::STORAGE,
+        );
+        let visibility = buffer(
+            device,
+            "firmament FlarePass visibility",
+            MAX_FLARE_SOURCES * 4,
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        );
+        let instances = buffer(
+            device,
+            "firmament FlarePass element instances",
+            MAX_INSTANCES * std::mem::size_of::<FlareInstance>(),
+            wgpu::BufferUsages::VERTEX,
+        );
+
+        let occlusion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("firmament FlarePass occlusion bind group layout"),
+            entries: &[
+                uniform_entry(0, S::COMPUTE),
+                storage_entry(1, S::COMPUTE, true),
+                storage_entry(2, S::COMPUTE, false),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: S::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        // Read as unfilterable float: GLSL has no textureLoad of depth textures.
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("firmament FlarePass occlusion shader"),
+            source: wgpu::ShaderSource::Wgsl(shaders::FLARE_OCCLUSION.into()),
+        });
+        let occlusion = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("firmament FlarePass occlusion pipeline"),
+            layout: Some(&device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("firmament FlarePass occlusion pipeline layout"),
+                bind_group_layouts: &[Some(&occlusion_layout)],
+                immediate_size: 0,
+            })),
+            module: &module,
+            entry_point: Some("cs_main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("firmament FlarePass element bind group layout"),
+            entries: &[
+                uniform_entry(0, S::VERTEX_FRAGMENT),
+                storage_entry(1, S::FRAGMENT, true),
+            ],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("firmament FlarePass element shader"),
+            source: wgpu::ShaderSource::Wgsl(shaders::FLARE.into()),
+        });
+        let draw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("firmament FlarePass element pipeline"),
+            layout: Some(&device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("firmament FlarePass element pipeline layout"),
+                bind_group_layouts: &[Some(&draw_layout)],
+                immediate_size: 0,
+            })),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<FlareInstance>() as u64,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &wgpu::vertex_attr_array![
+                        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Uint32x4
+                    ],
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
+                ..Default::default()
+            },
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: Some(ADDITIVE),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("firmament FlarePass element bind group"),
+            layout: &draw_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame_uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: visibility.as_entire_binding(),
+                },
+            ],
+        });
+        Self {
+            occlusion,
+            occlusion_layout,
+            occlusion_bind_group: None,
+            draw,
+            draw_bind_group,
+            frame_uniforms,
+            sources,
+            visibility,
+            instances,
+            source_count: 0,
+            instance_count: 0,
+            depth_size: (0, 0),
+        }
+    }
+
+    /// Binds the depth buffer (reversed-Z, `width` × `height`) whose geometry hides sources.
+    /// Call again when the depth texture changes.
+    pub fn bind_depth(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView, width: u32, height: u32) {
+        self.depth_size = (width, height);
+        self.occlusion_bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("firmament FlarePass occlusion bind group"),
+            layout: &self.occlusion_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.frame_uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.sources.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.visibility.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(depth),
+                },
+            ],
+        }));
+    }
+
+    /// Lays out `layer`'s flares for `camera` (whose aspect must be the target's): which sources
+    /// can flare (in front, within the margin), where each element goes, its colour over the
+    /// display's `exposure` multiplier (so 1 is white on screen). `planet`, when the sky has one,
+    /// hides sources behind it. `dt` is the time since the last frame for the fade rates, or
+    /// `None` for a still (visibility at once). Sources and elements past the limits are dropped
+    /// (scenes validate the counts).
+    pub fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        layer: &FlareLayer,
+        camera: &Camera,
+        exposure: f64,
+        planet: Option<&Planet>,
+        dt: Option<f64>,
+    ) {
+        self.source_count = 0;
+        self.instance_count = 0;
+        let Some(flare) = &layer.flare else {
+            return;
+        };
+        let positions: Vec<f64> = flare.elements.iter().map(|e| e.position).collect();
+        let scale = flare.intensity / if exposure > 0.0 { exposure } else { 1.0 };
+        let mut sources = Vec::new();
+        let mut instances = Vec::new();
+        for source in layer.sources.iter().take(MAX_FLARE_SOURCES) {
+            let Some(at) = on_screen(camera, source, flare.margin) else {
+                continue;
+            };
+            let index = sources.len() as u32;
+            sources.push(FlareSourceGpu::new(camera, source, &at));
+            let centers = element_centers(camera, source, &positions);
+            for (element, center) in flare.elements.iter().take(MAX_FLARE_ELEMENTS).zip(centers) {
+                if let Some(center) = center {
+                    let color = element.color * source.color * element.intensity * scale;
+                    instances.push(FlareInstance::new(element, center, color, at.edge_fade, index));
+                }
+            }
+        }
+        let uniforms = FlareFrameUniforms::new(camera, planet, flare, sources.len() as u32, self.depth_size, dt);
+        queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
+        if !sources.is_empty() {
+            queue.write_buffer(&self.sources, 0, bytemuck::cast_slice(&sources));
+        }
+        if !instances.is_empty() {
+            queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&instances));
+        }
+        self.source_count = sources.len() as u32;
+        self.instance_count = instances.len() as u32;
+    }
+
+    /// Whether the last `prepare` left any flare to draw.
+    pub fn is_empty(&self) -> bool {
+        self.instance_count == 0
+    }
+
+    /// Encodes the occlusion pass: each source's visible share from the bound depth buffer,
+    /// after the geometry that hides sources is drawn. Nothing without [`Self::bind_depth`].
+    pub fn record_occlusion(&self, encoder: &mut wgpu::CommandEncoder) {
+        let Some(bind_group) = &self.occlusion_bind_group else {
+            return;
+        };
+        if self.source_count == 0 {
+            return;
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("firmament FlarePass occlusion"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.occlusion);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(self.source_count.div_ceil(64), 1, 1);
+    }
+
+    /// Draws the elements into a render pass the caller already began (additive; no depth).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        if self.instance_count == 0 {
+            return;
+        }
+        pass.set_pipeline(&self.draw);
+        pass.set_bind_group(0, &self.draw_bind_group, &[]);
+        pass.set_vertex_buffer(0, self.instances.slice(..));
+        pass.draw(0..4, 0..self.instance_count);
+    }
+
+    /// Encodes occlusion, then the elements added onto `color` (loaded, e.g. the HDR target).
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) {
+        if self.instance_count == 0 {
+            return;
+        }
+        self.record_occlusion(encoder);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("firmament FlarePass elements"),
+            color_attachments: &[Some(super::load_color_attachment(color))],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        self.draw(&mut pass);
+    }
+
+    /// The visibility buffer (one `f32` per prepared source, in the order they were kept), for
+    /// tests and tools that copy it out; the rendering path never reads it back.
+    pub fn visibility_buffer(&self) -> &wgpu::Buffer {
+        &self.visibility
+    }
+
+    /// How many sources the last `prepare` kept.
+    pub fn source_count(&self) -> u32 {
+        self.source_count
+    }
+}
