@@ -487,7 +487,7 @@ pub fn bench_flares(
     frames: u32,
     samples: u32,
 ) -> Result<FlareBench, RenderError> {
-    use firmament_core::flare::{FlareLayer, FlareSource, LensFlare};
+    use firmament_core::flare::{FlareLayer, FlareSource, LensFlare, sample_pattern};
     use glam::{DQuat, DVec3, DVec4};
     ctx.check_image_size(width, height)?;
     let camera = Camera {
@@ -507,16 +507,13 @@ pub fn bench_flares(
     pass.bind_depth(&ctx.device, &targets.depth_view, width, height);
     let mut rows = Vec::new();
     for count in [1usize, 8, 64] {
-        let sources = (0..count)
-            .map(|i| {
-                // A golden-angle spiral of lights 100 m ahead, all inside the view.
-                let r = 25.0 * ((i as f64 + 0.5) / count as f64).sqrt();
-                let a = i as f64 * 2.399_963_229_728_653;
-                FlareSource {
-                    position: DVec4::new(r * a.cos() * camera.aspect, r * a.sin(), -100.0, 1.0),
-                    radius: 1.0,
-                    color: DVec3::ONE,
-                }
+        // A golden-angle spiral of lights 100 m ahead, all inside the view.
+        let sources = sample_pattern(count as u32)
+            .into_iter()
+            .map(|p| FlareSource {
+                position: DVec4::new(25.0 * p.x * camera.aspect, 25.0 * p.y, -100.0, 1.0),
+                radius: 1.0,
+                color: DVec3::ONE,
             })
             .collect();
         let layer = FlareLayer {

@@ -13,6 +13,7 @@ use firmament_core::classic::scene::{
     SceneObject, Shading, TextureFilter, TransformStep, transform_from_steps,
 };
 use firmament_core::classic::sky_light::SkyLight;
+use firmament_core::frame::Sky;
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3, DVec4};
@@ -325,8 +326,9 @@ fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject
     Ok(out)
 }
 
-/// The objects' lighting; `light_sky` false skips the sky's (costly) irradiance for validation.
-fn lighting(scene: &Scene, light_sky: bool) -> Result<ObjectLighting, SceneError> {
+/// The objects' lighting; `sky_light` is the frame's sky light for `lighting.model = "sky"`
+/// (`None` checks the rules only, skipping the sky's costly irradiance).
+fn lighting(scene: &Scene, sky_light: Option<&SkyLight<'_>>) -> Result<ObjectLighting, SceneError> {
     let l = &scene.lighting;
     check(
         scene.lights.len() <= MAX_CLASSIC_LIGHTS,
@@ -370,12 +372,12 @@ fn lighting(scene: &Scene, light_sky: bool) -> Result<ObjectLighting, SceneError
                 "\"sky\"",
                 "objects lit by the sky need the physical atmosphere (sky.model = \"atmosphere\", atmosphere.model = \"physical\")",
             )?;
-            if !light_sky {
+            let Some(sky_light) = sky_light else {
                 // Validation only: the reference's sky irradiance is computed when the frame is.
                 return Ok(ObjectLighting::Unlit);
-            }
+            };
             let camera = glam::DVec3::from_array(scene.camera.position);
-            let mut lit = SkyLight::new(&scene.atmosphere_sky()?).lighting(camera, shading, specular);
+            let mut lit = sky_light.lighting(camera, shading, specular);
             lit.model.two_side = l.two_side;
             lit.model.separate_specular = l.separate_specular;
             ObjectLighting::Sky(lit)
@@ -487,7 +489,7 @@ fn fog_sun(scene: &Scene) -> Result<Option<FogSun>, SceneError> {
 /// Checks every rule of `[lighting]`, `[[lights]]`, `[[objects]]` and `[fog]` without loading
 /// files (loading happens in [`object_layer`]).
 pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
-    lighting(scene, false)?;
+    lighting(scene, None)?;
     fog(scene)?;
     objects(scene, TimeOfDay::MIDNIGHT, false)?;
     Ok(())
@@ -495,13 +497,16 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
 
 /// The scene's objects at `time` (for spins), their lighting and fog; builds the built-in meshes
 /// and loads mesh and texture files.
-pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay) -> Result<ObjectLayer, SceneError> {
+pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay, sky: &Sky) -> Result<ObjectLayer, SceneError> {
     let mut objects = objects(scene, time, true)?;
-    let lighting = lighting(scene, true)?;
-    if let ObjectLighting::Sky(_) = lighting {
+    // Objects lit by the sky: one sky light for the frame (`lighting` requires an atmosphere).
+    let sky_light = match (scene.lighting.model, sky) {
+        (LightingModelName::Sky, Sky::Atmosphere(sky)) => Some(SkyLight::new(sky)),
+        _ => None,
+    };
+    let lighting = lighting(scene, sky_light.as_ref())?;
+    if let Some(light) = &sky_light {
         // Each object sees the suns through the air at its own origin.
-        let sky = scene.atmosphere_sky()?;
-        let light = SkyLight::new(&sky);
         for object in &mut objects {
             object.light_colors = light.sun_colors(object.model.transform_point3(DVec3::ZERO));
         }

@@ -121,8 +121,9 @@ impl Scene {
 
     /// Everything needed to draw the scene at `time` (its own time when `None`; the atmosphere's
     /// suns do not move with it, objects' spins and the gradient sky's sun do), with the lens
-    /// flares of `[flare]` and its sources (the suns, the lights marked `flare`). Builds the built-in meshes and loads mesh
-    /// and texture files, so a bad or missing file is reported here.
+    /// flares of `[flare]` and its sources (the suns, the lights marked `flare`). Builds the
+    /// built-in meshes and loads mesh and texture files, so a bad or missing file is reported
+    /// here.
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
         let time = match time {
             Some(t) => t,
@@ -157,11 +158,12 @@ impl Scene {
         };
         let camera = self.camera();
         let flares = crate::flare::flare_layer(self, &camera, &sky)?;
+        let objects = crate::objects::object_layer(self, time, &sky)?;
         Ok(Frame {
             camera,
             sky,
             display: self.display_settings(),
-            objects: crate::objects::object_layer(self, time)?,
+            objects,
             flares,
         })
     }

@@ -10,9 +10,9 @@ use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareElement, FlareShape, FlareSource, LensFlare, SourceOnScreen};
-use glam::{DMat3, DMat4, DVec2, DVec3};
+use glam::{DVec2, DVec3, Mat4};
 
-use super::planet_view::ellipsoid_c;
+use super::planet_view::PlanetView;
 
 /// Mirrors `FlareFrame` in `shaders/flare_occlusion.wgsl` and `shaders/flare.wgsl`.
 #[repr(C)]
@@ -74,21 +74,21 @@ impl FlareFrameUniforms {
     ) -> Self {
         let (view_to_planet, planet_origin, planet_radii) = match planet {
             Some(planet) => {
-                let rotation =
-                    DMat3::from_quat(planet.orientation.normalize().inverse() * camera.orientation.normalize());
                 let o = planet.to_planet_frame(camera.position);
                 let r = planet.radii;
+                // The same view of the planet the sky passes take (only rotation and `c` used).
+                let view = PlanetView::new(camera, planet.center, planet.orientation, o, r, r);
                 (
-                    DMat4::from_mat3(rotation),
-                    [o.x as f32, o.y as f32, o.z as f32, ellipsoid_c(o, r) as f32],
+                    view.view_to_planet,
+                    [o.x as f32, o.y as f32, o.z as f32, view.camera_shape[0]],
                     [r.x as f32, r.y as f32, r.z as f32, 1.0],
                 )
             }
-            None => (DMat4::IDENTITY, [0.0; 4], [1.0, 1.0, 1.0, 0.0]),
+            None => (Mat4::IDENTITY.to_cols_array_2d(), [0.0; 4], [1.0, 1.0, 1.0, 0.0]),
         };
         let tan_y = (0.5 * camera.fov_y).tan();
         Self {
-            view_to_planet: view_to_planet.as_mat4().to_cols_array_2d(),
+            view_to_planet,
             planet_origin,
             planet_radii,
             counts: [sources, flare.samples, depth_size.0, depth_size.1],

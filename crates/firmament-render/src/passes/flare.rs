@@ -11,7 +11,7 @@ use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareLayer, MAX_FLARE_ELEMENTS, MAX_FLARE_SOURCES, element_centers, on_screen};
 
 use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
-use crate::passes::uniform_buffer;
+use crate::passes::{uniform_buffer, uniform_entry, uniform_entry_in};
 use crate::shaders;
 use crate::targets::HDR_FORMAT;
 
@@ -43,19 +43,6 @@ fn storage_entry(binding: u32, visibility: wgpu::ShaderStages, read_only: bool) 
         visibility,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: false,
             min_binding_size: None,
         },
@@ -118,7 +105,7 @@ impl FlarePass {
         let occlusion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass occlusion bind group layout"),
             entries: &[
-                uniform_entry(0, S::COMPUTE),
+                uniform_entry_in(0, S::COMPUTE),
                 storage_entry(1, S::COMPUTE, true),
                 storage_entry(2, S::COMPUTE, false),
                 wgpu::BindGroupLayoutEntry {
@@ -153,10 +140,7 @@ impl FlarePass {
 
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass element bind group layout"),
-            entries: &[
-                uniform_entry(0, S::VERTEX_FRAGMENT),
-                storage_entry(1, S::FRAGMENT, true),
-            ],
+            entries: &[uniform_entry(0), storage_entry(1, S::FRAGMENT, true)],
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("firmament FlarePass element shader"),

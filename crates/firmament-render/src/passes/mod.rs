@@ -110,9 +110,14 @@ pub(crate) fn uniform_buffer<T>(device: &wgpu::Device, label: &str) -> wgpu::Buf
 
 /// A bind group layout entry for a uniform buffer visible to the fragment and vertex stages.
 pub(crate) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    uniform_entry_in(binding, wgpu::ShaderStages::VERTEX_FRAGMENT)
+}
+
+/// A bind group layout entry for a uniform buffer visible to `stages`.
+pub(crate) fn uniform_entry_in(binding: u32, stages: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+        visibility: stages,
         ty: wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: false,
