@@ -14,11 +14,14 @@
 //! Element sizes are radii in units of half the screen **height** (NDC y), drawn round on any
 //! aspect ratio. Colours are linear RGB in display units: 1 is white after the frame's exposure.
 
+use std::sync::Arc;
+
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 use crate::Camera;
 use crate::error::CoreError;
 use crate::frustum::{ClipDepth, Frustum};
+use crate::texture::TextureImage;
 use crate::viewport::{Viewport, project_zero_to_one};
 
 /// Most occlusion samples per source.
@@ -27,8 +30,13 @@ pub const MAX_FLARE_SAMPLES: u32 = 256;
 pub const MAX_FLARE_ELEMENTS: usize = 64;
 /// Most flare sources in a frame (suns and lights marked `flare`).
 pub const MAX_FLARE_SOURCES: usize = 64;
+/// Most images one flare may use ([`LensFlare::images`]).
+pub const MAX_FLARE_IMAGES: usize = 16;
+/// The side of every flare image, texels: image files are resampled to this square when loaded,
+/// so that all of a flare's images fit one texture array.
+pub const FLARE_IMAGE_SIDE: u32 = 256;
 
-/// The shape of one flare element, drawn procedurally (no texture files).
+/// The shape of one flare element: drawn procedurally, or an image.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum FlareShape {
     /// A soft glow falling smoothly to zero at the element's radius.
@@ -57,6 +65,16 @@ pub enum FlareShape {
         rotation: f64,
         /// Edge blur as a fraction of the radius, in (0, 1].
         softness: f64,
+    },
+    /// An image ([`LensFlare::images`]`[image]`) over the element's quad, as NeHe lesson 44 drew
+    /// its sprites: each texel's RGB × alpha (bytes / 255, as stored, like `GL_MODULATE`) times
+    /// the element's colour is the light added. The picture's left edge is at the quad's left
+    /// edge, its top row at the top, before `rotation`.
+    Image {
+        /// Index into [`LensFlare::images`].
+        image: u32,
+        /// Degrees, counter-clockwise.
+        rotation: f64,
     },
 }
 
@@ -108,6 +126,9 @@ pub struct LensFlare {
     pub fade_in: f64,
     /// Visibility may fall by at most this much per second (0 = at once).
     pub fade_out: f64,
+    /// The images of [`FlareShape::Image`] elements, each [`FLARE_IMAGE_SIDE`] square, at most
+    /// [`MAX_FLARE_IMAGES`].
+    pub images: Vec<Arc<TextureImage>>,
 }
 
 /// NeHe's sizes are world-space half-widths of quads drawn at the light; firmament's are
@@ -125,6 +146,7 @@ impl LensFlare {
             intensity: 1.0,
             fade_in: 0.0,
             fade_out: 0.0,
+            images: Vec::new(),
         }
     }
 
@@ -238,6 +260,22 @@ impl LensFlare {
                 return fail(field.into(), value.to_string(), "must be a finite number >= 0");
             }
         }
+        if self.images.len() > MAX_FLARE_IMAGES {
+            return fail(
+                "flare.elements".into(),
+                format!("{} images", self.images.len()),
+                "at most 16 different image files",
+            );
+        }
+        for image in &self.images {
+            if image.width != FLARE_IMAGE_SIDE || image.height != FLARE_IMAGE_SIDE {
+                return fail(
+                    "flare.images".into(),
+                    format!("{}x{}", image.width, image.height),
+                    "flare images must be resampled to 256x256 texels",
+                );
+            }
+        }
         if self.elements.len() > MAX_FLARE_ELEMENTS {
             return fail(
                 "flare.elements".into(),
@@ -304,6 +342,14 @@ impl LensFlare {
                     }
                     if !(softness > 0.0 && softness <= 1.0) {
                         return fail(key("softness"), softness.to_string(), "must be in (0, 1]");
+                    }
+                }
+                FlareShape::Image { image, rotation } => {
+                    if image as usize >= self.images.len() {
+                        return fail(key("image"), image.to_string(), "must index the flare's images");
+                    }
+                    if !rotation.is_finite() {
+                        return fail(key("rotation"), rotation.to_string(), "must be finite degrees");
                     }
                 }
             }
@@ -598,5 +644,25 @@ mod tests {
         let mut flare = LensFlare::classic();
         flare.elements[0].color.x = f64::NAN;
         assert!(flare.validate().unwrap_err().to_string().contains("elements[0].color"));
+    }
+
+    #[test]
+    fn image_elements_need_their_image() {
+        let image = FlareShape::Image {
+            image: 0,
+            rotation: 0.0,
+        };
+        let mut flare = LensFlare::classic();
+        flare.elements[2].shape = image;
+        let message = flare.validate().unwrap_err().to_string();
+        assert!(message.contains("flare.elements[2].image"), "{message}");
+        let texel = [255, 255, 255, 255];
+        let side = FLARE_IMAGE_SIDE;
+        let picture = TextureImage::checkerboard(side, 2, texel, [0; 4]).expect("a valid checkerboard");
+        flare.images.push(Arc::new(picture));
+        assert_eq!(flare.validate(), Ok(()));
+        let small = TextureImage::checkerboard(16, 2, texel, [0; 4]).expect("a valid checkerboard");
+        flare.images[0] = Arc::new(small);
+        assert!(flare.validate().unwrap_err().to_string().contains("256x256"));
     }
 }

@@ -520,7 +520,7 @@ pub fn bench_flares(
             flare: Some(flare.clone()),
             sources,
         };
-        pass.prepare(&ctx.queue, &layer, &camera, 1.0, None, None);
+        pass.prepare(&ctx.device, &ctx.queue, &layer, &camera, 1.0, None);
         let occlusion_ms = median_ms(ctx, frames, &targets.hdr, |e| {
             clear_depth(e, &targets, 0.0);
             pass.record_occlusion(e);

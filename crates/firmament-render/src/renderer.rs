@@ -32,8 +32,6 @@ pub struct Renderer {
     sky: SkyKind,
     objects: ObjectPass,
     flares: FlarePass,
-    /// Seconds between frames for the flares' fade rates; `None` renders stills.
-    flare_interval: Option<f64>,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
 }
@@ -48,7 +46,6 @@ impl Renderer {
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
             flares: FlarePass::new(&ctx.device),
-            flare_interval: None,
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
         }
@@ -96,12 +93,12 @@ impl Renderer {
             _ => None,
         };
         self.flares.prepare(
+            &ctx.device,
             &ctx.queue,
             &frame.flares,
             &camera,
             frame.display.exposure.multiplier,
             planet,
-            self.flare_interval,
         );
         if let Some(targets) = &self.targets {
             self.tonemap
@@ -154,7 +151,7 @@ impl Renderer {
     /// frame interval, seconds); `None` (the default) takes each frame's visibility at once, as
     /// stills and time-lapses should.
     pub fn set_flare_interval(&mut self, seconds: Option<f64>) {
-        self.flare_interval = seconds;
+        self.flares.set_interval(seconds);
     }
 
     /// The lens-flare pass (its visibility buffer, for tests and tools).

@@ -257,6 +257,79 @@ fn elements_sit_where_nehe_s_construction_puts_them() {
     }
 }
 
+/// A 256² picture whose red rises left to right, green bottom to top, blue a constant half.
+fn ramp_picture() -> firmament_core::texture::TextureImage {
+    let side = firmament_core::flare::FLARE_IMAGE_SIDE;
+    let texels = (0..side)
+        .flat_map(|t| (0..side).map(move |s| [s as u8, t as u8, 128, 255]))
+        .collect();
+    firmament_core::texture::TextureImage {
+        width: side,
+        height: side,
+        texels,
+    }
+}
+
+/// An image element is its picture over the element's quad: every pixel's HDR value equals the
+/// element colour times the texel the f64 geometry puts there (a linear ramp, so bilinear
+/// filtering and box-filtered mip levels give the ramp's value at that point), upright, and
+/// turned by `rotation`.
+#[test]
+fn image_elements_draw_their_picture_upright_and_turned() {
+    let camera = camera();
+    let radius = 0.5; // half the screen height: 30 px on a 120 px image
+    let color = DVec3::new(2.0, 1.0, 0.5);
+    for rotation in [0.0, 90.0] {
+        let mut picture_flare = LensFlare {
+            elements: vec![FlareElement::new(
+                FlareShape::Image { image: 0, rotation },
+                color.to_array(),
+                1.0,
+                radius,
+                0.0,
+            )],
+            ..flare(16)
+        };
+        picture_flare.images = vec![Arc::new(ramp_picture())];
+        let mut gpu = support::gpu();
+        let support::Gpu { ctx, renderer } = &mut *gpu;
+        let image = renderer
+            .render_hdr(ctx, &frame(vec![], vec![light()], picture_flare), WIDTH, HEIGHT)
+            .expect("render");
+        let center = on_screen(&camera, &light(), 0.0).expect("on screen").center;
+        let (turn_sin, turn_cos) = f64::to_radians(rotation).sin_cos();
+        let mut worst: f64 = 0.0;
+        let mut checked = 0;
+        for y in 0..HEIGHT {
+            for x in 0..WIDTH {
+                let ndc = DVec2::new(
+                    (f64::from(x) + 0.5) / f64::from(WIDTH) * 2.0 - 1.0,
+                    1.0 - (f64::from(y) + 0.5) / f64::from(HEIGHT) * 2.0,
+                );
+                // The quad's uv: radius in units of half the height, divided by the aspect in x.
+                let uv = DVec2::new((ndc.x - center.x) * camera.aspect, ndc.y - center.y) / radius;
+                // The picture's own coordinates: uv turned back by the rotation.
+                let turned = DVec2::new(turn_cos * uv.x + turn_sin * uv.y, -turn_sin * uv.x + turn_cos * uv.y);
+                let st = turned * 0.5 + 0.5;
+                // Away from the edges, where a pixel straddles the quad's border.
+                if st.min_element() < 0.05 || st.max_element() > 0.95 {
+                    continue;
+                }
+                // Texel k holds k / 255 and sits at s = (k + 0.5) / 256.
+                let ramp = |s: f64| ((s * 256.0 - 0.5) / 255.0).clamp(0.0, 1.0);
+                let expected = color * DVec3::new(ramp(st.x), ramp(st.y), 128.0 / 255.0);
+                let got = image.pixel(x, y).expect("inside");
+                let got = DVec3::new(f64::from(got[0]), f64::from(got[1]), f64::from(got[2]));
+                worst = worst.max(((got - expected) / color).abs().max_element());
+                checked += 1;
+            }
+        }
+        println!("image element, rotation {rotation}°: {checked} pixels, worst {worst:.2e} of the colour");
+        assert!(checked > 1500, "{checked}");
+        assert!(worst < 3.0 / 255.0, "rotation {rotation}: worst {worst}");
+    }
+}
+
 #[test]
 fn a_sun_on_the_horizon_is_half_hidden_by_the_planet() {
     let mut earth = firmament_core::atmosphere::presets::earth();

@@ -13,16 +13,26 @@
 //!     luminance of `E/π`, linear sRGB — so a sun in a clear sky has luminance ≈ 1, a setting one
 //!     is red and dim, and one below the horizon (colour 0) is left out;
 //!   - `"atmosphere"` with `atmosphere.model = "seed"`: every star of the seed sky, in its
-//!     direction from the camera, its angular radius seen from there, colour 1 (white); left out
-//!     when the seed's planet hides it from the camera;
-//!   - `"gradient"`: the sun of `[sun]` at the frame's time, colour 1 (white; the keyframes'
-//!     colours are artistic); left out when its whole disc is below the horizon (`z < −sin r`);
+//!     direction from the camera, its angular radius seen from there, and as colour the star's
+//!     colour scaled to luminance 1 times what the seed's own 8-step extinction lets through
+//!     along that line of sight ([`SeedAtmosphere::star_transmittance`](firmament_core::atmosphere::seed::SeedAtmosphere::star_transmittance):
+//!     reddened and dimmed near the seed's horizon); left out when the seed's planet hides it;
+//!   - `"gradient"`: the sun of `[sun]` at the frame's time, its colour the keyframes' `sun`
+//!     colour at that time (linear; white at noon in the default cycle, orange at sunset, black
+//!     at night, which leaves it out); left out too when its whole disc is below the horizon
+//!     (`z < −sin r`);
 //!   - `"clear"`: none.
 
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
 use firmament_core::classic::scene::LightSpace;
-use firmament_core::flare::{FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_SOURCES};
+use firmament_core::flare::{
+    FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_IMAGES, MAX_FLARE_SOURCES,
+};
 use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
 use firmament_core::geometry::Ray;
+use firmament_core::texture::TextureImage;
 use firmament_core::{Camera, CoreError};
 use glam::DVec3;
 
@@ -44,21 +54,70 @@ fn from_core(error: CoreError) -> SceneError {
     }
 }
 
+/// The image files of a flare's elements, each loaded once.
+struct FlareImages<'a> {
+    /// Relative paths start here (the scene file's folder).
+    base_dir: &'a Path,
+    /// The resolved path of each image, in the order first used.
+    paths: Vec<PathBuf>,
+    /// The images, resampled for the flare's texture array.
+    images: Vec<Arc<TextureImage>>,
+}
+
+impl FlareImages<'_> {
+    /// The index of `file` (loaded on first use) for the element whose key is `key`.
+    fn index_of(&mut self, key: &str, file: &str) -> Result<u32, SceneError> {
+        let path = self.base_dir.join(file);
+        if let Some(index) = self.paths.iter().position(|p| *p == path) {
+            return Ok(index as u32);
+        }
+        check(
+            self.images.len() < MAX_FLARE_IMAGES,
+            key,
+            format!("{file:?}"),
+            "a flare may use at most 16 different image files",
+        )?;
+        let image = crate::assets::load_flare_image(key, &path)?;
+        self.paths.push(path);
+        self.images.push(Arc::new(image));
+        Ok(self.images.len() as u32 - 1)
+    }
+}
+
 /// Element `i` of `flare.elements`; values that do not belong to its kind are errors.
-fn element(i: usize, e: &FlareElementEntry) -> Result<FlareElement, SceneError> {
+fn element(i: usize, e: &FlareElementEntry, images: &mut FlareImages<'_>) -> Result<FlareElement, SceneError> {
     let key = |field: &str| format!("flare.elements[{i}].{field}");
     let kind = match e.kind {
         FlareKindName::Glow => "glow",
         FlareKindName::Streaks => "streaks",
         FlareKindName::Halo => "halo",
         FlareKindName::Ghost => "ghost",
+        FlareKindName::Image => "image",
     };
     let allowed: &[&str] = match e.kind {
         FlareKindName::Glow => &[],
         FlareKindName::Streaks => &["points", "rotation", "sharpness"],
         FlareKindName::Halo => &["thickness"],
         FlareKindName::Ghost => &["sides", "rotation", "softness"],
+        FlareKindName::Image => &["rotation"],
     };
+    match (&e.file, e.kind) {
+        (None, FlareKindName::Image) => {
+            return Err(SceneError::invalid(
+                key("file"),
+                "(absent)",
+                "an image element needs `file`, the picture to draw",
+            ));
+        }
+        (Some(file), kind) if kind != FlareKindName::Image => {
+            return Err(SceneError::invalid(
+                key("file"),
+                format!("{file:?}"),
+                "only an image element (kind = \"image\") takes a file",
+            ));
+        }
+        _ => {}
+    }
     let given = [
         ("points", e.points.map(f64::from)),
         ("rotation", e.rotation),
@@ -95,6 +154,10 @@ fn element(i: usize, e: &FlareElementEntry) -> Result<FlareElement, SceneError> 
             rotation: e.rotation.unwrap_or(0.0),
             softness: e.softness.unwrap_or(0.15),
         },
+        FlareKindName::Image => FlareShape::Image {
+            image: images.index_of(&key("file"), e.file.as_deref().unwrap_or_default())?,
+            rotation: e.rotation.unwrap_or(0.0),
+        },
     };
     Ok(FlareElement {
         shape,
@@ -116,12 +179,17 @@ pub(crate) fn lens_flare(scene: &Scene) -> Result<LensFlare, SceneError> {
             "not a built-in flare (classic, subtle, anamorphic)",
         )
     })?;
+    let mut images = FlareImages {
+        base_dir: &scene.base_dir,
+        paths: Vec::new(),
+        images: Vec::new(),
+    };
     let elements = match &f.elements {
         None => base.elements,
         Some(list) => list
             .iter()
             .enumerate()
-            .map(|(i, e)| element(i, e))
+            .map(|(i, e)| element(i, e, &mut images))
             .collect::<Result<Vec<_>, _>>()?,
     };
     let flare = LensFlare {
@@ -131,6 +199,7 @@ pub(crate) fn lens_flare(scene: &Scene) -> Result<LensFlare, SceneError> {
         intensity: f.intensity,
         fade_in: f.fade_in,
         fade_out: f.fade_out,
+        images: images.images,
     };
     flare.validate().map_err(from_core)?;
     Ok(flare)
@@ -235,10 +304,14 @@ fn seed_sources(sky: &SeedSky, eye: DVec3) -> Vec<FlareSource> {
             }
             let angular_radius = (star.radius / distance).min(1.0).asin();
             let direction = sky.orientation.normalize() * ray.direction;
-            (angular_radius > 0.0 && direction.is_finite()).then(|| FlareSource {
-                position: direction.extend(0.0),
-                radius: angular_radius,
-                color: DVec3::ONE,
+            let own = luminance(star.color);
+            let color = star.color / own * sky.atmosphere.star_transmittance(at, ray.direction);
+            (angular_radius > 0.0 && own > 0.0 && direction.is_finite() && color.max_element() > 0.0).then(|| {
+                FlareSource {
+                    position: direction.extend(0.0),
+                    radius: angular_radius,
+                    color,
+                }
             })
         })
         .collect()
@@ -252,13 +325,15 @@ fn sun_sources(sky: &Sky, eye: DVec3) -> Vec<FlareSource> {
         Sky::Gradient(state) => {
             let sun = &state.sun;
             let direction = sun.direction.normalize();
-            if direction.z < -sun.angular_radius.sin() {
+            let tint = state.bands.sun;
+            let color = DVec3::new(tint.r, tint.g, tint.b).max(DVec3::ZERO);
+            if direction.z < -sun.angular_radius.sin() || !color.is_finite() || color.max_element() <= 0.0 {
                 return Vec::new();
             }
             vec![FlareSource {
                 position: direction.extend(0.0),
                 radius: sun.angular_radius,
-                color: DVec3::ONE,
+                color,
             }]
         }
         Sky::Clear(_) => Vec::new(),

@@ -74,12 +74,16 @@ fade_out = 8.0
         (flare.margin, flare.intensity, flare.fade_in, flare.fade_out),
         (0.5, 2.0, 4.0, 8.0)
     );
-    // The gradient sky's sun at 17:45, white, its disc's angular radius.
+    // The gradient sky's sun at 17:45, in the keyframes' orange, its disc's angular radius.
     assert_eq!(layer.sources.len(), 1);
     let sun = layer.sources[0];
     assert_eq!(sun.position.w, 0.0);
     assert!(sun.position.z > 0.0, "above the horizon: {}", sun.position);
-    assert_eq!(sun.color, DVec3::ONE);
+    assert!(
+        sun.color.x == 1.0 && sun.color.y < 0.5 && sun.color.z < 0.1,
+        "{}",
+        sun.color
+    );
     assert!((sun.radius - 0.2666f64.to_radians()).abs() < 1e-15);
     // Other presets by name; at midnight the gradient's sun is below the horizon.
     for (name, want) in [("subtle", LensFlare::subtle()), ("anamorphic", LensFlare::anamorphic())] {
@@ -254,13 +258,23 @@ fn a_setting_sun_flares_red_and_dim_and_a_set_sun_not_at_all() {
 }
 
 #[test]
-fn seed_stars_flare_white_unless_the_planet_hides_them() {
+fn seed_stars_flare_through_the_seed_s_air_unless_the_planet_hides_them() {
     let scene = preset("seed-mars", &["flare.enabled=true"]).expect("valid");
     let frame = scene.frame_at(None).expect("frame");
     assert!(matches!(frame.sky, Sky::Seed(_)));
     let sources = frame.flares.sources;
     assert_eq!(sources.len(), 1);
-    assert_eq!(sources[0].color, DVec3::ONE);
+    // Dimmed by the seed's extinction, and (Mars's B0 is reddish) bluer than it started.
+    let c = sources[0].color;
+    assert!(luminance(c) > 0.2 && luminance(c) < 1.0, "{c}");
+    assert!(c.z > c.x, "{c}");
+    let low =
+        flares(&preset("seed-mars", &["flare.enabled=true", "suns.0.elevation=2"]).expect("valid")).sources[0].color;
+    assert!(luminance(low) < luminance(c), "{low} vs {c}");
+    // From far above the seed's atmosphere nothing is lost.
+    let high = preset("seed-mars", &["flare.enabled=true", "camera.position=[0, 0, 2000000]"]).expect("valid");
+    let from_space = flares(&high).sources[0].color;
+    assert!((luminance(from_space) - 1.0).abs() < 1e-9, "{from_space}");
     let sun = scene.atmosphere_sky().expect("sky").suns[0];
     let direction = sources[0].position.truncate();
     // Seen from the camera, not from the planet centre: a parallax of R / 1 AU ≈ 2e-5.
@@ -272,6 +286,72 @@ fn seed_stars_flare_white_unless_the_planet_hides_them() {
     assert!((sources[0].radius / sun.angular_radius - 1.0).abs() < 1e-4);
     let set = preset("seed-mars", &["flare.enabled=true", "suns.0.elevation=-5"]).expect("valid");
     assert!(flares(&set).sources.is_empty());
+}
+
+#[test]
+fn a_gradient_sun_flares_in_its_keyframe_colour() {
+    let at = |time: &str| {
+        let sets = ["flare.enabled=true".to_owned(), format!("time.time_of_day=\"{time}\"")];
+        let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+        flares(&preset("default", &sets).expect("valid")).sources
+    };
+    // The default cycle's sun colour: white at noon, #ff9040 at 17:30, black by night.
+    let noon = at("12:00");
+    assert_eq!(noon.len(), 1);
+    assert!((noon[0].color - DVec3::ONE).length() < 1e-9, "{}", noon[0].color);
+    let sunset = at("17:30")[0].color;
+    let srgb = |byte: f64| firmament_core::color::srgb_to_linear(byte / 255.0);
+    let expected = DVec3::new(1.0, srgb(144.0), srgb(64.0));
+    assert!((sunset - expected).length() < 1e-6, "{sunset} vs {expected}");
+    assert!(at("23:00").is_empty());
+}
+
+#[test]
+fn image_elements_load_each_file_once_next_to_the_scene_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let picture = image::RgbaImage::from_fn(64, 32, |x, _| image::Rgba([(x * 4) as u8, 0, 0, 255]));
+    picture.save(dir.path().join("glow.png")).expect("write png");
+    let text = r#"
+[flare]
+enabled = true
+elements = [
+  { kind = "image", file = "glow.png", size = 0.3 },
+  { kind = "glow", size = 0.1 },
+  { kind = "image", file = "glow.png", size = 0.1, position = 0.5, rotation = 45.0 },
+]
+"#;
+    let origin = dir.path().join("scene.toml");
+    let source = SceneSource::Text {
+        text,
+        origin: &origin.display().to_string(),
+    };
+    let scene = load(source, None, &[]).expect("valid");
+    let flare = flares(&scene).flare.expect("on");
+    assert_eq!(flare.images.len(), 1, "one file, loaded once");
+    let side = firmament_core::flare::FLARE_IMAGE_SIDE;
+    assert_eq!((flare.images[0].width, flare.images[0].height), (side, side));
+    // Resampled, red still rises from left to right.
+    let left = flare.images[0].texel(10, 100).expect("inside")[0];
+    let right = flare.images[0].texel(240, 100).expect("inside")[0];
+    assert!(left < 20 && right > 230, "{left} {right}");
+    assert_eq!(
+        flare.elements[2].shape,
+        FlareShape::Image {
+            image: 0,
+            rotation: 45.0
+        }
+    );
+    // A missing file names the element's key and the path.
+    let missing = text.replace("\"glow.png\", size = 0.1", "\"nowhere.png\", size = 0.1");
+    let source = SceneSource::Text {
+        text: &missing,
+        origin: &origin.display().to_string(),
+    };
+    let message = load(source, None, &[]).expect_err("missing file").to_string();
+    assert!(
+        message.contains("flare.elements[2].file") && message.contains("nowhere.png"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -406,6 +486,22 @@ fn every_bad_flare_value_names_its_key() {
         (
             element("{ kind = \"ghost\", size = 0.1, softness = 1.5 }"),
             "flare.elements[1].softness",
+        ),
+        (
+            element("{ kind = \"image\", size = 0.1 }"),
+            "flare.elements[1].file = (absent): an image element needs `file`",
+        ),
+        (
+            element("{ kind = \"glow\", size = 0.1, file = \"a.png\" }"),
+            "flare.elements[1].file",
+        ),
+        (
+            element("{ kind = \"image\", size = 0.1, file = \"missing-flare.png\" }"),
+            "missing-flare.png does not exist",
+        ),
+        (
+            element("{ kind = \"image\", size = 0.1, file = \"a.png\", sides = 3 }"),
+            "flare.elements[1].sides",
         ),
         (
             "[[lights]]\nflare = true\nposition = [0.0, 0.0, -5.0, 1.0]\nflare_radius = 0.0\n".to_owned(),

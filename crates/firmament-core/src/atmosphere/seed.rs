@@ -254,39 +254,20 @@ impl SeedAtmosphere {
         let Some(ray) = Ray::new(ray_origin, ray_direction) else {
             return nothing;
         };
-        // Lines 400–406.
-        let Some((atm_first, atm_second)) = view_depth(&ray, &self.top()) else {
-            return nothing; // completely outside the atmosphere
+        let Some(segment) = self.segment(&ray) else {
+            return nothing;
         };
-        let ground = view_depth(&ray, &self.surface());
-        if let Some((_, None)) = ground {
-            return nothing; // under ground
-        }
-        // Lines 408–437: `start` is the seed's p0 and `length` its l0.
         let mut color = DVec3::ZERO;
         let mut alpha = 0.0;
-        let (start, length) = match ground {
-            None => {
-                let (start, length) = match atm_second {
-                    None => (ray.origin, atm_first), // inside the atmosphere to its boundary
-                    Some(exit) => (ray.at(atm_first), exit - atm_first), // boundary to boundary
-                };
-                for star in stars {
-                    if star_on_ray(start, ray.direction, star) {
-                        color += star.color;
-                        alpha = 1.0;
-                    }
-                }
-                (start, length)
-            }
-            Some((ground_first, _)) => {
-                if atm_first < ground_first {
-                    (ray.at(atm_first), ground_first - atm_first) // from the boundary to the ground
-                } else {
-                    (ray.origin, ground_first) // inside the atmosphere to the ground
+        if !segment.ends_on_ground {
+            for star in stars {
+                if star_on_ray(segment.start, ray.direction, star) {
+                    color += star.color;
+                    alpha = 1.0;
                 }
             }
-        };
+        }
+        let (start, length) = (segment.start, segment.length);
         // Lines 439–443.
         let end = start + ray.direction * length;
         let step = (end - start) / SEED_STEPS as f64;
@@ -309,6 +290,75 @@ impl SeedAtmosphere {
         }
         (color, alpha)
     }
+}
+
+impl SeedAtmosphere {
+    /// The part of `ray` that the seed integrates (lines 400–437): from where it enters the
+    /// atmosphere (or its origin, inside) to where it leaves it or meets the ground. `None` when
+    /// it misses the atmosphere or starts under the ground.
+    fn segment(&self, ray: &Ray) -> Option<Segment> {
+        // Lines 400–406.
+        let (atm_first, atm_second) = view_depth(ray, &self.top())?;
+        let ground = view_depth(ray, &self.surface());
+        if let Some((_, None)) = ground {
+            return None; // under ground
+        }
+        // Lines 408–437: `start` is the seed's p0 and `length` its l0.
+        let (start, length) = match ground {
+            None => match atm_second {
+                None => (ray.origin, atm_first), // inside the atmosphere to its boundary
+                Some(exit) => (ray.at(atm_first), exit - atm_first), // boundary to boundary
+            },
+            Some((ground_first, _)) if atm_first < ground_first => {
+                (ray.at(atm_first), ground_first - atm_first) // from the boundary to the ground
+            }
+            Some((ground_first, _)) => (ray.origin, ground_first), // inside, to the ground
+        };
+        Some(Segment {
+            start,
+            length,
+            ends_on_ground: ground.is_some(),
+        })
+    }
+
+    /// How much of a star's colour survives the seed's 8 steps along a view ray towards it: the
+    /// star's disc starts the ray with its colour `c`, and each step takes `c·(1 − b)` of it
+    /// (line 456), so the share left is `Π (1 − b_k)` per channel, in [0, 1] — the seed's own
+    /// extinction, red near its horizon. 1 when the ray misses the atmosphere; 0 when the ground
+    /// hides the star, or for a bad ray or bad parameters. Used to tint a seed star's flare.
+    pub fn star_transmittance(&self, ray_origin: DVec3, ray_direction: DVec3) -> DVec3 {
+        if self.validate().is_err() {
+            return DVec3::ZERO;
+        }
+        let Some(ray) = Ray::new(ray_origin, ray_direction) else {
+            return DVec3::ZERO;
+        };
+        let Some(segment) = self.segment(&ray) else {
+            // Missing the atmosphere: clear, unless the origin is under the ground.
+            let under_ground = view_depth(&ray, &self.surface()).is_some_and(|(_, exit)| exit.is_none());
+            return if under_ground { DVec3::ZERO } else { DVec3::ONE };
+        };
+        if segment.ends_on_ground {
+            return DVec3::ZERO;
+        }
+        let end = segment.start + ray.direction * segment.length;
+        let step = (end - segment.start) / SEED_STEPS as f64;
+        let dl = segment.length / SEED_STEPS as f64 / self.view_depth;
+        (0..SEED_STEPS).fold(DVec3::ONE, |share, k| {
+            let b = self.b0 * self.density(end - step * k as f64) * dl;
+            share * (DVec3::ONE - b).clamp(DVec3::ZERO, DVec3::ONE)
+        })
+    }
+}
+
+/// The stretch of a view ray the seed integrates.
+struct Segment {
+    /// Where integration starts (the seed's p0), planet frame, metres.
+    start: DVec3,
+    /// Its length (the seed's l0), metres.
+    length: f64,
+    /// Whether it ends on the ground (no star can be seen along it).
+    ends_on_ground: bool,
 }
 
 /// The seed's `_star_colide` (lines 351–386) with the 0.75 enlargement of line 422: true when the
@@ -519,6 +569,26 @@ mod tests {
         // Hidden by the ground: no disc.
         let below = sun_along(-DVec3::Z, DVec3::ONE);
         assert_eq!(a.color(o, -DVec3::Z, &[below]).1, 0.0);
+    }
+
+    #[test]
+    fn star_transmittance_is_the_seeds_own_extinction() {
+        let a = SeedAtmosphere::seed_earth();
+        let o = DVec3::Z * (a.polar_radius + 2.0);
+        let overhead = a.star_transmittance(o, DVec3::Z);
+        let low = a.star_transmittance(o, DVec3::new(1.0, 0.0, 0.02).normalize());
+        // By hand overhead: 8 steps of 60 km / 8 / 250 km, density between 0.36 and 0.98.
+        assert!(
+            overhead.min_element() > 0.5 && overhead.max_element() < 1.0,
+            "{overhead}"
+        );
+        // The seed's B0 is blue, so what gets through is reddened, more so near the horizon.
+        assert!(low.x > low.z && low.x < overhead.x, "{low}");
+        assert_eq!(a.star_transmittance(o, -DVec3::Z), DVec3::ZERO);
+        // From far away, a ray past the planet keeps everything.
+        let far = DVec3::X * 1e9;
+        assert_eq!(a.star_transmittance(far, DVec3::Z), DVec3::ONE);
+        assert_eq!(a.star_transmittance(o, DVec3::ZERO), DVec3::ZERO);
     }
 
     #[test]

@@ -53,8 +53,9 @@ pub struct FlareInstance {
     /// Colour to add at full visibility (linear RGB over the exposure); `w` = the source's
     /// fade at the screen edge.
     pub color: [f32; 4],
-    /// Shape (0 glow, 1 streaks, 2 halo, 3 ghost), then its parameters: streaks `points`,
-    /// rotation (radians), sharpness; halo thickness; ghost sides, rotation, softness.
+    /// Shape (0 glow, 1 streaks, 2 halo, 3 ghost, 4 image), then its parameters: streaks
+    /// `points`, rotation (radians), sharpness; halo thickness; ghost sides, rotation, softness;
+    /// image layer, rotation.
     pub shape: [f32; 4],
     /// The source's index (into the visibility buffer); three unused.
     pub source: [u32; 4],
@@ -145,6 +146,7 @@ impl FlareInstance {
                 rotation,
                 softness,
             } => [3.0, sides as f32, rotation.to_radians() as f32, softness as f32],
+            FlareShape::Image { image, rotation } => [4.0, image as f32, rotation.to_radians() as f32, 0.0],
         };
         Self {
             placement: [

@@ -10,6 +10,7 @@ use firmament_core::Camera;
 use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareLayer, MAX_FLARE_ELEMENTS, MAX_FLARE_SOURCES, element_centers, on_screen};
 
+use super::flare_images::FlareImageArray;
 use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 use crate::passes::{uniform_buffer, uniform_entry, uniform_entry_in};
 use crate::shaders;
@@ -26,7 +27,11 @@ pub struct FlarePass {
     /// Rebuilt by [`Self::bind_depth`].
     occlusion_bind_group: Option<wgpu::BindGroup>,
     draw: wgpu::RenderPipeline,
+    draw_layout: wgpu::BindGroupLayout,
+    /// Rebuilt when the flare's images change.
     draw_bind_group: wgpu::BindGroup,
+    images: FlareImageArray,
+    image_sampler: wgpu::Sampler,
     frame_uniforms: wgpu::Buffer,
     sources: wgpu::Buffer,
     /// One `f32` per source: the visible share, kept between frames for smoothing.
@@ -35,6 +40,8 @@ pub struct FlarePass {
     source_count: u32,
     instance_count: u32,
     depth_size: (u32, u32),
+    /// Seconds between frames for the fade rates; `None` for stills.
+    interval: Option<f64>,
 }
 
 fn storage_entry(binding: u32, visibility: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -56,6 +63,39 @@ fn buffer(device: &wgpu::Device, label: &str, size: usize, usage: wgpu::BufferUs
         size: size as u64,
         usage: usage | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
+    })
+}
+
+/// The element pass's bind group: frame uniforms, visibility, the element images and their sampler.
+fn draw_bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    frame_uniforms: &wgpu::Buffer,
+    visibility: &wgpu::Buffer,
+    images: &wgpu::TextureView,
+    sampler: &wgpu::Sampler,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("firmament FlarePass element bind group"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame_uniforms.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: visibility.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(images),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            },
+        ],
     })
 }
 
@@ -140,7 +180,26 @@ impl FlarePass {
 
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass element bind group layout"),
-            entries: &[uniform_entry(0), storage_entry(1, S::FRAGMENT, true)],
+            entries: &[
+                uniform_entry(0),
+                storage_entry(1, S::FRAGMENT, true),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: S::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: S::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("firmament FlarePass element shader"),
@@ -184,26 +243,31 @@ impl FlarePass {
             multiview_mask: None,
             cache: None,
         });
-        let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("firmament FlarePass element bind group"),
-            layout: &draw_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame_uniforms.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: visibility.as_entire_binding(),
-                },
-            ],
+        let images = FlareImageArray::new(device);
+        let image_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("firmament FlarePass element image sampler"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
         });
+        let draw_bind_group = draw_bind_group(
+            device,
+            &draw_layout,
+            &frame_uniforms,
+            &visibility,
+            &images.view,
+            &image_sampler,
+        );
         Self {
             occlusion,
             occlusion_layout,
             occlusion_bind_group: None,
             draw,
+            draw_layout,
             draw_bind_group,
+            images,
+            image_sampler,
             frame_uniforms,
             sources,
             visibility,
@@ -211,6 +275,7 @@ impl FlarePass {
             source_count: 0,
             instance_count: 0,
             depth_size: (0, 0),
+            interval: None,
         }
     }
 
@@ -245,23 +310,33 @@ impl FlarePass {
     /// Lays out `layer`'s flares for `camera` (whose aspect must be the target's): which sources
     /// can flare (in front, within the margin), where each element goes, its colour over the
     /// display's `exposure` multiplier (so 1 is white on screen). `planet`, when the sky has one,
-    /// hides sources behind it. `dt` is the time since the last frame for the fade rates, or
-    /// `None` for a still (visibility at once). Sources and elements past the limits are dropped
-    /// (scenes validate the counts).
+    /// hides sources behind it. Visibility fades at the flare's rates over the interval of
+    /// [`Self::set_interval`]. Sources and elements past the limits are dropped (scenes validate
+    /// the counts).
     pub fn prepare(
         &mut self,
+        device: &wgpu::Device,
         queue: &wgpu::Queue,
         layer: &FlareLayer,
         camera: &Camera,
         exposure: f64,
         planet: Option<&Planet>,
-        dt: Option<f64>,
     ) {
         self.source_count = 0;
         self.instance_count = 0;
         let Some(flare) = &layer.flare else {
             return;
         };
+        if self.images.update(device, queue, &flare.images) {
+            self.draw_bind_group = draw_bind_group(
+                device,
+                &self.draw_layout,
+                &self.frame_uniforms,
+                &self.visibility,
+                &self.images.view,
+                &self.image_sampler,
+            );
+        }
         let positions: Vec<f64> = flare.elements.iter().map(|e| e.position).collect();
         let scale = flare.intensity / if exposure > 0.0 { exposure } else { 1.0 };
         let mut sources = Vec::new();
@@ -280,7 +355,14 @@ impl FlarePass {
                 }
             }
         }
-        let uniforms = FlareFrameUniforms::new(camera, planet, flare, sources.len() as u32, self.depth_size, dt);
+        let uniforms = FlareFrameUniforms::new(
+            camera,
+            planet,
+            flare,
+            sources.len() as u32,
+            self.depth_size,
+            self.interval,
+        );
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
         if !sources.is_empty() {
             queue.write_buffer(&self.sources, 0, bytemuck::cast_slice(&sources));
@@ -290,6 +372,12 @@ impl FlarePass {
         }
         self.source_count = sources.len() as u32;
         self.instance_count = instances.len() as u32;
+    }
+
+    /// Sets the time between frames (seconds) for the fade rates: a viewer's frame interval;
+    /// `None` (the default) takes each frame's visibility at once, as stills should.
+    pub fn set_interval(&mut self, seconds: Option<f64>) {
+        self.interval = seconds;
     }
 
     /// Whether the last `prepare` left any flare to draw.

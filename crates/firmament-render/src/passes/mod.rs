@@ -5,6 +5,7 @@
 pub mod atmosphere;
 mod far_plane;
 pub mod flare;
+mod flare_images;
 pub mod objects;
 pub mod seed_sky;
 pub mod sky_gradient;

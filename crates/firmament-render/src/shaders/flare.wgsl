@@ -1,6 +1,7 @@
 // flare.wgsl — lens-flare elements: camera-facing quads blended additively into the HDR target
 // before tone mapping (seed 003's glows, streaks and halos, plus aperture ghosts), shapes drawn
-// procedurally so no texture files are needed.
+// procedurally so no texture files are needed — or, for image elements, pictures from a 2D array
+// texture (one layer per image file, RGB × alpha as stored, like NeHe's sprites).
 //
 // Conventions: NDC as in flare_common.wgsl; an element's `uv` runs over [-1, 1]^2 of its quad,
 // r = |uv| = 1 at its radius. A radius is in units of half the screen height, divided by the
@@ -9,13 +10,15 @@
 
 @group(0) @binding(0) var<uniform> frame: FlareFrame;
 @group(0) @binding(1) var<storage, read> visibility: array<f32>;
+@group(0) @binding(2) var images: texture_2d_array<f32>;
+@group(0) @binding(3) var image_sampler: sampler;
 
 struct InstanceIn {
     // xy = centre (NDC), z = radius, w = horizontal stretch
     @location(0) placement: vec4<f32>,
     // rgb = colour at full visibility, a = the source's edge fade
     @location(1) color: vec4<f32>,
-    // x = shape (0 glow, 1 streaks, 2 halo, 3 ghost), yzw = its parameters
+    // x = shape (0 glow, 1 streaks, 2 halo, 3 ghost, 4 image), yzw = its parameters
     @location(2) shape: vec4<f32>,
     // x = source index
     @location(3) source: vec4<u32>,
@@ -57,10 +60,24 @@ fn ghost_edge(uv: vec2<f32>, sides: f32, rotation: f32) -> f32 {
     return r * cos(local) / cos(0.5 * sector);
 }
 
+// The image element's texel at `uv`, turned by `rotation` (radians, counter-clockwise): RGB ×
+// alpha. Image row 0 is the picture's bottom (GL's t = 0), which is v = 0 here, at uv.y = -1.
+fn image_texel(uv: vec2<f32>, layer: f32, rotation: f32) -> vec3<f32> {
+    let c = cos(rotation);
+    let s = sin(rotation);
+    let turned = vec2<f32>(c * uv.x + s * uv.y, -s * uv.x + c * uv.y);
+    let st = turned * 0.5 + 0.5;
+    let inside = all(st >= vec2<f32>(0.0)) && all(st <= vec2<f32>(1.0));
+    // Sampled in uniform control flow (derivatives for the mip level), used only where inside.
+    let texel = textureSample(images, image_sampler, clamp(st, vec2<f32>(0.0), vec2<f32>(1.0)), i32(layer + 0.5));
+    return select(vec3<f32>(0.0), texel.rgb * texel.a, inside);
+}
+
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let r = length(in.uv);
     let kind = u32(in.shape.x + 0.5);
+    let picture = image_texel(in.uv, in.shape.y, in.shape.z);
     var f = 0.0;
     if kind == 0u {
         let g = max(1.0 - r, 0.0);
@@ -74,10 +91,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let half_width = 0.5 * in.shape.y;
         let t = (r - (1.0 - half_width)) / half_width;
         f = max(1.0 - t * t, 0.0);
-    } else {
+    } else if kind == 3u {
         let e = ghost_edge(in.uv, in.shape.y, in.shape.z);
         f = 1.0 - smoothstep(1.0 - in.shape.w, 1.0, e);
     }
     let seen = visibility[in.source] * in.color.a;
+    if kind == 4u {
+        return vec4<f32>(in.color.rgb * picture * seen, 0.0);
+    }
     return vec4<f32>(in.color.rgb * (f * seen), 0.0);
 }

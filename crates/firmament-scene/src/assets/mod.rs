@@ -125,6 +125,20 @@ pub fn load_texture(key: &str, path: &Path) -> Result<TextureImage, SceneError> 
     })
 }
 
+/// Loads an image file as a flare element's picture: [`load_texture`], then resampled to
+/// [`FLARE_IMAGE_SIDE`](firmament_core::flare::FLARE_IMAGE_SIDE) square (Catmull-Rom), so every
+/// image of a flare fits one texture array.
+///
+/// # Errors
+/// As [`load_texture`].
+pub fn load_flare_image(key: &str, path: &Path) -> Result<TextureImage, SceneError> {
+    let picture = load_texture(key, path)?;
+    Ok(texture_file::resampled(
+        &picture,
+        firmament_core::flare::FLARE_IMAGE_SIDE,
+    ))
+}
+
 /// Runs a loader, turning a panic inside a parser dependency into an error: the parsers are
 /// third-party code fed with user files, and a malformed file must not bring the program down.
 fn guarded<T>(load: impl FnOnce() -> Result<T, String>) -> Result<T, String> {

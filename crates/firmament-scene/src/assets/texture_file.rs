@@ -62,6 +62,22 @@ pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>) -> Result<TextureI
     Ok(texture)
 }
 
+/// `texture` resampled to `side` × `side` texels (Catmull-Rom; rows keep their order).
+pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
+    if texture.width == side && texture.height == side {
+        return texture.clone();
+    }
+    let picture = image::RgbaImage::from_fn(texture.width, texture.height, |s, t| {
+        image::Rgba(texture.texel(s, t).unwrap_or_default())
+    });
+    let scaled = image::imageops::resize(&picture, side, side, image::imageops::FilterType::CatmullRom);
+    TextureImage {
+        width: side,
+        height: side,
+        texels: scaled.pixels().map(|p| p.0).collect(),
+    }
+}
+
 fn check_side(name: &str, side: u32) -> Result<(), String> {
     if (1..=MAX_TEXTURE_SIDE).contains(&side) {
         Ok(())
@@ -99,6 +115,17 @@ mod tests {
         assert_eq!(texture.texel(0, 0), Some([0, 0, 255, 128]));
         assert_eq!(texture.texel(1, 1), Some([0, 1, 0, 255]));
         assert_eq!(texture.texel(1, 2), Some([255, 0, 0, 255]));
+    }
+
+    #[test]
+    fn resampling_keeps_a_flat_image_flat_and_rows_in_order() {
+        let image = RgbaImage::from_fn(4, 6, |_, y| if y < 3 { Rgba([200; 4]) } else { Rgba([0, 0, 0, 255]) });
+        let texture = decode(&png(&image), None).expect("decodes");
+        let scaled = resampled(&texture, 16);
+        assert_eq!((scaled.width, scaled.height), (16, 16));
+        // Row 0 is the bottom of the picture, which is black; the top is grey.
+        assert_eq!(scaled.texel(5, 0), Some([0, 0, 0, 255]));
+        assert_eq!(scaled.texel(5, 15), Some([200; 4]));
     }
 
     #[test]

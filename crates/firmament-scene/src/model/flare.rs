@@ -41,6 +41,8 @@ pub enum FlareKindName {
     Halo,
     /// A disc or polygon ghost of the aperture (`sides`, `rotation`, `softness`).
     Ghost,
+    /// An image file (`file`, `rotation`), NeHe's way: its texels times the colour.
+    Image,
 }
 
 /// One `flare.elements` entry. Shape values that do not belong to `kind` are errors; absent ones
@@ -48,7 +50,7 @@ pub enum FlareKindName {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FlareElementEntry {
-    /// `"glow"`, `"streaks"`, `"halo"` or `"ghost"`.
+    /// `"glow"`, `"streaks"`, `"halo"`, `"ghost"` or `"image"`.
     pub kind: FlareKindName,
     /// Linear RGB tint, each finite and >= 0 (default white).
     #[serde(default = "white")]
@@ -67,7 +69,7 @@ pub struct FlareElementEntry {
     /// Streaks: number of rays, 2 to 32 (default 6).
     #[serde(default)]
     pub points: Option<u32>,
-    /// Streaks and ghosts: degrees counter-clockwise from +x (default 0).
+    /// Streaks, ghosts and images: degrees counter-clockwise from +x (default 0).
     #[serde(default)]
     pub rotation: Option<f64>,
     /// Streaks: angular falloff exponent, >= 1 (default 24).
@@ -82,6 +84,10 @@ pub struct FlareElementEntry {
     /// Ghost: edge blur as a fraction of the radius, (0, 1] (default 0.15).
     #[serde(default)]
     pub softness: Option<f64>,
+    /// Image: a PNG, JPEG or OpenEXR file (relative paths from the scene file's folder),
+    /// resampled to 256×256; its texels (RGB × alpha, as stored) times `color` are the light.
+    #[serde(default)]
+    pub file: Option<String>,
 }
 
 fn white() -> [f64; 3] {
