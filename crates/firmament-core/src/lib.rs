@@ -17,6 +17,7 @@
 //!   **heading** (azimuth) is measured from north (+y) clockwise towards east (+x).
 //! - **Colours** are linear RGB (not sRGB-encoded) unless a name says `srgb`.
 
+pub mod astro;
 pub mod atmosphere;
 pub mod camera;
 pub mod classic;

@@ -32,6 +32,31 @@ impl SolarPath {
         let up = sin_lat * sin_dec + cos_lat * cos_dec * cos_h;
         DVec3::new(east, north, up).normalize()
     }
+
+    /// The time of day at which the sun on this path stands at `elevation` (radians), in the
+    /// morning (`rising`) or the afternoon: the inverse of [`Self::direction_at`]'s elevation,
+    /// `cos H = (sin e − sin φ sin δ) / (cos φ cos δ)`. An elevation above the path's noon gives
+    /// noon, below its midnight gives midnight (the cosine is clamped). A gradient sky uses it to
+    /// follow the real sun's elevation with keyframes authored on this path
+    /// (`sky.gradient.by = "sun-elevation"`).
+    pub fn time_at_elevation(&self, elevation: f64, rising: bool) -> TimeOfDay {
+        let (sin_lat, cos_lat) = self.latitude.sin_cos();
+        let (sin_dec, cos_dec) = self.declination.sin_cos();
+        let denominator = cos_lat * cos_dec;
+        let cos_h = if denominator.abs() < 1e-12 {
+            // At a pole the elevation never changes over the day: call it noon.
+            1.0
+        } else {
+            ((elevation.sin() - sin_lat * sin_dec) / denominator).clamp(-1.0, 1.0)
+        };
+        let hour_angle_days = cos_h.acos() / std::f64::consts::TAU;
+        let days = if rising {
+            0.5 - hour_angle_days
+        } else {
+            0.5 + hour_angle_days
+        };
+        TimeOfDay::from_seconds(days * SECONDS_PER_DAY).unwrap_or(TimeOfDay::MIDNIGHT)
+    }
 }
 
 /// How the sun is drawn over a sky: a limb-softened disc and an exponential glow.
@@ -135,5 +160,22 @@ mod tests {
         assert!((away.r - (-2f64).exp()).abs() < 1e-9);
         // Below the horizon nothing shows.
         assert_eq!(sun.radiance(SunDisc::direction_from(0.0, -0.1)), LinearRgb::BLACK);
+    }
+
+    #[test]
+    fn time_at_elevation_inverts_the_path() {
+        let path = SolarPath {
+            latitude: 45f64.to_radians(),
+            declination: 10f64.to_radians(),
+        };
+        for hours in [5.5, 7.0, 9.25, 11.9, 12.1, 15.0, 18.5] {
+            let t = TimeOfDay::from_hours(hours).expect("finite");
+            let elevation = path.direction_at(t).z.asin();
+            let back = path.time_at_elevation(elevation, hours < 12.0);
+            assert!((back.hours() - hours).abs() < 1e-9, "{hours} -> {}", back.hours());
+        }
+        // Beyond the path: noon above its highest, midnight below its lowest.
+        assert!((path.time_at_elevation(1.5, true).hours() - 12.0).abs() < 1e-9);
+        assert!(path.time_at_elevation(-1.5, false).hours().abs() < 1e-9);
     }
 }

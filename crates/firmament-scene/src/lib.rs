@@ -37,6 +37,7 @@ mod model;
 mod objects;
 mod presets;
 mod spectrum;
+mod time;
 mod to_frame;
 mod validate;
 
@@ -45,8 +46,8 @@ pub use color::SceneColor;
 pub use error::SceneError;
 pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection,
-    MiePhaseName, PlanetSection, RenderSection, Scene, SeedSection, SkyModelName, SkySection, SunEntry, SunSection,
-    TimeSection,
+    KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SeedSection, SkyModelName, SkySection, SunEntry,
+    SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,
@@ -55,6 +56,7 @@ pub use model::{
 };
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;
+pub use time::{add_seconds, parse_date_time};
 
 /// Largest image side the scene format accepts, pixels. The GPU's own limit may be lower; the
 /// renderer checks that one.

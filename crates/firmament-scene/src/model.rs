@@ -97,12 +97,31 @@ pub struct CameraSection {
     pub far: Option<f64>,
 }
 
-/// `[time]` (drives the gradient sky; the atmosphere's suns stand where `[[suns]]` puts them).
+/// `[time]`: the scene's moment. Without `date_time`, a local solar time of day drives the
+/// gradient sky (the atmosphere's suns stand where `[[suns]]` puts them); with it, the real sun
+/// (NREL SPA), moon and stars stand where they were at that instant over `[planet]`'s latitude
+/// and longitude.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSection {
-    /// Local solar time of day, `"HH:MM"` or `"HH:MM:SS"`.
+    /// Local solar time of day, `"HH:MM"` or `"HH:MM:SS"` (ignored when `date_time` is given).
     pub time_of_day: String,
+    /// A real instant, ISO 8601 (`"2024-06-21T22:00:00+02:00"`, `"…Z"`, or no offset for UTC).
+    #[serde(default)]
+    pub date_time: Option<String>,
+    /// ΔT = TT − UT, seconds, |ΔT| <= 10000; absent: Espenak & Meeus's estimate for the date.
+    #[serde(default)]
+    pub delta_t: Option<f64>,
+    /// Air pressure at the observer for the sun's refraction, millibars, in (0, 5000].
+    pub pressure: f64,
+    /// Air temperature at the observer for the refraction, °C, in (−273, 6000).
+    pub temperature: f64,
+    /// Whether the night sky's stars are drawn (with `date_time`).
+    pub stars: bool,
+    /// Faintest star drawn, visual magnitude, <= 6.5 (the catalogue's limit).
+    pub star_limit: f64,
+    /// Whether the moon is drawn (with `date_time`).
+    pub moon: bool,
 }
 
 /// `[sun]`: the gradient sky's sun, its path over the day and how its disc and glow look (the
@@ -184,8 +203,22 @@ pub struct GradientSection {
     pub blend: firmament_core::gradient_sky::Blend,
     /// How colours blend between keyframes in time: `"smooth"` or `"linear"`.
     pub keyframe_blend: firmament_core::gradient_sky::Blend,
+    /// What the keyframes follow: `"clock"` (local solar time) or `"sun-elevation"` (the sun's
+    /// elevation, mapped to the time of day at which `[sun]`'s path has it).
+    pub by: KeyframesBy,
     /// The keyframes, any order, distinct times, at least one.
     pub keyframes: Vec<KeyframeSection>,
+}
+
+/// `sky.gradient.by`: what the gradient sky's keyframes follow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum KeyframesBy {
+    /// The local solar time of day.
+    Clock,
+    /// The sun's elevation: the keyframes' times are read on `[sun]`'s path (its latitude and
+    /// declination), so the colours follow the real sun wherever and whenever it is.
+    SunElevation,
 }
 
 /// One `[[sky.gradient.keyframes]]` entry: the band colours at a time of day.

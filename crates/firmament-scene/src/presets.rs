@@ -42,6 +42,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/night.toml"),
     },
     Preset {
+        name: "midsummer-night",
+        summary: "gradient: 22:30 on 2024-06-21 at 60° N, the real sun low in the north-west, keyframes by its elevation",
+        toml: include_str!("presets/midsummer-night.toml"),
+    },
+    Preset {
         name: "earth-noon",
         summary: "atmosphere: Earth at noon, 45° N, looking south at the sky and the high Sun",
         toml: include_str!("presets/earth-noon.toml"),

@@ -1,5 +1,7 @@
 //! From a validated scene to the core's [`Frame`]: degrees become radians, times become seconds.
 
+use firmament_core::astro::CivilDateTime;
+use firmament_core::astro::spa::SolarPosition;
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
 use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
@@ -9,7 +11,8 @@ use firmament_core::{Camera, Frame, TimeOfDay};
 use glam::DVec3;
 
 use crate::error::SceneError;
-use crate::model::{AtmosphereModelName, Scene, SkyModelName};
+use crate::model::{AtmosphereModelName, KeyframesBy, Scene, SkyModelName};
+use crate::time::Moment;
 use crate::validate::time;
 
 impl Scene {
@@ -96,9 +99,65 @@ impl Scene {
 
     /// The planet (posed so that the world frame is East-North-Up at `planet.latitude`,
     /// `planet.longitude`), its atmosphere and the suns of `[[suns]]`: the body's values with the
-    /// scene's overrides.
+    /// scene's overrides; with `time.date_time`, the first sun (or the body's own when there is
+    /// none) stands where the real sun stood.
     pub fn atmosphere_sky(&self) -> Result<AtmosphereSky, SceneError> {
-        crate::atmosphere::sky(self)
+        let real_sun = match self.date_time()? {
+            Some(civil) => Some(self.real_sun(&self.instant(&civil)?)?),
+            None => None,
+        };
+        self.atmosphere_sky_with(real_sun.as_ref())
+    }
+
+    /// [`Self::atmosphere_sky`] with the first sun moved to `real_sun` (refracted, as seen).
+    fn atmosphere_sky_with(&self, real_sun: Option<&SolarPosition>) -> Result<AtmosphereSky, SceneError> {
+        let mut sky = crate::atmosphere::sky(self)?;
+        if let Some(position) = real_sun {
+            let direction = position.direction_enu(true);
+            match sky.suns.first_mut() {
+                Some(sun) => sun.direction = direction,
+                None => sky.suns.push(self.planet.body.sun(direction)),
+            }
+        }
+        Ok(sky)
+    }
+
+    /// The gradient sky at clock time `clock`, its sun where `real_sun` is when given (else on
+    /// `[sun]`'s path), its colours at the keyframes' time for that sun (see
+    /// [`KeyframesBy`](crate::KeyframesBy)).
+    fn gradient_sky(&self, clock: TimeOfDay, real_sun: Option<&SolarPosition>) -> Result<GradientSkyState, SceneError> {
+        let path = self.solar_path();
+        let (direction, solar_time) = match real_sun {
+            Some(p) => {
+                // Local apparent solar time from the hour angle (0 at the meridian, west +).
+                let hour_angle = (p.topocentric_hour_angle_deg + 180.0).rem_euclid(360.0) - 180.0;
+                let solar = TimeOfDay::from_hours(12.0 + hour_angle / 15.0).unwrap_or(clock);
+                (p.direction_enu(true), solar)
+            }
+            None => (path.direction_at(clock), clock),
+        };
+        let keyframe_time = match self.sky.gradient.by {
+            KeyframesBy::Clock => solar_time,
+            KeyframesBy::SunElevation => {
+                let elevation = direction.z.clamp(-1.0, 1.0).asin();
+                path.time_at_elevation(elevation, solar_time.hours() < 12.0)
+            }
+        };
+        let bands = self.day_cycle()?.bands_at(keyframe_time);
+        let s = &self.sun;
+        let sun = SunDisc {
+            direction,
+            angular_radius: s.angular_radius.to_radians(),
+            disc_radiance: bands.sun.scale(s.disc_intensity),
+            glow_radiance: bands.sun.scale(s.glow_intensity),
+            glow_falloff: s.glow_falloff.to_radians(),
+            edge_softness: s.edge_softness,
+        };
+        Ok(GradientSkyState {
+            shape: self.gradient_shape(),
+            bands,
+            sun,
+        })
     }
 
     /// The seed's own atmosphere model around the scene's planet (`atmosphere.model = "seed"`):
@@ -119,43 +178,39 @@ impl Scene {
         Ok(planet.altitude(planet.to_planet_frame(DVec3::from_array(self.camera.position))))
     }
 
-    /// Everything needed to draw the scene at `time` (its own time when `None`; the atmosphere's
-    /// suns do not move with it, objects' spins and the gradient sky's sun do), with the lens
-    /// flares of `[flare]` and its sources (the suns, the lights marked `flare`). Builds the
-    /// built-in meshes and loads mesh and texture files, so a bad or missing file is reported
-    /// here.
+    /// Everything needed to draw the scene at `time` (its own time when `None`; on a scene with
+    /// `time.date_time`, that clock time on the same date), with the lens flares of `[flare]`
+    /// and its sources (the suns, the lights marked `flare`). Without a date the atmosphere's suns
+    /// do not move with the time, objects' spins and the gradient sky's sun do; with one, the
+    /// real sun moves too. Builds the built-in meshes and loads mesh and texture files, so a bad
+    /// or missing file is reported here.
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
-        let time = match time {
-            Some(t) => t,
-            None => self.time_of_day()?,
-        };
+        self.frame_for(self.moment(time)?)
+    }
+
+    /// Everything needed to draw the scene at a real date and time (whether or not the scene has
+    /// `time.date_time`): the real sun, moon and stars over `[planet]`'s latitude and longitude.
+    pub fn frame_at_date_time(&self, date_time: &CivilDateTime) -> Result<Frame, SceneError> {
+        self.frame_for(self.moment_at(date_time)?)
+    }
+
+    fn frame_for(&self, moment: Moment) -> Result<Frame, SceneError> {
+        let real_sun = moment.instant.map(|i| self.real_sun(&i)).transpose()?;
         let sky = match self.sky.model {
-            SkyModelName::Gradient => {
-                let bands = self.day_cycle()?.bands_at(time);
-                let s = &self.sun;
-                let sun = SunDisc {
-                    direction: self.solar_path().direction_at(time),
-                    angular_radius: s.angular_radius.to_radians(),
-                    disc_radiance: bands.sun.scale(s.disc_intensity),
-                    glow_radiance: bands.sun.scale(s.glow_intensity),
-                    glow_falloff: s.glow_falloff.to_radians(),
-                    edge_softness: s.edge_softness,
-                };
-                Sky::Gradient(GradientSkyState {
-                    shape: self.gradient_shape(),
-                    bands,
-                    sun,
-                })
+            SkyModelName::Gradient => Sky::Gradient(self.gradient_sky(moment.clock, real_sun.as_ref())?),
+            SkyModelName::Atmosphere => {
+                let sky = self.atmosphere_sky_with(real_sun.as_ref())?;
+                match self.atmosphere.model {
+                    AtmosphereModelName::Physical => Sky::Atmosphere(sky),
+                    AtmosphereModelName::Seed => Sky::Seed(crate::atmosphere::seed_sky(self, &sky)?),
+                }
             }
-            SkyModelName::Atmosphere => match self.atmosphere.model {
-                AtmosphereModelName::Physical => Sky::Atmosphere(self.atmosphere_sky()?),
-                AtmosphereModelName::Seed => Sky::Seed(self.seed_sky()?),
-            },
             SkyModelName::Clear => {
                 let [r, g, b, _] = self.sky.clear_color.rgba();
                 Sky::Clear(firmament_core::LinearRgb::new(r, g, b))
             }
         };
+        let time = moment.clock;
         let camera = self.camera();
         let flares = crate::flare::flare_layer(self, &camera, &sky)?;
         let objects = crate::objects::object_layer(self, time, &sky)?;

@@ -111,7 +111,7 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         )?;
     }
 
-    time("time.time_of_day", &scene.time.time_of_day)?;
+    crate::time::validate(scene)?;
 
     let sun = &scene.sun;
     in_range("sun.latitude", sun.latitude, -90.0, 90.0, " degrees")?;

@@ -3,6 +3,9 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use firmament_core::astro::CivilDateTime;
+
+use crate::commands::sun;
 
 /// firmament renders skies — a keyframed gradient sky with a day/night cycle, sun disc and glow —
 /// headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float).
@@ -27,6 +30,7 @@ Examples:
   firmament presets
   firmament sky-sample --altitude 0 --sun-zenith 60 --view-zenith 80 --view-azimuth 90
   firmament bench --preset earth-sunset --width 1280 --height 720 --frames 5
+  firmament sun --time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
 Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
@@ -44,6 +48,9 @@ pub(crate) enum Command {
     SkySample(SkySampleArgs),
     /// Time the atmosphere's GPU passes, and the LUT path against the brute-force ray march.
     Bench(BenchArgs),
+    /// Print the sun's position (NREL's SPA) at a date, time and place, and that day's sunrise,
+    /// solar noon and sunset.
+    Sun(SunArgs),
 }
 
 /// Where a scene comes from and what overrides it.
@@ -165,6 +172,35 @@ pub(crate) struct SkySampleArgs {
     /// Graphics API for the GPU path.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct SunArgs {
+    /// Date and time, ISO 8601: `2003-10-17T12:30:30-07:00`, `2003-10-17T19:30:30Z`, or without an
+    /// offset for UTC. Sunrise, solar noon and sunset are given on the same clock.
+    #[arg(long, value_name = "ISO8601", value_parser = sun::spa_time)]
+    pub(crate) time: CivilDateTime,
+    /// Latitude, degrees north, [-90, 90].
+    #[arg(long, value_name = "DEG", value_parser = sun::latitude, allow_negative_numbers = true)]
+    pub(crate) lat: f64,
+    /// Longitude, degrees east (west negative), [-180, 180].
+    #[arg(long, value_name = "DEG", value_parser = sun::longitude, allow_negative_numbers = true)]
+    pub(crate) lon: f64,
+    /// Elevation above sea level, metres.
+    #[arg(long, value_name = "M", default_value_t = 0.0, value_parser = sun::elevation, allow_negative_numbers = true)]
+    pub(crate) elevation: f64,
+    /// Annual mean local pressure for refraction, millibars, (0, 5000].
+    #[arg(long, value_name = "MBAR", default_value_t = 1010.0, value_parser = sun::pressure, allow_negative_numbers = true)]
+    pub(crate) pressure: f64,
+    /// Annual mean local temperature for refraction, °C.
+    #[arg(long, value_name = "C", default_value_t = 10.0, value_parser = sun::temperature, allow_negative_numbers = true)]
+    pub(crate) temperature: f64,
+    /// ΔT = TT − UT, seconds (default: Espenak & Meeus's estimate for the date).
+    #[arg(long, value_name = "S", value_parser = sun::delta_t, allow_negative_numbers = true)]
+    pub(crate) delta_t: Option<f64>,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 /// A finite number (clap's own f64 parser accepts `NaN` and `inf`).

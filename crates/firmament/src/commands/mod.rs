@@ -5,6 +5,7 @@ mod check;
 mod presets;
 mod render;
 mod sky_sample;
+pub(crate) mod sun;
 
 use anyhow::Result;
 use firmament_scene::{Scene, SceneSource};
@@ -18,6 +19,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::Check(args) => check::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::SkySample(args) => sky_sample::run(&args),
+        Command::Sun(args) => sun::run(&args),
         Command::Presets => {
             presets::run();
             Ok(())

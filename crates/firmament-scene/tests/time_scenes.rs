@@ -1,0 +1,169 @@
+//! `[time]` with a real date: the sun where NREL's SPA puts it (the paper's own example), the
+//! atmosphere's first sun moved there, another clock time on the same date, the gradient sky's
+//! keyframes following the sun's elevation, and a clear error for each bad value.
+
+use firmament_core::frame::Sky;
+use firmament_core::{LinearRgb, TimeOfDay};
+use firmament_scene::{Scene, SceneError, SceneSource, load};
+use glam::DVec3;
+
+fn load_scene(text: &str, sets: &[&str]) -> Result<Scene, SceneError> {
+    let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();
+    load(
+        SceneSource::Text {
+            text,
+            origin: "test.toml",
+        },
+        None,
+        &sets,
+    )
+}
+
+fn gradient_sun(scene: &Scene, time: Option<TimeOfDay>) -> DVec3 {
+    match scene.frame_at(time).expect("frame").sky {
+        Sky::Gradient(state) => state.sun.direction,
+        other => panic!("a gradient sky, not {other:?}"),
+    }
+}
+
+/// Zenith angle and azimuth (east of north), degrees, of an East-North-Up direction.
+fn zenith_azimuth(d: DVec3) -> (f64, f64) {
+    let zenith = d.z.clamp(-1.0, 1.0).acos().to_degrees();
+    let azimuth = d.x.atan2(d.y).to_degrees().rem_euclid(360.0);
+    (zenith, azimuth)
+}
+
+/// Reda & Andreas (2004), table A5.1: 2003-10-17 12:30:30 −7 h at 39.742476° N, 105.1786° W,
+/// 1830.14 m, 820 mbar, 11 °C, ΔT 67 s → zenith 50.11162°, azimuth 194.34024°.
+const SPA_EXAMPLE: &str = r#"
+[time]
+date_time = "2003-10-17T12:30:30-07:00"
+delta_t = 67.0
+pressure = 820.0
+temperature = 11.0
+
+[planet]
+latitude = 39.742476
+longitude = -105.1786
+
+[camera]
+position = [0.0, 0.0, 1830.14]
+"#;
+
+#[test]
+fn the_sun_stands_where_the_spa_paper_says() {
+    let scene = load_scene(SPA_EXAMPLE, &[]).expect("valid");
+    let (zenith, azimuth) = zenith_azimuth(gradient_sun(&scene, None));
+    println!("SPA example: zenith {zenith:.6}°, azimuth {azimuth:.6}°");
+    assert!((zenith - 50.11162).abs() < 2e-5, "{zenith}");
+    assert!((azimuth - 194.34024).abs() < 2e-5, "{azimuth}");
+    // The physical sky's first sun goes to the same place; with no [[suns]] the body's is added.
+    let atmosphere = scene.atmosphere_sky().expect("sky");
+    assert_eq!(atmosphere.suns.len(), 1);
+    let (z, a) = zenith_azimuth(atmosphere.suns[0].direction);
+    assert!((z - 50.11162).abs() < 2e-5 && (a - 194.34024).abs() < 2e-5, "{z} {a}");
+    let two = load_scene(
+        SPA_EXAMPLE,
+        &[
+            "suns.0.elevation=5",
+            "suns.0.azimuth=0",
+            "suns.1.elevation=30",
+            "suns.1.azimuth=90",
+        ],
+    )
+    .expect("valid")
+    .atmosphere_sky()
+    .expect("sky");
+    assert_eq!(two.suns.len(), 2);
+    assert!((zenith_azimuth(two.suns[0].direction).0 - 50.11162).abs() < 2e-5);
+    assert!(
+        (zenith_azimuth(two.suns[1].direction).0 - 60.0).abs() < 1e-9,
+        "the second sun stays"
+    );
+}
+
+#[test]
+fn another_clock_time_keeps_the_date() {
+    let scene = load_scene(SPA_EXAMPLE, &[]).expect("valid");
+    let at = |hours: f64| gradient_sun(&scene, Some(TimeOfDay::from_hours(hours).expect("finite")));
+    // Mid-October at 40° N: noon high in the south, midnight well below the horizon.
+    let noon = at(11.77);
+    assert!(noon.z > 0.6 && noon.y < 0.0, "{noon}");
+    assert!(at(0.0).z < -0.5);
+    // A civil date and time given by the caller (a time-lapse) wins over the scene's.
+    let other = firmament_scene::parse_date_time("2003-06-21T12:00:00-07:00").expect("valid");
+    let Sky::Gradient(state) = scene.frame_at_date_time(&other).expect("frame").sky else {
+        panic!("gradient")
+    };
+    assert!(state.sun.direction.z > noon.z, "higher in June");
+}
+
+fn zenith_colour(scene: &Scene) -> LinearRgb {
+    match scene.frame_at(None).expect("frame").sky {
+        Sky::Gradient(state) => state.bands.zenith,
+        other => panic!("a gradient sky, not {other:?}"),
+    }
+}
+
+#[test]
+fn gradient_keyframes_can_follow_the_sun_s_elevation() {
+    // Midsummer at 60° N, 22:00 CEST: the sun still a few degrees up in the north-west.
+    let midsummer = r#"
+[time]
+date_time = "2024-06-21T22:00:00+02:00"
+[planet]
+latitude = 60.0
+longitude = 10.0
+"#;
+    let by_clock = load_scene(midsummer, &[]).expect("valid");
+    let by_sun = load_scene(midsummer, &["sky.gradient.by=\"sun-elevation\""]).expect("valid");
+    let sun = gradient_sun(&by_sun, None);
+    assert_eq!(sun, gradient_sun(&by_clock, None), "the same sun either way");
+    let elevation = sun.z.asin().to_degrees();
+    assert!(elevation > 0.5 && elevation < 6.0, "{elevation}");
+    // By the clock (solar time ≈ 20:38) the default cycle is deep in dusk; by the sun's
+    // elevation it is the equinox-at-45° time with that elevation, late afternoon: brighter.
+    let luminance = |c: LinearRgb| 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    let (clock, elevation_keyed) = (luminance(zenith_colour(&by_clock)), luminance(zenith_colour(&by_sun)));
+    println!("zenith luminance by clock {clock:.4}, by sun elevation {elevation_keyed:.4}");
+    assert!(elevation_keyed > 2.0 * clock, "{elevation_keyed} vs {clock}");
+    // Without a date, following the elevation on the scene's own path changes nothing.
+    let plain = load_scene("", &[]).expect("valid");
+    let plain_by_sun = load_scene("", &["sky.gradient.by=\"sun-elevation\""]).expect("valid");
+    let (a, b) = (zenith_colour(&plain), zenith_colour(&plain_by_sun));
+    assert!(
+        (a.r - b.r).abs() + (a.g - b.g).abs() + (a.b - b.b).abs() < 1e-9,
+        "{a:?} vs {b:?}"
+    );
+}
+
+#[test]
+fn every_bad_time_value_names_its_key() {
+    let cases = [
+        ("time.date_time=\"yesterday\"", "time.date_time = \"yesterday\""),
+        ("time.date_time=\"2023-02-30T00:00:00Z\"", "no such date"),
+        ("time.pressure=0", "time.pressure = 0: must be in (0, 5000] millibars"),
+        ("time.temperature=nan", "time.temperature"),
+        ("time.delta_t=1e9", "time.delta_t"),
+        ("time.star_limit=7", "time.star_limit = 7"),
+        ("sky.gradient.by=\"moon\"", "sky.gradient.by"),
+    ];
+    for (set, expected) in cases {
+        let message = load_scene("", &[set]).expect_err(set).to_string();
+        assert!(message.contains(expected), "{set}: {message}");
+    }
+    let mars = load_scene(
+        "[time]\ndate_time = \"2024-01-01T00:00:00Z\"\n[planet]\nbody = \"mars\"\n",
+        &[],
+    )
+    .expect_err("no ephemeris for Mars")
+    .to_string();
+    assert!(mars.contains("time.date_time") && mars.contains("mars"), "{mars}");
+    let lat = load_scene(
+        "[time]\ndate_time = \"2024-01-01T00:00:00Z\"\n",
+        &["planet.latitude=91"],
+    )
+    .expect_err("latitude")
+    .to_string();
+    assert!(lat.contains("planet.latitude"), "{lat}");
+}

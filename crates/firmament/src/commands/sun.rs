@@ -1,0 +1,212 @@
+//! `firmament sun`: the sun's position by NREL's SPA for a date, time and place, and that day's
+//! sunrise, solar noon and sunset.
+
+use anyhow::{Context, Result};
+use firmament_core::CoreError;
+use firmament_core::astro::spa::{self, RiseSet, SpaInput};
+use firmament_core::astro::time::J2000;
+use firmament_core::astro::{CivilDateTime, Instant};
+
+use crate::cli::SunArgs;
+
+/// Checks one value by SPA's own rules ([`SpaInput::validate`]): `set` puts it into an input
+/// that is otherwise valid. The error is the rule it breaks, which clap prints after the flag and
+/// the value.
+fn check(set: impl FnOnce(&mut SpaInput)) -> Result<(), String> {
+    let mut input = SpaInput::new(Instant::from_jd(J2000), 0.0, 0.0);
+    set(&mut input);
+    input.validate().map_err(|e| match e {
+        CoreError::Invalid { rule, .. } => rule.to_owned(),
+        other => other.to_string(),
+    })
+}
+
+/// A number, as clap's value parsers want it.
+fn number(text: &str) -> Result<f64, String> {
+    text.trim()
+        .parse::<f64>()
+        .map_err(|_| format!("`{text}` is not a number"))
+}
+
+/// `--time`: ISO 8601, within SPA's years −2000 to 6000.
+pub(crate) fn spa_time(text: &str) -> Result<CivilDateTime, String> {
+    let civil = firmament_scene::parse_date_time(text)?;
+    check(|input| input.instant.jd = civil.julian_date())?;
+    Ok(civil)
+}
+
+/// `--lat`: degrees, [−90, 90].
+pub(crate) fn latitude(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.latitude_deg = v).map(|()| v)
+}
+
+/// `--lon`: degrees, [−180, 180].
+pub(crate) fn longitude(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.longitude_deg = v).map(|()| v)
+}
+
+/// `--elevation`: metres, finite.
+pub(crate) fn elevation(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.elevation_m = v).map(|()| v)
+}
+
+/// `--pressure`: millibars, (0, 5000].
+pub(crate) fn pressure(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.pressure_mbar = v).map(|()| v)
+}
+
+/// `--temperature`: °C, (−273, 6000].
+pub(crate) fn temperature(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.temperature_c = v).map(|()| v)
+}
+
+/// `--delta-t`: seconds, within ±8000.
+pub(crate) fn delta_t(text: &str) -> Result<f64, String> {
+    let v = number(text)?;
+    check(|input| input.instant.delta_t = v).map(|()| v)
+}
+
+/// `±HH:MM` for an offset in hours, `Z` for UTC.
+fn format_offset(hours: f64) -> String {
+    if hours == 0.0 {
+        return "Z".to_owned();
+    }
+    let minutes = (hours.abs() * 60.0).round() as u32;
+    let sign = if hours < 0.0 { '-' } else { '+' };
+    format!("{sign}{:02}:{:02}", minutes / 60, minutes % 60)
+}
+
+/// The date and time as given, in ISO 8601.
+fn format_civil(c: &CivilDateTime) -> String {
+    let seconds = if c.second.fract() == 0.0 {
+        format!("{:02}", c.second as u32)
+    } else {
+        format!("{:09.6}", c.second)
+    };
+    format!(
+        "{:04}-{:02}-{:02}T{:02}:{:02}:{seconds}{}",
+        c.year,
+        c.month,
+        c.day,
+        c.hour,
+        c.minute,
+        format_offset(c.offset_hours)
+    )
+}
+
+/// `HH:MM:SS` of local hours in [0, 24), truncated to the second as NREL's `spa_tester.c`
+/// prints its times.
+fn format_hours(hours: f64) -> String {
+    let seconds = (hours * 3600.0).floor().clamp(0.0, 86_399.0) as u32;
+    format!("{:02}:{:02}:{:02}", seconds / 3600, seconds / 60 % 60, seconds % 60)
+}
+
+/// Computes and prints the sun's position and the day's events.
+pub(crate) fn run(args: &SunArgs) -> Result<()> {
+    let instant = Instant::from_civil(&args.time, args.delta_t).context("invalid --time or --delta-t")?;
+    let input = SpaInput {
+        elevation_m: args.elevation,
+        pressure_mbar: args.pressure,
+        temperature_c: args.temperature,
+        ..SpaInput::new(instant, args.lat, args.lon)
+    };
+    input.validate().context("invalid input for the sun's position")?;
+    let p = spa::solar_position(&input);
+    let times = spa::sun_times(&input, args.time.offset_hours);
+    let day = match times.rise_set {
+        RiseSet::RiseAndSet { .. } => "rise_and_set",
+        RiseSet::PolarDay => "polar_day",
+        RiseSet::PolarNight => "polar_night",
+    };
+    let time = format_civil(&args.time);
+    let zone = match format_offset(args.time.offset_hours).as_str() {
+        "Z" => "UTC".to_owned(),
+        offset => format!("UTC{offset}"),
+    };
+
+    if args.json {
+        let out = serde_json::json!({
+            "time": time,
+            "julian_date": instant.jd,
+            "delta_t_s": instant.delta_t,
+            "latitude_deg": args.lat,
+            "longitude_deg": args.lon,
+            "elevation_m": args.elevation,
+            "pressure_mbar": args.pressure,
+            "temperature_c": args.temperature,
+            "zenith_deg": p.zenith_deg,
+            "zenith_no_refraction_deg": p.zenith_no_refraction_deg,
+            "azimuth_deg": p.azimuth_deg,
+            "elevation_deg": p.elevation_deg,
+            "elevation_no_refraction_deg": p.elevation_no_refraction_deg,
+            "declination_deg": p.geocentric.declination_deg,
+            "right_ascension_deg": p.geocentric.right_ascension_deg,
+            "hour_angle_deg": p.hour_angle_deg,
+            "equation_of_time_min": p.equation_of_time_min,
+            "utc_offset_hours": args.time.offset_hours,
+            "day": day,
+            "sunrise": times.sunrise_h().map(format_hours),
+            "solar_noon": format_hours(times.transit_h),
+            "sunset": times.sunset_h().map(format_hours),
+            "sunrise_h": times.sunrise_h(),
+            "solar_noon_h": times.transit_h,
+            "sunset_h": times.sunset_h(),
+            "solar_noon_elevation_deg": times.transit_elevation_deg,
+        });
+        println!("{out}");
+        return Ok(());
+    }
+
+    println!(
+        "sun at {time}, latitude {}°, longitude {}°, {} m ({} mbar, {} °C, ΔT {:.1} s)",
+        args.lat, args.lon, args.elevation, args.pressure, args.temperature, instant.delta_t
+    );
+    println!(
+        "  zenith            {:>10.5}°  refracted   {:>10.5}°  geometric",
+        p.zenith_deg, p.zenith_no_refraction_deg
+    );
+    println!(
+        "  elevation         {:>10.5}°  refracted   {:>10.5}°  geometric",
+        p.elevation_deg, p.elevation_no_refraction_deg
+    );
+    println!("  azimuth           {:>10.5}°  eastward from north", p.azimuth_deg);
+    println!("  declination       {:>10.5}°", p.geocentric.declination_deg);
+    println!("  right ascension   {:>10.5}°", p.geocentric.right_ascension_deg);
+    println!("  hour angle        {:>10.5}°", p.hour_angle_deg);
+    println!("  equation of time  {:>10.5} min", p.equation_of_time_min);
+    let event = |hours: Option<f64>| match (hours, times.rise_set) {
+        (Some(h), _) => format_hours(h),
+        (None, RiseSet::PolarDay) => "none (polar day)".to_owned(),
+        (None, _) => "none (polar night)".to_owned(),
+    };
+    println!("  sunrise           {}", event(times.sunrise_h()));
+    println!(
+        "  solar noon        {}  (elevation {:.2}°)",
+        format_hours(times.transit_h),
+        times.transit_elevation_deg
+    );
+    println!("  sunset            {}", event(times.sunset_h()));
+    println!(
+        "sunrise, solar noon and sunset on the clock of --time ({zone}); as in NREL's SPA, those of the UT day of its date"
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_print_on_the_given_clock() {
+        let civil = CivilDateTime::utc(2003, 10, 17, 12, 30, 30.0).with_offset(-7.0);
+        assert_eq!(format_civil(&civil), "2003-10-17T12:30:30-07:00");
+        assert_eq!(format_offset(5.75), "+05:45");
+        assert_eq!(format_hours(11.768_045), "11:46:04");
+        assert_eq!(format_hours(23.999_999_99), "23:59:59");
+    }
+}
