@@ -10,6 +10,7 @@ use crate::color::LinearRgb;
 use crate::display::DisplaySettings;
 use crate::flare::FlareLayer;
 use crate::gradient_sky::GradientSkyState;
+use crate::night_sky::NightLayer;
 
 /// The sky model drawn behind everything.
 #[derive(Debug, Clone, PartialEq)]
@@ -204,6 +205,9 @@ pub struct Frame {
     pub objects: ObjectLayer,
     /// Lens flares of the suns and lights.
     pub flares: FlareLayer,
+    /// Stars and the Moon, added over the sky where nothing nearer is drawn
+    /// ([`NightLayer::default`]: none).
+    pub night: NightLayer,
 }
 
 #[cfg(test)]

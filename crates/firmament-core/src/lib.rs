@@ -31,6 +31,7 @@ pub mod frustum;
 pub mod geometry;
 pub mod gradient_sky;
 pub mod mesh;
+pub mod night_sky;
 pub mod projection;
 pub mod sun;
 pub mod texture;

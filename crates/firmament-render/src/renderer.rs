@@ -1,6 +1,6 @@
-//! The frame renderer: objects, then the sky behind them, into HDR targets; aerial perspective
-//! over the objects when the sky is an atmosphere; lens flares over everything; tonemap → the
-//! caller's view.
+//! The frame renderer: objects, then the sky behind them and the stars and the Moon added over
+//! it, into HDR targets; aerial perspective over the objects when the sky is an atmosphere; lens
+//! flares over everything; tonemap → the caller's view.
 
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
@@ -8,7 +8,7 @@ use firmament_core::frame::Sky;
 use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::passes::{
-    AtmospherePass, FlarePass, GradientSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
+    AtmospherePass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
 };
 use crate::targets::{DEPTH_CLEAR, FrameTargets};
 
@@ -31,6 +31,7 @@ pub struct Renderer {
     /// Which sky the last `prepare` chose.
     sky: SkyKind,
     objects: ObjectPass,
+    night: NightSkyPass,
     flares: FlarePass,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
@@ -45,6 +46,7 @@ impl Renderer {
             seed: SeedSkyPass::new(&ctx.device),
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
+            night: NightSkyPass::new(&ctx.device),
             flares: FlarePass::new(&ctx.device),
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
@@ -88,6 +90,8 @@ impl Renderer {
             }
         }
         self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
+        self.night
+            .prepare(&ctx.device, &ctx.queue, &frame.night, &camera, (width, height));
         let planet = match &frame.sky {
             Sky::Atmosphere(sky) => Some(&sky.atmosphere.planet),
             _ => None,
@@ -107,8 +111,9 @@ impl Renderer {
         Ok(())
     }
 
-    /// Encodes the frame: clear the HDR and depth targets, draw the objects and the sky behind
-    /// them, aerial perspective over the objects in an atmosphere, tone-map into `output`.
+    /// Encodes the frame: clear the HDR and depth targets, draw the objects, the sky behind
+    /// them and the stars and the Moon over the sky, aerial perspective over the objects in an
+    /// atmosphere, lens flares, tone-map into `output`.
     /// Does nothing before the first `prepare`.
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, output: &wgpu::TextureView) {
         let Some(targets) = &self.targets else {
@@ -138,6 +143,8 @@ impl Renderer {
                 SkyKind::Seed => self.seed.draw(&mut pass),
                 SkyKind::Clear(_) => {}
             }
+            // Stars and the Moon, added over the sky where nothing nearer was drawn.
+            self.night.draw(&mut pass);
         }
         if self.sky == SkyKind::Atmosphere && !self.objects.is_empty() {
             self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
@@ -157,6 +164,11 @@ impl Renderer {
     /// The lens-flare pass (its visibility buffer, for tests and tools).
     pub fn flares(&self) -> &FlarePass {
         &self.flares
+    }
+
+    /// The night-sky pass (how many stars it drew, for tests and tools).
+    pub fn night_sky(&self) -> &NightSkyPass {
+        &self.night
     }
 
     /// The HDR and depth targets of the last `prepare` (for EXR output and tests).

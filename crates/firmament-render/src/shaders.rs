@@ -90,6 +90,9 @@ pub const FLARE: &str = concat!(
     include_str!("shaders/flare.wgsl")
 );
 
+/// The night-sky pass: stars and the Moon (one entry file, no includes).
+pub const NIGHT_SKY: &str = include_str!("shaders/night_sky.wgsl");
+
 /// Every composed shader by name, for validation and tooling.
 pub const ALL: &[(&str, &str)] = &[
     ("sky_gradient", SKY_GRADIENT),
@@ -97,6 +100,7 @@ pub const ALL: &[(&str, &str)] = &[
     ("classic_lighting", CLASSIC_LIGHTING),
     ("flare_occlusion", FLARE_OCCLUSION),
     ("flare", FLARE),
+    ("night_sky", NIGHT_SKY),
     ("seed_sky", SEED_SKY),
     ("atmosphere/transmittance_lut", ATMOSPHERE_TRANSMITTANCE_LUT),
     ("atmosphere/multiscattering_lut", ATMOSPHERE_MULTISCATTERING_LUT),
@@ -206,6 +210,28 @@ mod tests {
                 members.into_iter().map(|(n, o)| (n.trim_start_matches('_').to_owned(), o)).collect();
             assert_eq!(wgsl, rust, "members of {}", $wgsl);
         }};
+    }
+
+    #[test]
+    fn night_sky_layouts_match() {
+        use crate::gpu_types::{NightSkyUniforms, StarInstance};
+        let night = validate("night_sky", NIGHT_SKY);
+        assert_layout!(
+            night,
+            "NightSky",
+            NightSkyUniforms,
+            [
+                view_proj,
+                pixels,
+                star,
+                moon_center,
+                moon_e1,
+                moon_e2,
+                moon_sun,
+                moon_radiance
+            ]
+        );
+        assert_layout!(night, "StarIn", StarInstance, [direction, color]);
     }
 
     #[test]

@@ -45,6 +45,7 @@ fn render(gpu: &mut Gpu, sky: &AtmosphereSky, camera: Camera, width: u32, height
         display: DisplaySettings::default(),
         objects: Default::default(),
         flares: Default::default(),
+        night: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     renderer.render_hdr(ctx, &frame, width, height).expect("render")
@@ -254,6 +255,54 @@ fn several_suns_add_up() {
     }
     // Half-float targets round each image to 2⁻¹¹.
     assert!(worst < 2e-3, "worst {worst}");
+}
+
+/// The Moon as a light: a sun 2.5·10⁻⁶ as bright with no disc of its own. Its sky is the Sun's
+/// sky scaled (the half-float sky-view LUT stores each sun's light over its own irradiance, so a
+/// dim light keeps its precision), and looking straight at it shows only scattered light, as the
+/// reference says.
+#[test]
+fn moonlight_is_a_dim_sun_without_a_disc() {
+    let mut gpu = gpu();
+    let atmosphere = earth_sphere();
+    let scale = 2.5e-6;
+    let sun = Sun {
+        disc: false,
+        ..presets::earth_sun(direction(80.0, 20.0))
+    };
+    let moon = Sun {
+        irradiance: sun.irradiance * scale,
+        ..sun
+    };
+    let view = camera(DVec3::new(0.0, 0.0, 100.0), direction(120.0, 5.0), 100f64.to_radians());
+    let sky = |s: Sun| AtmosphereSky {
+        atmosphere,
+        suns: vec![s],
+    };
+    let bright = render(&mut gpu, &sky(sun), view, 16, 12);
+    let dim = render(&mut gpu, &sky(moon), view, 16, 12);
+    let mut worst: f64 = 0.0;
+    for y in 0..12 {
+        for x in 0..16 {
+            worst = worst.max(relative_difference(pixel(&dim, x, y) / scale, pixel(&bright, x, y)));
+        }
+    }
+    println!("moonlit sky / scale vs sunlit sky: worst {worst:.2e}");
+    assert!(worst < 5e-3, "worst {worst}");
+    let position = DVec3::new(0.0, 0.0, 1.7);
+    let settings = ReferenceSettings {
+        paths: STREET_PATHS,
+        ..ReferenceSettings::default()
+    };
+    let reference = Reference::new(atmosphere, &[moon], settings);
+    let at = moon.direction;
+    let (g, r) = (
+        gpu_radiance(&mut gpu, &sky(moon), position, at),
+        reference_radiance(&reference, position, at),
+    );
+    let e = relative_difference(g, r);
+    println!("looking at the Moon: gpu {g} reference {r} relative {e:.4}");
+    assert!(e < 0.05, "{g} vs {r}");
 }
 
 /// The precision test: the planet from 1 AU with field of view f and from 100 AU with f / 100.

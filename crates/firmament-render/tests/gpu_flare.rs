@@ -76,6 +76,7 @@ fn frame(objects: Vec<SceneObject>, sources: Vec<FlareSource>, flare: LensFlare)
             flare: Some(flare),
             sources,
         },
+        night: Default::default(),
     }
 }
 

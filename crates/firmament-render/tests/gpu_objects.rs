@@ -513,6 +513,7 @@ fn the_renderer_writes_the_equations_colours_as_8_bit_gl_pixels() {
         },
         objects: layer.clone(),
         flares: Default::default(),
+        night: Default::default(),
     };
     let mut gpu = support::gpu();
     let support::Gpu { ctx, renderer } = &mut *gpu;

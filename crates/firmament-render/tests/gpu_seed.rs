@@ -80,6 +80,7 @@ fn compare(gpu: &mut Gpu, name: &str, sky: &SeedSky, camera: Camera) -> Comparis
         display: DisplaySettings::default(),
         objects: Default::default(),
         flares: Default::default(),
+        night: Default::default(),
     };
     let Gpu { ctx, renderer } = gpu;
     let image = renderer.render_hdr(ctx, &frame, WIDTH, HEIGHT).expect("render");
@@ -230,6 +231,7 @@ fn invalid_parameters_draw_nothing() {
         display: DisplaySettings::default(),
         objects: Default::default(),
         flares: Default::default(),
+        night: Default::default(),
     };
     let Gpu { ctx, renderer } = &mut *gpu;
     let image = renderer.render_hdr(ctx, &frame, 4, 3).expect("render");

@@ -54,6 +54,7 @@ fn frame(camera: Camera, sky: GradientSkyState, display: DisplaySettings) -> Fra
         display,
         objects: Default::default(),
         flares: Default::default(),
+        night: Default::default(),
     }
 }
 

@@ -275,6 +275,8 @@ fn atmosphere_sources(sky: &AtmosphereSky, eye: DVec3) -> Vec<FlareSource> {
     sky.suns
         .iter()
         .zip(light.sun_colors(eye))
+        // The Moon as a light (no disc of its own) gives no flare.
+        .filter(|(sun, _)| sun.disc)
         .filter_map(|(sun, seen)| {
             let space = conversion.linear_srgb(sun.irradiance / std::f64::consts::PI);
             let unattenuated = luminance(DVec3::new(space.r, space.g, space.b));

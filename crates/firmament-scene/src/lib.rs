@@ -34,6 +34,7 @@ mod error;
 mod flare;
 mod layers;
 mod model;
+mod night;
 mod objects;
 mod presets;
 mod spectrum;
@@ -54,6 +55,7 @@ pub use model::{
     FogModeName, FogSection, GlColor, LightEntry, LightSpaceName, LightingModelName, LightingSection, MaterialEntry,
     MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry, TextureEntry, TransformEntry,
 };
+pub use night::MOON_DISPLAY_RADIANCE;
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;
 pub use time::{add_seconds, parse_date_time};

@@ -57,6 +57,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/earth-sunset.toml"),
     },
     Preset {
+        name: "earth-night",
+        summary: "atmosphere: a moonlit night at a real date, 45° N, the Moon and the stars looking south",
+        toml: include_str!("presets/earth-night.toml"),
+    },
+    Preset {
         name: "earth-orbit",
         summary: "atmosphere: Earth from 400 km up, looking at the limb",
         toml: include_str!("presets/earth-orbit.toml"),

@@ -64,8 +64,15 @@ pub fn parse_date_time(text: &str) -> Result<CivilDateTime, String> {
              2003-10-17T19:30:30Z, or 2003-10-17T19:30:30 for UTC"
         ));
     };
+    let civil = from_naive(naive, f64::from(offset_seconds) / 3600.0);
+    civil.validate().map_err(|e| format!("`{text}`: {e}"))?;
+    Ok(civil)
+}
+
+/// chrono's date and clock time as a [`CivilDateTime`] on a clock `offset_hours` from UTC.
+fn from_naive(naive: NaiveDateTime, offset_hours: f64) -> CivilDateTime {
     let (date, clock) = (naive.date(), naive.time());
-    let civil = CivilDateTime {
+    CivilDateTime {
         year: date.year(),
         month: date.month(),
         day: date.day(),
@@ -73,10 +80,8 @@ pub fn parse_date_time(text: &str) -> Result<CivilDateTime, String> {
         minute: clock.minute(),
         // chrono keeps a leap second as nanoseconds past 1e9.
         second: f64::from(clock.second()) + f64::from(clock.nanosecond()) / 1e9,
-        offset_hours: f64::from(offset_seconds) / 3600.0,
-    };
-    civil.validate().map_err(|e| format!("`{text}`: {e}"))?;
-    Ok(civil)
+        offset_hours,
+    }
 }
 
 /// `civil` moved by `seconds` (negative: earlier), on the same clock offset: the date, hour and
@@ -102,17 +107,7 @@ pub fn add_seconds(civil: &CivilDateTime, seconds: f64) -> CivilDateTime {
         // |whole| beyond ~1.5e16 s is beyond chrono's dates anyway; the cast saturates.
         let delta =
             chrono::TimeDelta::try_seconds(whole as i64)?.checked_add(&chrono::TimeDelta::nanoseconds(nanos as i64))?;
-        let naive = start.checked_add_signed(delta)?;
-        let (date, clock) = (naive.date(), naive.time());
-        Some(CivilDateTime {
-            year: date.year(),
-            month: date.month(),
-            day: date.day(),
-            hour: clock.hour(),
-            minute: clock.minute(),
-            second: f64::from(clock.second()) + f64::from(clock.nanosecond()) / 1e9,
-            offset_hours: civil.offset_hours,
-        })
+        Some(from_naive(start.checked_add_signed(delta)?, civil.offset_hours))
     };
     moved().unwrap_or(*civil)
 }
@@ -190,12 +185,9 @@ impl Scene {
     pub(crate) fn real_sun(&self, instant: &Instant) -> Result<SolarPosition, SceneError> {
         check(
             self.planet.body == Body::Earth,
-            "time.date_time",
-            format!("{:?}", self.time.date_time.as_deref().unwrap_or("")),
-            &format!(
-                "a real date places Earth's sun (NREL SPA); planet.body = \"{}\" has no ephemeris here",
-                self.planet.body.name()
-            ),
+            "planet.body",
+            format!("\"{}\"", self.planet.body.name()),
+            "a real date places Earth's sun (NREL SPA); there is no ephemeris for other bodies here",
         )?;
         let input = SpaInput {
             elevation_m: self.camera.position[2].clamp(0.0, 1.0e7),

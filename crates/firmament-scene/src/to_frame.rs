@@ -199,9 +199,14 @@ impl Scene {
         let sky = match self.sky.model {
             SkyModelName::Gradient => Sky::Gradient(self.gradient_sky(moment.clock, real_sun.as_ref())?),
             SkyModelName::Atmosphere => {
-                let sky = self.atmosphere_sky_with(real_sun.as_ref())?;
+                let mut sky = self.atmosphere_sky_with(real_sun.as_ref())?;
                 match self.atmosphere.model {
-                    AtmosphereModelName::Physical => Sky::Atmosphere(sky),
+                    AtmosphereModelName::Physical => {
+                        if let Some(instant) = &moment.instant {
+                            crate::night::add_moonlight(self, instant, &self.camera(), &mut sky);
+                        }
+                        Sky::Atmosphere(sky)
+                    }
                     AtmosphereModelName::Seed => Sky::Seed(crate::atmosphere::seed_sky(self, &sky)?),
                 }
             }
@@ -214,12 +219,17 @@ impl Scene {
         let camera = self.camera();
         let flares = crate::flare::flare_layer(self, &camera, &sky)?;
         let objects = crate::objects::object_layer(self, time, &sky)?;
+        let night = moment
+            .instant
+            .map(|instant| crate::night::night_layer(self, &instant, &camera, &sky))
+            .unwrap_or_default();
         Ok(Frame {
             camera,
             sky,
             display: self.display_settings(),
             objects,
             flares,
+            night,
         })
     }
 }

@@ -158,7 +158,10 @@ fn every_bad_time_value_names_its_key() {
     )
     .expect_err("no ephemeris for Mars")
     .to_string();
-    assert!(mars.contains("time.date_time") && mars.contains("mars"), "{mars}");
+    assert!(
+        mars.contains("planet.body = \"mars\"") && mars.contains("ephemeris"),
+        "{mars}"
+    );
     let lat = load_scene(
         "[time]\ndate_time = \"2024-01-01T00:00:00Z\"\n",
         &["planet.latitude=91"],
@@ -166,4 +169,99 @@ fn every_bad_time_value_names_its_key() {
     .expect_err("latitude")
     .to_string();
     assert!(lat.contains("planet.latitude"), "{lat}");
+}
+
+/// The brightest star within 2° of `direction` in a frame's night sky.
+fn star_near(scene: &Scene, when: &str, direction: DVec3) -> Option<DVec3> {
+    let civil = firmament_scene::parse_date_time(when).expect("valid");
+    let frame = scene.frame_at_date_time(&civil).expect("frame");
+    frame
+        .night
+        .stars
+        .iter()
+        .filter(|s| s.direction.angle_between(direction) < 2f64.to_radians())
+        .max_by(|a, b| a.color.y.total_cmp(&b.color.y))
+        .map(|s| s.direction)
+}
+
+#[test]
+fn the_night_sky_turns_about_the_pole_and_hides_by_day() {
+    let night = load_scene(
+        "[time]\ntime_of_day = \"00:00\"\n[planet]\nlatitude = 45.0\n",
+        &["sky.model=atmosphere"],
+    )
+    .expect("valid");
+    // The celestial pole at 45° N: due north, 45° up.
+    let pole = DVec3::new(0.0, 45f64.to_radians().cos(), 45f64.to_radians().sin());
+    let evening = star_near(&night, "2025-01-15T18:00:00Z", pole).expect("Polaris");
+    let morning = star_near(&night, "2025-01-16T06:00:00Z", pole).expect("Polaris");
+    // Polaris circles the pole 0.65° away (no refraction is applied to stars).
+    for d in [evening, morning] {
+        let off = d.angle_between(pole).to_degrees();
+        assert!((off - 0.65).abs() < 0.1, "{off}");
+    }
+    // A star near the celestial equator moves 180° in 12 hours: Polaris barely does.
+    assert!(evening.angle_between(morning).to_degrees() < 1.4);
+    let civil = firmament_scene::parse_date_time("2025-01-15T22:00:00Z").expect("valid");
+    let frame = night.frame_at_date_time(&civil).expect("frame");
+    let n = frame.night.stars.len();
+    assert!(n > 3000 && n < 5000, "{n} stars above the horizon");
+    // Magnitude-0 stars give about 2.5e-6 lux; through the air a little less.
+    let brightest = frame.night.stars.iter().map(|s| s.color.y).fold(0.0, f64::max);
+    assert!(brightest > 2e-6 && brightest < 2e-5, "{brightest}");
+    // By day the gradient sky shows none; at night it does; switched off, none either.
+    let gradient = |when: &str, sets: &[&str]| {
+        let civil = firmament_scene::parse_date_time(when).expect("valid");
+        load_scene("", sets)
+            .expect("valid")
+            .frame_at_date_time(&civil)
+            .expect("frame")
+            .night
+    };
+    assert!(gradient("2025-06-21T12:00:00Z", &[]).stars.is_empty());
+    assert!(gradient("2025-01-15T23:00:00Z", &[]).stars.len() > 2000);
+    assert!(
+        gradient("2025-01-15T23:00:00Z", &["time.stars=false", "time.moon=false"])
+            .stars
+            .is_empty()
+    );
+    // Without a date there is no night sky.
+    assert!(night.frame_at(None).expect("frame").night.stars.is_empty());
+}
+
+#[test]
+fn the_moon_lights_a_physical_night_sky_without_a_flare() {
+    // 2025-03-13 23:30 UTC at 45° N, 0° E: the Moon a few hours before full, high in the south.
+    let text = "[time]\ndate_time = \"2025-03-13T23:30:00Z\"\n[flare]\nenabled = true\n";
+    let scene = load_scene(text, &["sky.model=atmosphere"]).expect("valid");
+    let frame = scene.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    assert_eq!(sky.suns.len(), 2, "the Sun and the Moon");
+    let (sun, moon) = (sky.suns[0], sky.suns[1]);
+    assert!(sun.disc && !moon.disc);
+    assert!(
+        sun.direction.z < -0.5 && moon.direction.z > 0.5,
+        "{} {}",
+        sun.direction,
+        moon.direction
+    );
+    // Nearly full: opposite the Sun. Moonlight is sunlight scaled to ~0.25 lux of ~1.3e5.
+    assert!(sun.direction.angle_between(moon.direction).to_degrees() > 170.0);
+    let ratio = moon.irradiance.y / sun.irradiance.y;
+    assert!(ratio > 1.5e-6 && ratio < 3e-6, "{ratio}");
+    // The night sky's Moon disc is the same Moon.
+    let disc = frame.night.moon.expect("the Moon is up");
+    assert!(disc.direction.angle_between(moon.direction) < 1e-9);
+    // No flare from the Moon, none from the Sun below the horizon.
+    assert!(frame.flares.sources.is_empty());
+    // Switched off: no Moon light, no disc.
+    let dark = load_scene(text, &["sky.model=atmosphere", "time.moon=false"]).expect("valid");
+    let frame = dark.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    assert_eq!(sky.suns.len(), 1);
+    assert!(frame.night.moon.is_none());
 }

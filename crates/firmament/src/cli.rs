@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use firmament_core::astro::CivilDateTime;
 
-use crate::commands::sun;
+use crate::commands::{sun, timelapse};
 
 /// firmament renders skies — a keyframed gradient sky with a day/night cycle, sun disc and glow —
 /// headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float).
@@ -31,6 +31,7 @@ Examples:
   firmament sky-sample --altitude 0 --sun-zenith 60 --view-zenith 80 --view-azimuth 90
   firmament bench --preset earth-sunset --width 1280 --height 720 --frames 5
   firmament sun --time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786
+  firmament timelapse --from 2024-03-20T16:00Z --to 2024-03-20T20:00Z --frames 120 -o lapse
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
 Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
@@ -51,6 +52,9 @@ pub(crate) enum Command {
     /// Print the sun's position (NREL's SPA) at a date, time and place, and that day's sunrise,
     /// solar noon and sunset.
     Sun(SunArgs),
+    /// Render a scene at N real instants from --from to --to into a folder of PNG frames, then an
+    /// animated GIF and a contact sheet; Ctrl-C keeps the frames done, and a second run resumes.
+    Timelapse(TimelapseArgs),
 }
 
 /// Where a scene comes from and what overrides it.
@@ -201,6 +205,45 @@ pub(crate) struct SunArgs {
     /// Print JSON instead of text.
     #[arg(long)]
     pub(crate) json: bool,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct TimelapseArgs {
+    /// A scene file (TOML). Without one, the preset (or the built-in default scene) is rendered.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// The first frame's instant, ISO 8601 (`2024-03-20T16:00:00Z`, `...+01:00`, or no offset
+    /// for UTC); every frame is on its clock.
+    #[arg(long, value_name = "ISO8601", value_parser = timelapse::date_time)]
+    pub(crate) from: CivilDateTime,
+    /// The last frame's instant, ISO 8601; not before --from.
+    #[arg(long, value_name = "ISO8601", value_parser = timelapse::date_time)]
+    pub(crate) to: CivilDateTime,
+    /// Frames, 1 to 100000, evenly spaced from --from to --to, both included (1: --from only).
+    #[arg(long, value_name = "N", value_parser = timelapse::frame_count)]
+    pub(crate) frames: u32,
+    /// Output folder (created if missing): frame_0001.png …, timelapse.gif, contact_sheet.png.
+    #[arg(short, long, value_name = "DIR")]
+    pub(crate) output: PathBuf,
+    /// Image width in pixels (overrides `render.width`).
+    #[arg(long, value_name = "W")]
+    pub(crate) width: Option<u32>,
+    /// Image height in pixels (overrides `render.height`).
+    #[arg(long, value_name = "H")]
+    pub(crate) height: Option<u32>,
+    /// The GIF's frame rate, 1 to 100 frames per second.
+    #[arg(long, value_name = "FPS", default_value_t = 24, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub(crate) fps: u32,
+    /// Also write each frame as linear, scene-referred EXR (frame_0001.exr …) beside its PNG.
+    #[arg(long)]
+    pub(crate) exr: bool,
+    /// Render every frame again, even those already in the folder (default: resume, skipping them).
+    #[arg(long)]
+    pub(crate) overwrite: bool,
+    /// Graphics API to render with.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
 }
 
 /// A finite number (clap's own f64 parser accepts `NaN` and `inf`).

@@ -47,8 +47,21 @@ fn parent(path: &Path) -> &Path {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder.
-fn write_atomically(path: &Path, write: impl FnOnce(&mut std::fs::File) -> Result<()>) -> Result<()> {
+/// Writes `path` through a temporary file in the same folder, renamed into place, so the file is
+/// either complete or absent.
+pub(crate) fn write_atomically(path: &Path, write: impl FnOnce(&mut Writer<'_>) -> Result<()>) -> Result<()> {
+    write_atomically_or_abandon(path, |writer| write(writer).map(|()| true)).map(|_| ())
+}
+
+/// The buffered temporary file that [`write_atomically`] hands its writer.
+pub(crate) type Writer<'a> = std::io::BufWriter<&'a mut std::fs::File>;
+
+/// [`write_atomically`] whose `write` may return `false` to abandon the file (a time-lapse
+/// interrupted while it writes its GIF): the temporary file is removed and `false` returned.
+pub(crate) fn write_atomically_or_abandon(
+    path: &Path,
+    write: impl FnOnce(&mut Writer<'_>) -> Result<bool>,
+) -> Result<bool> {
     let mut tmp = tempfile::Builder::new()
         .prefix(".firmament-")
         .suffix(".tmp")
@@ -60,26 +73,35 @@ fn write_atomically(path: &Path, write: impl FnOnce(&mut std::fs::File) -> Resul
                 parent(path).display()
             )
         })?;
-    write(tmp.as_file_mut())?;
+    {
+        let mut writer = std::io::BufWriter::new(tmp.as_file_mut());
+        if !write(&mut writer)? {
+            return Ok(false);
+        }
+        writer
+            .flush()
+            .with_context(|| format!("output {}: cannot write the file", path.display()))?;
+    }
     // Temporary files are created private (0600); an image is an ordinary file.
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))
+            .with_context(|| format!("output {}: cannot set permissions", path.display()))?;
     }
-    tmp.as_file_mut().flush()?;
     tmp.persist(path)
         .with_context(|| format!("output {}: cannot write the file", path.display()))?;
-    Ok(())
+    Ok(true)
 }
 
 /// Writes an 8-bit RGBA image as an RGB PNG.
 pub(crate) fn write_png(path: &Path, image: &Image<u8>) -> Result<()> {
     let rgb: Vec<u8> = image.pixels.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
     let buffer = image::RgbImage::from_raw(image.width, image.height, rgb).context("image size mismatch")?;
-    write_atomically(path, |file| {
+    write_atomically(path, |writer| {
         buffer
-            .write_to(&mut std::io::BufWriter::new(file), image::ImageFormat::Png)
+            .write_to(writer, image::ImageFormat::Png)
             .with_context(|| format!("output {}: PNG encoding failed", path.display()))
     })
 }
@@ -88,9 +110,9 @@ pub(crate) fn write_png(path: &Path, image: &Image<u8>) -> Result<()> {
 pub(crate) fn write_exr(path: &Path, image: &Image<f32>) -> Result<()> {
     let buffer = image::Rgba32FImage::from_raw(image.width, image.height, image.pixels.clone())
         .context("image size mismatch")?;
-    write_atomically(path, |file| {
+    write_atomically(path, |writer| {
         buffer
-            .write_to(&mut std::io::BufWriter::new(file), image::ImageFormat::OpenExr)
+            .write_to(writer, image::ImageFormat::OpenExr)
             .with_context(|| format!("output {}: EXR encoding failed", path.display()))
     })
 }

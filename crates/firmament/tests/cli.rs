@@ -2,20 +2,10 @@
 //! CI). Every bad input must give one clear message, a non-zero exit and no output file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn firmament(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_firmament"))
-        .args(args)
-        .current_dir(dir)
-        .env_remove("FIRMAMENT_LOG")
-        .output()
-        .expect("the firmament binary runs")
-}
+mod support;
 
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use support::{firmament, stderr};
 
 fn files_in(dir: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)

@@ -100,6 +100,34 @@ impl CivilDateTime {
     }
 }
 
+/// `±HH:MM` for a clock offset in hours, `Z` for UTC (ISO 8601).
+pub fn format_offset(hours: f64) -> String {
+    if hours == 0.0 {
+        return "Z".to_owned();
+    }
+    let minutes = (hours.abs() * 60.0).round() as u32;
+    let sign = if hours < 0.0 { '-' } else { '+' };
+    format!("{sign}{:02}:{:02}", minutes / 60, minutes % 60)
+}
+
+/// ISO 8601 on the date-time's own clock: `2003-10-17T12:30:30-07:00`; a fraction of a second is
+/// written to the millisecond, trailing zeros kept (`16:00:00.250`).
+impl std::fmt::Display for CivilDateTime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:04}-{:02}-{:02}T{:02}:{:02}:",
+            self.year, self.month, self.day, self.hour, self.minute
+        )?;
+        if self.second.fract() == 0.0 {
+            write!(f, "{:02}", self.second as u32)?;
+        } else {
+            write!(f, "{:06.3}", self.second)?;
+        }
+        f.write_str(&format_offset(self.offset_hours))
+    }
+}
+
 /// Days in a month of the proleptic Gregorian calendar (Julian leap rule before 1583).
 pub fn days_in_month(year: i32, month: u32) -> u32 {
     let leap = if year < 1583 {
@@ -270,6 +298,19 @@ mod tests {
         assert_eq!(CivilDateTime::utc(1600, 12, 31, 0, 0, 0.0).julian_date(), 2_305_812.5);
         let julian = CivilDateTime::utc(837, 4, 10, 7, 12, 0.0).julian_date();
         assert!((julian - 2_026_871.8).abs() < 1e-9);
+    }
+
+    #[test]
+    fn date_times_print_as_iso_8601_on_their_own_clock() {
+        let golden = CivilDateTime::utc(2003, 10, 17, 12, 30, 30.0).with_offset(-7.0);
+        assert_eq!(golden.to_string(), "2003-10-17T12:30:30-07:00");
+        let fraction = CivilDateTime::utc(2024, 3, 20, 16, 0, 0.25).with_offset(-7.5);
+        assert_eq!(fraction.to_string(), "2024-03-20T16:00:00.250-07:30");
+        assert_eq!(
+            CivilDateTime::utc(2024, 3, 20, 16, 0, 0.0).to_string(),
+            "2024-03-20T16:00:00Z"
+        );
+        assert_eq!(format_offset(5.75), "+05:45");
     }
 
     #[test]

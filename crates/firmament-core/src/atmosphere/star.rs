@@ -20,6 +20,10 @@ pub struct Sun {
     /// Limb darkening coefficient `u` of the linear law `I(μ)/I(1) = 1 − u·(1 − μ)`, in [0, 1]
     /// (0.6 is the Sun's in the visible; Neckel & Labs 1994).
     pub limb_darkening: f64,
+    /// Whether its disc is drawn: `false` for a light whose disc something else draws — the
+    /// Moon as the night sky's light source, whose phase the night-sky pass shades (it still
+    /// scatters and lights the ground; its [`Self::disc_radiance`] is zero).
+    pub disc: bool,
 }
 
 impl Sun {
@@ -70,7 +74,7 @@ impl Sun {
     /// Radiance of the disc (above the atmosphere) seen at angle `angle` radians from its centre:
     /// zero outside the disc.
     pub fn disc_radiance(&self, angle: f64) -> Spectrum {
-        if angle >= self.angular_radius {
+        if !self.disc || angle >= self.angular_radius {
             return Spectrum::ZERO;
         }
         let s = (angle / self.angular_radius).min(1.0);
@@ -103,6 +107,7 @@ mod tests {
             angular_radius: 0.004675,
             irradiance: Spectrum::new(1.474, 1.8504, 1.91198),
             limb_darkening: 0.6,
+            disc: true,
         };
         // ∫ L dω over the disc, small-angle rings.
         let n = 20_000;

@@ -189,7 +189,15 @@ impl AtmosphereViewUniforms {
         for (slot, sun) in suns.iter_mut().zip(&sky.suns) {
             let direction = planet.direction_to_planet_frame(sun.direction).normalize_or_zero();
             *slot = AtmosphereSunUniform {
-                direction: vec3_w(direction, sun.angular_radius),
+                // A negative radius: a light whose disc is not drawn (the shaders use its size).
+                direction: vec3_w(
+                    direction,
+                    if sun.disc {
+                        sun.angular_radius
+                    } else {
+                        -sun.angular_radius
+                    },
+                ),
                 irradiance: spectrum_w(sun.irradiance, sun.limb_darkening),
             };
         }

@@ -16,12 +16,14 @@ use glam::{DMat4, Mat4};
 pub mod atmosphere;
 pub mod classic;
 pub mod flare;
+pub mod night_sky;
 mod planet_view;
 pub mod seed;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
+pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};
 pub use seed::{SeedSkyUniforms, SeedStarUniform};
 
 /// `vec4<f32>` of a vector, `w` appended, rounded once.

@@ -6,6 +6,7 @@ pub mod atmosphere;
 mod far_plane;
 pub mod flare;
 mod flare_images;
+pub mod night_sky;
 pub mod objects;
 pub mod seed_sky;
 pub mod sky_gradient;
@@ -13,6 +14,7 @@ pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
 pub use flare::FlarePass;
+pub use night_sky::NightSkyPass;
 pub use objects::{GpuMesh, ObjectPass};
 pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;

@@ -86,6 +86,7 @@ fn sun(i: usize, entry: &SunEntry, body: Body, atmosphere: &Atmosphere) -> Resul
             shape / shape.y * irradiance
         },
         limb_darkening,
+        disc: true,
     };
     sun.validate().map_err(|e| match e {
         firmament_core::CoreError::Invalid { field, value, rule } => {

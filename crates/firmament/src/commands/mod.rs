@@ -6,6 +6,7 @@ mod presets;
 mod render;
 mod sky_sample;
 pub(crate) mod sun;
+pub(crate) mod timelapse;
 
 use anyhow::Result;
 use firmament_scene::{Scene, SceneSource};
@@ -20,6 +21,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::Bench(args) => bench::run(&args),
         Command::SkySample(args) => sky_sample::run(&args),
         Command::Sun(args) => sun::run(&args),
+        Command::Timelapse(args) => timelapse::run(&args),
         Command::Presets => {
             presets::run();
             Ok(())
@@ -41,6 +43,19 @@ pub(crate) fn load_scene(file: Option<&std::path::Path>, args: &SceneArgs, extra
         ),
     };
     Ok(scene?)
+}
+
+/// `render.width` / `render.height` overrides for `--width` / `--height` (before the user's
+/// `--set`s, like every shorthand).
+pub(crate) fn size_overrides(width: Option<u32>, height: Option<u32>) -> Vec<String> {
+    let mut extra = Vec::new();
+    if let Some(w) = width {
+        extra.push(format!("render.width={w}"));
+    }
+    if let Some(h) = height {
+        extra.push(format!("render.height={h}"));
+    }
+    extra
 }
 
 /// How messages name the scene: its file, its preset, or the default scene.

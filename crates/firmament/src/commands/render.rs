@@ -19,13 +19,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let format = OutputFormat::from_path(&args.output)?;
     crate::output::check_parent_dir(&args.output)?;
 
-    let mut extra = Vec::new();
-    if let Some(w) = args.width {
-        extra.push(format!("render.width={w}"));
-    }
-    if let Some(h) = args.height {
-        extra.push(format!("render.height={h}"));
-    }
+    let mut extra = super::size_overrides(args.width, args.height);
     if let Some(time) = &args.time {
         // Quoted, so the scene's own validation names the rule for a bad time.
         extra.push(format!("time.time_of_day=\"{}\"", time.replace('"', "")));

@@ -5,6 +5,7 @@ use anyhow::{Context, Result};
 use firmament_core::CoreError;
 use firmament_core::astro::spa::{self, RiseSet, SpaInput};
 use firmament_core::astro::time::J2000;
+use firmament_core::astro::time::format_offset;
 use firmament_core::astro::{CivilDateTime, Instant};
 
 use crate::cli::SunArgs;
@@ -71,34 +72,6 @@ pub(crate) fn delta_t(text: &str) -> Result<f64, String> {
     check(|input| input.instant.delta_t = v).map(|()| v)
 }
 
-/// `±HH:MM` for an offset in hours, `Z` for UTC.
-fn format_offset(hours: f64) -> String {
-    if hours == 0.0 {
-        return "Z".to_owned();
-    }
-    let minutes = (hours.abs() * 60.0).round() as u32;
-    let sign = if hours < 0.0 { '-' } else { '+' };
-    format!("{sign}{:02}:{:02}", minutes / 60, minutes % 60)
-}
-
-/// The date and time as given, in ISO 8601.
-fn format_civil(c: &CivilDateTime) -> String {
-    let seconds = if c.second.fract() == 0.0 {
-        format!("{:02}", c.second as u32)
-    } else {
-        format!("{:09.6}", c.second)
-    };
-    format!(
-        "{:04}-{:02}-{:02}T{:02}:{:02}:{seconds}{}",
-        c.year,
-        c.month,
-        c.day,
-        c.hour,
-        c.minute,
-        format_offset(c.offset_hours)
-    )
-}
-
 /// `HH:MM:SS` of local hours in [0, 24), truncated to the second as NREL's `spa_tester.c`
 /// prints its times.
 fn format_hours(hours: f64) -> String {
@@ -123,7 +96,7 @@ pub(crate) fn run(args: &SunArgs) -> Result<()> {
         RiseSet::PolarDay => "polar_day",
         RiseSet::PolarNight => "polar_night",
     };
-    let time = format_civil(&args.time);
+    let time = args.time.to_string();
     let zone = match format_offset(args.time.offset_hours).as_str() {
         "Z" => "UTC".to_owned(),
         offset => format!("UTC{offset}"),
@@ -204,8 +177,7 @@ mod tests {
     #[test]
     fn times_print_on_the_given_clock() {
         let civil = CivilDateTime::utc(2003, 10, 17, 12, 30, 30.0).with_offset(-7.0);
-        assert_eq!(format_civil(&civil), "2003-10-17T12:30:30-07:00");
-        assert_eq!(format_offset(5.75), "+05:45");
+        assert_eq!(civil.to_string(), "2003-10-17T12:30:30-07:00");
         assert_eq!(format_hours(11.768_045), "11:46:04");
         assert_eq!(format_hours(23.999_999_99), "23:59:59");
     }

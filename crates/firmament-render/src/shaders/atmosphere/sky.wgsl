@@ -49,7 +49,7 @@ fn lut_radiance(d: vec3<f32>) -> vec3<f32> {
     for (var i = 0u; i < view.sun_count.x; i++) {
         let uv = sky_view_uv(d, sun_frame(i));
         let atlas_uv = vec2<f32>((uv.x + f32(i)) / f32(MAX_SUNS), uv.y);
-        radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb;
+        radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb * sky_view_scale(i);
     }
     return radiance;
 }

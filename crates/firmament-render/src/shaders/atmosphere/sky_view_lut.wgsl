@@ -5,7 +5,7 @@
 // scattered towards the camera from sun i alone (all orders, and the ground that sun lights),
 // over (azimuth relative to the sun, non-linear zenith angle) — see `sky_view_uv`. Only the
 // first `sun_count` tiles are drawn (the viewport is narrowed on the Rust side). rgb = spectral
-// radiance; a = 1.
+// radiance over `sky_view_scale(sun)` (so dim suns keep their precision); a = 1.
 
 const STEPS: i32 = 32;
 
@@ -25,5 +25,5 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let hits_ground = ground.x > 0.0 && ground.x <= ground.y;
     let t1 = select(max(top.y, 0.0), ground.x, hits_ground);
     let result = march(o, d, 0.0, t1, hits_ground, sun, 1u, STEPS, true);
-    return vec4<f32>(result.radiance, 1.0);
+    return vec4<f32>(result.radiance / sky_view_scale(sun), 1.0);
 }

@@ -11,7 +11,7 @@ const MAX_SUNS: u32 = 8u;
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
 
 struct AtmosphereSun {
-    direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad)
+    direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad), < 0: no disc drawn
     irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
 }
 
@@ -38,6 +38,14 @@ struct AtmosphereView {
 @group(0) @binding(1) var<uniform> view: AtmosphereView;
 
 const SKY_VIEW_LUT_SIZE: vec2<f32> = vec2<f32>(192.0, 108.0);
+
+// Sun i's sky-view tile holds its radiance divided by this (its brightest irradiance channel), so
+// a dim light — the Moon, a millionth of the Sun — keeps the half-float LUT's precision instead of
+// falling among its subnormals.
+fn sky_view_scale(i: u32) -> f32 {
+    let e = view.suns[i].irradiance.rgb;
+    return max(max(e.r, max(e.g, e.b)), 1e-30);
+}
 
 // The sky-view LUT's frame for sun `i` at the camera: up, towards the sun's azimuth, and across.
 struct SunFrame {
@@ -116,7 +124,7 @@ fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
     for (var i = first; i < first + count; i++) {
         let sun = view.suns[i];
         let mu_s = dot(up, sun.direction.xyz);
-        let direct = transmittance_to_sun(h, mu_s, sun.direction.w) * max(mu_s, 0.0);
+        let direct = transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * max(mu_s, 0.0);
         irradiance += sun.irradiance.rgb * (direct + sky_irradiance(h, mu_s));
     }
     return atmosphere.ground_albedo.rgb / PI * irradiance;
@@ -139,7 +147,7 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
         let sun = view.suns[i];
         let s = sun.direction.xyz;
         let mu_s = dot(here.up, s);
-        let direct = transmittance_to_sun(here.h, mu_s, sun.direction.w) * scattering_phase(c, dot(d, s));
+        let direct = transmittance_to_sun(here.h, mu_s, abs(sun.direction.w)) * scattering_phase(c, dot(d, s));
         out.source += sun.irradiance.rgb * (direct + multiple_scattering(c, here.h, here.up, s, d));
     }
     return out;

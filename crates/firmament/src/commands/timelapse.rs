@@ -1,0 +1,531 @@
+//! `firmament timelapse`: a scene rendered at `N` real instants from `--from` to `--to` (both
+//! included), one PNG per frame in an output folder, then an animated GIF and a contact sheet
+//! built from the frames on disk.
+//!
+//! Every file is written to a temporary file in the output folder and renamed, so only complete
+//! frames ever exist. Ctrl-C (or SIGTERM) stops after the frame in flight; a second run with the
+//! same arguments skips the frames already there and renders the rest (`--overwrite` renders all).
+
+mod animation;
+mod contact_sheet;
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant as WallClock;
+
+use anyhow::{Context, Result, bail};
+use clap::CommandFactory;
+use firmament_core::astro::spa::SpaInput;
+use firmament_core::astro::{CivilDateTime, Instant};
+use firmament_render::GpuContext;
+use firmament_render::headless::HeadlessRenderer;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
+
+use crate::cli::TimelapseArgs;
+use crate::output::{write_exr, write_png};
+
+/// The most frames one time-lapse may have.
+pub(crate) const MAX_FRAMES: u32 = 100_000;
+
+/// The animated GIF's name in the output folder.
+const GIF_NAME: &str = "timelapse.gif";
+
+/// The contact sheet's name in the output folder.
+const SHEET_NAME: &str = "contact_sheet.png";
+
+/// Exit status after Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
+const EXIT_INTERRUPTED: i32 = 130;
+
+/// `--from` and `--to`: ISO 8601 (see [`firmament_scene::parse_date_time`]), within the years the
+/// sun's ephemeris (NREL SPA) covers.
+pub(crate) fn date_time(text: &str) -> Result<CivilDateTime, String> {
+    let civil = firmament_scene::parse_date_time(text)?;
+    let instant = Instant::from_civil(&civil, None).map_err(|e| format!("`{text}`: {e}"))?;
+    SpaInput::new(instant, 0.0, 0.0)
+        .validate()
+        .map_err(|e| format!("`{text}`: {e}"))?;
+    Ok(civil)
+}
+
+/// `--frames`: 1 to [`MAX_FRAMES`].
+pub(crate) fn frame_count(text: &str) -> Result<u32, String> {
+    let rule = format!("must be a whole number of frames from 1 to {MAX_FRAMES}");
+    match text.trim().parse::<u64>() {
+        Ok(n) if (1..=u64::from(MAX_FRAMES)).contains(&n) => Ok(n as u32),
+        _ => Err(rule),
+    }
+}
+
+/// How a run ended without an error.
+enum Outcome {
+    /// Every frame, the GIF and the contact sheet are written.
+    Done,
+    /// Stopped by a signal; the message says what is kept and how to resume.
+    Interrupted(String),
+}
+
+/// Renders the time-lapse. Bad arguments exit with status 2 (like clap's own), an interruption
+/// with 130; every other failure is an error (status 1).
+pub(crate) fn run(args: &TimelapseArgs) -> Result<()> {
+    let span = match time_span(args) {
+        Ok(span) => span,
+        Err(message) => {
+            let mut command = crate::cli::Cli::command();
+            command.build();
+            let error = match command.find_subcommand_mut("timelapse") {
+                Some(sub) => sub.error(clap::error::ErrorKind::ArgumentConflict, message),
+                None => command.error(clap::error::ErrorKind::ArgumentConflict, message),
+            };
+            error.exit();
+        }
+    };
+    match render_all(args, span)? {
+        Outcome::Done => Ok(()),
+        Outcome::Interrupted(message) => {
+            // Everything is dropped (the progress bar cleared, no temporary file open) by now.
+            eprintln!("{message}");
+            std::process::exit(EXIT_INTERRUPTED);
+        }
+    }
+}
+
+/// Seconds from `--from` to `--to`, checked: `--to` not before `--from`, and after it when more
+/// than one frame is asked for.
+fn time_span(args: &TimelapseArgs) -> Result<f64, String> {
+    let span = seconds_between(&args.from, &args.to);
+    if span < 0.0 {
+        return Err(format!(
+            "--from {} is after --to {}: --from must not be later than --to",
+            &args.from, &args.to
+        ));
+    }
+    if span == 0.0 && args.frames > 1 {
+        return Err(format!(
+            "--from and --to are the same instant ({}): {} frames need --to later than --from \
+             (or use --frames 1)",
+            &args.from, args.frames
+        ));
+    }
+    Ok(span)
+}
+
+/// Seconds from `a` to `b` on the UTC time line (each on its own clock offset). Exact to the
+/// microsecond and better: whole days from the dates, then the clock seconds.
+fn seconds_between(a: &CivilDateTime, b: &CivilDateTime) -> f64 {
+    let midnight = |c: &CivilDateTime| {
+        CivilDateTime {
+            hour: 0,
+            minute: 0,
+            second: 0.0,
+            offset_hours: 0.0,
+            ..*c
+        }
+        .julian_date()
+    };
+    let clock = |c: &CivilDateTime| {
+        f64::from(c.hour) * 3600.0 + f64::from(c.minute) * 60.0 + c.second - c.offset_hours * 3600.0
+    };
+    (midnight(b) - midnight(a)) * 86_400.0 + (clock(b) - clock(a))
+}
+
+/// The instant of frame `k` (0-based) of `n`: `from + k·span/(n − 1)` on `from`'s clock.
+fn frame_instant(from: &CivilDateTime, span: f64, k: u32, n: u32) -> CivilDateTime {
+    if n <= 1 {
+        return *from;
+    }
+    firmament_scene::add_seconds(from, span * f64::from(k) / f64::from(n - 1))
+}
+
+/// A duration in seconds for messages: `42 s`, `1 h 30 min`, `2 d 4 h`.
+fn format_duration(seconds: f64) -> String {
+    if seconds < 60.0 {
+        return format!("{} s", trim_number(seconds));
+    }
+    let minutes = seconds / 60.0;
+    if minutes < 60.0 {
+        return format!("{} min", trim_number(minutes));
+    }
+    let hours = minutes / 60.0;
+    if hours < 48.0 {
+        return format!("{} h", trim_number(hours));
+    }
+    format!("{} d", trim_number(hours / 24.0))
+}
+
+/// A number with at most 3 decimals and no trailing zeros.
+fn trim_number(v: f64) -> String {
+    let text = format!("{v:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
+/// The file name of frame `k` (0-based) of `n`: `frame_0001.png`, numbered from 1 and zero-padded
+/// to the digits of `n`, at least 4.
+fn frame_name(k: u32, n: u32, extension: &str) -> String {
+    let digits = n.to_string().len().max(4);
+    format!("frame_{:0digits$}.{extension}", k + 1)
+}
+
+/// The frames' PNG paths, in order.
+fn png_paths(dir: &Path, n: u32) -> Vec<PathBuf> {
+    (0..n).map(|k| dir.join(frame_name(k, n, "png"))).collect()
+}
+
+/// Fails unless `dir` is a folder or could be created as one (its nearest existing ancestor is a
+/// folder); creates nothing.
+fn check_output_dir(dir: &Path) -> Result<()> {
+    if dir.exists() {
+        if !dir.is_dir() {
+            bail!(
+                "output {}: exists and is not a folder (a time-lapse writes its frames into a folder)",
+                dir.display()
+            );
+        }
+        return Ok(());
+    }
+    let mut ancestor = dir.parent();
+    while let Some(a) = ancestor {
+        let a = if a.as_os_str().is_empty() { Path::new(".") } else { a };
+        if a.exists() {
+            if !a.is_dir() {
+                bail!(
+                    "output {}: cannot create the folder: {} is not a folder",
+                    dir.display(),
+                    a.display()
+                );
+            }
+            return Ok(());
+        }
+        ancestor = a.parent();
+    }
+    Ok(())
+}
+
+/// Creates the output folder and proves it writable with a temporary file (removed at once).
+fn create_output_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("output {}: cannot create the folder", dir.display()))?;
+    tempfile::Builder::new()
+        .prefix(".firmament-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .with_context(|| format!("output {}: cannot write in the folder", dir.display()))?;
+    Ok(())
+}
+
+/// The stop flag: set by the first Ctrl-C or SIGTERM; a second one exits at once (a frame being
+/// written then leaves only its temporary file, never a partial frame).
+fn install_stop_handler() -> Arc<AtomicBool> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&stop);
+    let installed = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted again: stopping now");
+            std::process::exit(EXIT_INTERRUPTED);
+        }
+    });
+    if let Err(error) = installed {
+        tracing::warn!("cannot catch Ctrl-C ({error}): an interruption will not be reported");
+    }
+    stop
+}
+
+/// The command line, quoted for a POSIX shell, to tell the user how to resume.
+fn command_line() -> String {
+    std::env::args()
+        .map(|arg| {
+            let plain = !arg.is_empty()
+                && arg
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_./:=+,@%".contains(c));
+            if plain {
+                arg
+            } else {
+                format!("'{}'", arg.replace('\'', r"'\''"))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The progress bar on stderr: frames done of all, frames per second, time left. Hidden with
+/// `-q`, and by indicatif when stderr is not a terminal. The rate is this run's plain average
+/// (frames rendered ÷ time since the bar appeared): indicatif's own estimator weighs the first
+/// seconds as if nothing had happened before them, which undercounts a short run badly.
+fn progress_bar(total: u32, skipped: u32) -> ProgressBar {
+    // `-q` (or FIRMAMENT_LOG=error) turns info off, and the bar with it.
+    if !tracing::enabled!(tracing::Level::INFO) {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(u64::from(total)), ProgressDrawTarget::stderr());
+    let skipped = u64::from(skipped);
+    let rate = move |state: &ProgressState| {
+        let rendered = state.pos().saturating_sub(skipped) as f64;
+        let seconds = state.elapsed().as_secs_f64();
+        (rendered > 0.0 && seconds > 0.0).then(|| rendered / seconds)
+    };
+    let template = "{msg} {wide_bar:.cyan/blue} {pos}/{len} frames  {fps}  ETA {left}";
+    match ProgressStyle::with_template(template) {
+        Ok(style) => bar.set_style(
+            style
+                .with_key("fps", move |state: &ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = match rate(state) {
+                        Some(r) => write!(w, "{r:.2} frames/s"),
+                        None => write!(w, "– frames/s"),
+                    };
+                })
+                .with_key("left", move |state: &ProgressState, w: &mut dyn std::fmt::Write| {
+                    let left = state.len().unwrap_or(0).saturating_sub(state.pos()) as f64;
+                    let _ = match rate(state) {
+                        Some(r) => write!(w, "{}", format_eta(left / r)),
+                        None => write!(w, "–"),
+                    };
+                })
+                .progress_chars("█▉▊▋▌▍▎▏ "),
+        ),
+        Err(error) => tracing::debug!("progress bar template: {error}"),
+    }
+    bar.set_position(skipped);
+    bar
+}
+
+/// Seconds as a countdown: `42s`, `3m05s`, `2h07m`.
+fn format_eta(seconds: f64) -> String {
+    let s = seconds.max(0.0).round() as u64;
+    match s {
+        0..60 => format!("{s}s"),
+        60..3600 => format!("{}m{:02}s", s / 60, s % 60),
+        _ => format!("{}h{:02}m", s / 3600, s / 60 % 60),
+    }
+}
+
+/// Checks that every frame already on disk has this run's size, so a resumed run never mixes
+/// sizes (the GIF and the contact sheet need one).
+fn check_existing_frames(existing: &[&PathBuf], width: u32, height: u32) -> Result<()> {
+    for path in existing {
+        let size = image::image_dimensions(path).with_context(|| {
+            format!(
+                "{} is not a readable PNG: delete it, or use --overwrite to render every frame again",
+                path.display()
+            )
+        })?;
+        if size != (width, height) {
+            bail!(
+                "{} is {}x{} but this run renders {width}x{height}: use --overwrite to render every \
+                 frame again, or another output folder",
+                path.display(),
+                size.0,
+                size.1
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Renders the missing frames, then the GIF and the contact sheet.
+fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
+    let dir = args.output.as_path();
+    check_output_dir(dir)?;
+
+    let extra = super::size_overrides(args.width, args.height);
+    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
+        .with_context(|| format!("cannot build {what}"))?;
+    let (width, height) = (scene.render.width, scene.render.height);
+    let n = args.frames;
+    let instants: Vec<CivilDateTime> = (0..n).map(|k| frame_instant(&args.from, span, k, n)).collect();
+    let (Some(first), Some(last)) = (instants.first(), instants.last()) else {
+        bail!("--frames must be at least 1");
+    };
+    // The first and last frames are built up front, so that a scene that cannot be placed at a
+    // real date (a planet without an ephemeris) fails before anything is written.
+    for civil in [first, last] {
+        scene
+            .frame_at_date_time(civil)
+            .with_context(|| format!("cannot build {what} at {}", civil))?;
+    }
+
+    let pngs = png_paths(dir, n);
+    let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
+    let is_done = |k: u32| pngs[k as usize].is_file() && (!args.exr || exr_path(k).is_file());
+    let todo: Vec<u32> = (0..n).filter(|&k| args.overwrite || !is_done(k)).collect();
+    let skipped = n - todo.len() as u32;
+    let existing: Vec<&PathBuf> = (0..n)
+        .filter(|k| todo.binary_search(k).is_err())
+        .map(|k| &pngs[k as usize])
+        .collect();
+    check_existing_frames(&existing, width, height)?;
+
+    let step = if n > 1 { span / f64::from(n - 1) } else { 0.0 };
+    tracing::info!(
+        "time-lapse of {what}: {n} frame{} at {width}x{height} from {} to {}{} → {}",
+        if n == 1 { "" } else { "s" },
+        first,
+        last,
+        if n > 1 {
+            format!(", one every {}", format_duration(step))
+        } else {
+            String::new()
+        },
+        dir.display()
+    );
+    if skipped > 0 {
+        tracing::info!(
+            "{skipped} of {n} frames skipped: already in {} (--overwrite renders them again)",
+            dir.display()
+        );
+    }
+
+    let stop = install_stop_handler();
+    let started = WallClock::now();
+    let mut rendered = 0_u32;
+    let (mut setup_seconds, mut render_seconds) = (0.0, 0.0);
+    if !todo.is_empty() {
+        // The GPU before the folder: a machine without an adapter leaves nothing behind.
+        let ctx = GpuContext::headless(args.backend.into())?;
+        create_output_dir(dir)?;
+        let mut renderer = HeadlessRenderer::new(&ctx);
+        setup_seconds = started.elapsed().as_secs_f64();
+        let loop_started = WallClock::now();
+        let bar = progress_bar(n, skipped);
+        for &k in &todo {
+            if stop.load(Ordering::SeqCst) {
+                break;
+            }
+            let civil = &instants[k as usize];
+            bar.set_message(civil.to_string());
+            let frame = scene
+                .frame_at_date_time(civil)
+                .with_context(|| format!("cannot build {what} at {}", civil))?;
+            let png = &pngs[k as usize];
+            let image = renderer.render_ldr(&ctx, &frame, width, height)?;
+            if args.exr {
+                let hdr = renderer.render_hdr(&ctx, &frame, width, height)?;
+                write_exr(&exr_path(k), &hdr)?;
+            }
+            write_png(png, &image)?;
+            rendered += 1;
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        render_seconds = loop_started.elapsed().as_secs_f64();
+    }
+    let done = skipped + rendered;
+    if done < n {
+        return Ok(Outcome::Interrupted(format!(
+            "interrupted: {done} of {n} frames are in {} ({rendered} rendered by this run, every one \
+             complete); to resume, run the same command again — the frames already there are \
+             skipped:\n  {}",
+            dir.display(),
+            command_line()
+        )));
+    }
+    if rendered > 0 {
+        tracing::info!(
+            "{rendered} frame{} rendered in {render_seconds:.2} s ({:.2} frames/s; GPU set-up {setup_seconds:.2} s \
+             before them), {skipped} skipped",
+            if rendered == 1 { "" } else { "s" },
+            f64::from(rendered) / render_seconds.max(1e-9)
+        );
+    }
+
+    let gif = dir.join(GIF_NAME);
+    let interrupted = || stop.load(Ordering::SeqCst);
+    let gif_started = WallClock::now();
+    if !animation::write_gif(&gif, &pngs, args.fps, &interrupted)? {
+        return Ok(Outcome::Interrupted(format!(
+            "interrupted while writing {}: all {n} frames are in {}; run the same command again to \
+             build the GIF and the contact sheet:\n  {}",
+            gif.display(),
+            dir.display(),
+            command_line()
+        )));
+    }
+    let gif_seconds = gif_started.elapsed().as_secs_f64();
+    let sheet_started = WallClock::now();
+    let sheet = dir.join(SHEET_NAME);
+    contact_sheet::write_contact_sheet(&sheet, &pngs)?;
+    let sheet_seconds = sheet_started.elapsed().as_secs_f64();
+    tracing::info!(
+        "wrote {} in {:.1} s (the GIF {gif_seconds:.2} s, the contact sheet {sheet_seconds:.2} s)",
+        if n == 1 {
+            format!("{}, {} and {}", pngs[0].display(), gif.display(), sheet.display())
+        } else {
+            format!(
+                "{} … {}{}, {} and {}",
+                pngs[0].display(),
+                frame_name(n - 1, n, "png"),
+                if args.exr { " (and .exr)" } else { "" },
+                gif.display(),
+                sheet.display()
+            )
+        },
+        started.elapsed().as_secs_f64()
+    );
+    Ok(Outcome::Done)
+}
+
+/// Reads a frame back from its PNG.
+fn read_frame(path: &Path) -> Result<image::DynamicImage> {
+    image::open(path).with_context(|| format!("cannot read the frame {}", path.display()))
+}
+
+/// `(width, height)` scaled down (never up) so that the longer side is at most `longest`,
+/// keeping the aspect ratio; each side at least 1.
+fn fit_within(width: u32, height: u32, longest: u32) -> (u32, u32) {
+    let side = width.max(height);
+    if side <= longest {
+        return (width, height);
+    }
+    let scale = f64::from(longest) / f64::from(side);
+    let fit = |v: u32| ((f64::from(v) * scale).round() as u32).clamp(1, longest);
+    (fit(width), fit(height))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn civil(text: &str) -> CivilDateTime {
+        firmament_scene::parse_date_time(text).expect("valid")
+    }
+
+    #[test]
+    fn frames_span_both_ends_on_the_first_clock() {
+        let from = civil("2024-03-20T23:00:00+02:00");
+        let to = civil("2024-03-20T23:00:00Z");
+        let span = seconds_between(&from, &to);
+        assert_eq!(span, 7200.0);
+        let last = frame_instant(&from, span, 4, 5);
+        assert_eq!((last.day, last.hour, last.minute, last.offset_hours), (21, 1, 0, 2.0));
+        assert!(last.second.abs() < 1e-9);
+        let middle = frame_instant(&from, span, 2, 5);
+        assert_eq!((middle.day, middle.hour, middle.minute), (21, 0, 0));
+        assert_eq!(frame_instant(&from, span, 0, 1), from);
+    }
+
+    #[test]
+    fn names_pad_to_the_frame_count() {
+        assert_eq!(frame_name(0, 3, "png"), "frame_0001.png");
+        assert_eq!(frame_name(99_999, 100_000, "exr"), "frame_100000.exr");
+        assert_eq!(frame_name(41, 12_345, "png"), "frame_00042.png");
+    }
+
+    #[test]
+    fn arguments_are_checked() {
+        assert!(frame_count("0").is_err());
+        assert!(frame_count("100001").is_err());
+        assert!(frame_count("-1").is_err());
+        assert_eq!(frame_count("100000"), Ok(100_000));
+        assert!(date_time("2024-13-01T00:00Z").is_err());
+        assert!(date_time("7000-01-01T00:00Z").is_err(), "beyond SPA's years");
+        assert_eq!(civil("2024-03-20T16:00:00Z").to_string(), "2024-03-20T16:00:00Z");
+        assert_eq!(
+            civil("2024-03-20T16:00:00.25-07:30").to_string(),
+            "2024-03-20T16:00:00.250-07:30"
+        );
+        assert_eq!(format_duration(121.0), "2.017 min");
+        assert_eq!(format_duration(7200.0), "2 h");
+        assert_eq!(format_eta(185.2), "3m05s");
+        assert_eq!(format_eta(7620.0), "2h07m");
+    }
+}
