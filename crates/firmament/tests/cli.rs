@@ -571,3 +571,26 @@ fn classic_scenes_render_gl_pixels_and_bad_meshes_fail_cleanly() {
         stderr(&out)
     );
 }
+
+#[test]
+fn time_sets_the_clock_on_a_dated_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mean_luminance = |args: &[&str]| {
+        let mut all = vec!["render", "--preset", "earth-night", "--width", "16", "--height", "9"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", "sky.exr"]);
+        let out = firmament(dir.path(), &all);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let image = image::open(dir.path().join("sky.exr")).expect("an EXR").to_rgba32f();
+        let sum: f64 = image
+            .pixels()
+            .map(|p| 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]))
+            .sum();
+        sum / f64::from(16 * 9)
+    };
+    // 2025-03-13 at 23:30 UTC (a moonlit night), then noon of the same date at 45° N.
+    let night = mean_luminance(&[]);
+    let noon = mean_luminance(&["--time", "12:00"]);
+    assert!(night > 0.0 && night < 1.0, "moonlit night: {night} cd/m²");
+    assert!(noon > 1000.0 * night, "noon {noon} vs night {night} cd/m²");
+}

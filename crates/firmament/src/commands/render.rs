@@ -27,7 +27,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
-    let frame = scene.frame_at(None)?;
+    // `--time` on a scene with `time.date_time` sets the clock time on that date.
+    let frame = match &args.time {
+        Some(_) => scene.frame_at(Some(scene.time_of_day()?))?,
+        None => scene.frame_at(None)?,
+    };
     let (width, height) = (scene.render.width, scene.render.height);
 
     if args.reference
@@ -74,7 +78,8 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         return write_reference(&args.output, format, &radiance, &frame, width, height);
     }
     let ctx = GpuContext::headless(args.backend.into())?;
-    tracing::info!("rendering {what} at {width}x{height}, {}", scene.time.time_of_day);
+    let when = scene.time.date_time.as_deref().unwrap_or(&scene.time.time_of_day);
+    tracing::info!("rendering {what} at {width}x{height}, {when}");
     let mut renderer = HeadlessRenderer::new(&ctx);
     match format {
         OutputFormat::Png => write_png(&args.output, &renderer.render_ldr(&ctx, &frame, width, height)?)?,
