@@ -2,11 +2,11 @@
 //! per-pixel march) and the object pass (Gouraud against Phong shading).
 //!
 //! Each pass is submitted alone and waited for. Where the device has timestamp queries inside
-//! command encoders ([`TIMESTAMP_FEATURES`], requested by [`GpuContext`] whenever the adapter
-//! offers them) the figure is the GPU's own time between two timestamps around the pass;
-//! elsewhere (llvmpipe's GL) it is wall time with full synchronisation, which includes submission
-//! and the wait and so overstates sub-millisecond passes. [`AtmosphereBench::timing`] says
-//! which; compare figures taken side by side in one run.
+//! command encoders ([`TIMESTAMP_FEATURES`], requested by [`GpuContext::from_adapter`] whenever
+//! the adapter offers them) the figure is the GPU's own time between two timestamps around the
+//! pass; elsewhere (llvmpipe's GL) it is wall time with full synchronisation, which includes
+//! submission and the wait and so overstates sub-millisecond passes.
+//! [`AtmosphereBench::timing`] says which; compare figures taken side by side in one run.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -288,7 +288,7 @@ pub fn bench_atmosphere(
         Some(worst) => (differences[differences.len() / 2], *worst),
         None => (0.0, 0.0),
     };
-    let info = ctx.adapter.get_info();
+    let info = ctx.device.adapter_info();
     Ok(AtmosphereBench {
         adapter: format!("{} ({:?})", info.name, info.backend),
         width,
@@ -431,7 +431,7 @@ pub fn bench_objects(
     };
     let gouraud_ms = time(Shading::Gouraud);
     let phong_ms = time(Shading::Phong);
-    let info = ctx.adapter.get_info();
+    let info = ctx.device.adapter_info();
     Ok(ObjectBench {
         adapter: format!("{} ({:?})", info.name, info.backend),
         width,
@@ -535,7 +535,7 @@ pub fn bench_flares(
             total_ms,
         });
     }
-    let info = ctx.adapter.get_info();
+    let info = ctx.device.adapter_info();
     Ok(FlareBench {
         adapter: format!("{} ({:?})", info.name, info.backend),
         width,

@@ -1,4 +1,5 @@
-//! Adapter and device selection: one [`GpuContext`] per process is plenty.
+//! The device firmament renders with: one of the caller's ([`GpuContext::from_device`]) or one
+//! it opens itself ([`GpuContext::headless`]). One [`GpuContext`] per process is plenty.
 
 use std::fmt;
 
@@ -45,13 +46,16 @@ impl fmt::Display for Backend {
     }
 }
 
-/// An adapter, its device and queue.
-#[derive(Debug)]
+/// The device and queue every firmament GPU object lives on, checked against
+/// [`required_features`](crate::required_features) and [`required_limits`](crate::required_limits).
+///
+/// Made by [`from_device`](Self::from_device) from a device of your own (embedding), or by
+/// [`headless`](Self::headless) / [`from_adapter`](Self::from_adapter), which open one and go
+/// through `from_device` too. It holds no instance or adapter: `wgpu::Device` and `wgpu::Queue`
+/// are shared handles, so the context and your renderer use the same device.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct GpuContext {
-    /// The wgpu instance the adapter came from.
-    pub instance: wgpu::Instance,
-    /// The chosen adapter.
-    pub adapter: wgpu::Adapter,
     /// The device every firmament GPU object lives on.
     pub device: wgpu::Device,
     /// The device's queue.
@@ -59,6 +63,15 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
+    /// Wraps a device and queue the caller created (its own renderer's), after checking that the
+    /// device has firmament's [`required_features`](crate::required_features) and
+    /// [`required_limits`](crate::required_limits): a device short of either gives
+    /// [`RenderError::MissingFeatures`] or [`RenderError::LimitsTooLow`], naming what is missing.
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Result<Self, RenderError> {
+        crate::requirements::check_device(&device)?;
+        Ok(Self { device, queue })
+    }
+
     /// Finds an adapter for `backend` without a window and opens a device on it, with the
     /// adapter's own limits (so large images work where the hardware allows).
     pub fn headless(backend: Backend) -> Result<Self, RenderError> {
@@ -76,18 +89,23 @@ impl GpuContext {
             backend: backend.to_string(),
             reason: e.to_string(),
         })?;
-        Self::from_adapter(instance, adapter)
+        // The device keeps what it needs of the instance alive.
+        Self::from_adapter(&adapter)
     }
 
     /// Opens a device on an adapter the caller chose (for example one compatible with a window's
-    /// surface).
-    pub fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self, RenderError> {
+    /// surface), with firmament's required features, the optional GPU timestamps where the
+    /// adapter has them, and the adapter's own limits.
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
         let info = adapter.get_info();
         tracing::info!(adapter = %info.name, backend = ?info.backend, driver = %info.driver, "GPU adapter");
+        // Refuse an adapter that cannot meet the requirements before asking it for a device.
+        crate::requirements::check(&info.name, adapter.features(), &adapter.limits())?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("firmament device"),
             // Optional: GPU timestamps for `firmament bench`, where the adapter has them.
-            required_features: adapter.features() & crate::bench::TIMESTAMP_FEATURES,
+            required_features: crate::requirements::required_features()
+                | (adapter.features() & crate::bench::TIMESTAMP_FEATURES),
             required_limits: adapter.limits(),
             ..Default::default()
         }))
@@ -95,12 +113,7 @@ impl GpuContext {
             adapter: info.name.clone(),
             reason: e.to_string(),
         })?;
-        Ok(Self {
-            instance,
-            adapter,
-            device,
-            queue,
-        })
+        Self::from_device(device, queue)
     }
 
     /// The largest image side the device can render, pixels.
@@ -119,7 +132,7 @@ impl GpuContext {
 
     /// A one-line description of the adapter, for logs and benchmarks.
     pub fn adapter_summary(&self) -> String {
-        let info = self.adapter.get_info();
+        let info = self.device.adapter_info();
         format!("{} ({:?}, {})", info.name, info.backend, info.driver)
     }
 }

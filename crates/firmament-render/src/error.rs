@@ -1,7 +1,9 @@
 //! The renderer's one error type.
 
-/// What can go wrong on the GPU side.
+/// What can go wrong on the GPU side. More variants will come with the embedding API (target
+/// formats, sample counts, depth buffers), hence `#[non_exhaustive]`.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RenderError {
     /// No adapter for the requested backend.
     #[error(
@@ -23,6 +25,29 @@ pub enum RenderError {
         adapter: String,
         /// What wgpu said.
         reason: String,
+    },
+    /// The device lacks features firmament needs (see [`crate::required_features`]).
+    #[error(
+        "the GPU `{adapter}` lacks the features {missing:?} that firmament needs (for a device of your own: \
+         request `firmament_render::required_features()`)"
+    )]
+    MissingFeatures {
+        /// The adapter the device came from.
+        adapter: String,
+        /// The features firmament needs that the device does not have.
+        missing: wgpu::Features,
+    },
+    /// Device limits below what firmament needs (see [`crate::required_limits`]).
+    #[error(
+        "the GPU `{adapter}` falls short of firmament's limits: {} (for a device of your own: request \
+         `firmament_render::required_limits()`, raised to your own needs)",
+        shortfalls.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
+    )]
+    LimitsTooLow {
+        /// The adapter the device came from.
+        adapter: String,
+        /// Every limit that falls short, in `wgpu::Limits`' field order (never empty).
+        shortfalls: Vec<LimitShortfall>,
     },
     /// The image is larger than the GPU allows, or empty.
     #[error("image size {width}x{height}: each side must be 1 to {max} pixels on this GPU")]
@@ -48,4 +73,32 @@ pub enum RenderError {
         /// What wgpu said.
         reason: String,
     },
+}
+
+/// One device limit below what firmament needs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LimitShortfall {
+    /// The `wgpu::Limits` field, e.g. `"max_storage_buffers_per_shader_stage"`.
+    pub name: &'static str,
+    /// What firmament needs ([`crate::required_limits`]).
+    pub required: u64,
+    /// What the device allows.
+    pub available: u64,
+}
+
+impl std::fmt::Display for LimitShortfall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The alignments (`min_…`) are the only limits where smaller is better.
+        let relation = if self.name.starts_with("min_") {
+            "at most"
+        } else {
+            "at least"
+        };
+        write!(
+            f,
+            "`{}` is {}, firmament needs {relation} {}",
+            self.name, self.available, self.required
+        )
+    }
 }

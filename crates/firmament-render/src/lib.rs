@@ -1,13 +1,91 @@
-//! firmament's wgpu renderer.
+//! firmament's wgpu renderer: skies, atmospheres, the objects under them and lens flares, drawn
+//! from a [`firmament_core::Frame`] into a `wgpu` texture view.
 //!
 //! It owns every GPU object and is the only place where the `f64` core becomes `f32`
 //! ([`gpu_types`]). Each pass is a struct in [`passes`] that builds its pipeline once in `new`,
 //! uploads per-frame data in `prepare` and only encodes commands in `record`; every pass draws
 //! into any `&wgpu::TextureView`, so the CLI, the viewer and the tests share one path.
 //!
-//! The [`Renderer`] strings the passes together: the sky into an HDR (`Rgba16Float`) target with
-//! reversed-Z depth, then the tonemap pass into the caller's output view. [`headless`] renders to
-//! memory for files and tests.
+//! The [`Renderer`] strings the passes together: the objects, the sky behind them and the flares
+//! into an HDR target with reversed-Z depth, then the tonemap pass into the caller's output view.
+//! [`headless`] renders to memory for files and tests.
+//!
+//! # Quick start
+//!
+//! Bring your own device — ask the adapter for [`required_features`] and [`required_limits`] —
+//! hand it to [`GpuContext::from_device`], and render a frame. Here the frame is the scene
+//! format's default scene (the `firmament-scene` crate, which this one does not depend on); a
+//! [`firmament_core::Frame`] built in code works the same.
+//!
+//! ```
+//! use firmament_render::{GpuContext, headless::HeadlessRenderer, wgpu};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! // Your device, made your way with the `wgpu` firmament re-exports.
+//! let instance = wgpu::Instance::default();
+//! let adapter = pollster::block_on(instance.request_adapter(&Default::default()))?;
+//! let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+//!     label: Some("my device"),
+//!     required_features: firmament_render::required_features(),
+//!     required_limits: firmament_render::required_limits().using_resolution(adapter.limits()),
+//!     ..Default::default()
+//! }))?;
+//!
+//! // firmament on that device (checked against what it needs), with no instance or adapter.
+//! let ctx = GpuContext::from_device(device.clone(), queue.clone())?;
+//!
+//! let scene = firmament_scene::load(firmament_scene::SceneSource::Preset("default"), None, &[])?;
+//! let frame = scene.frame_at(None)?;
+//!
+//! let mut renderer = HeadlessRenderer::new(&ctx);
+//! let image = renderer.render_ldr(&ctx, &frame, 64, 36)?; // 8-bit sRGB RGBA, top row first
+//! assert_eq!((image.width, image.height), (64, 36));
+//! assert_eq!(image.pixels.len(), 64 * 36 * 4);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! # Conventions
+//!
+//! - **Units**: SI, as in [`firmament_core`]: metres, radians, seconds (scene files speak degrees
+//!   and `HH:MM` for people). The HDR target holds linear radiance — cd/m² in linear sRGB for the
+//!   physical atmosphere, display units for the gradient and seed skies — clamped to
+//!   [`targets::HDR_MAX`].
+//! - **Frames**: right-handed, +Z up. The world is East-North-Up (`x` east, `y` north, `z` up);
+//!   the planet frame is planet-centred with `z` through the north pole; view space is OpenGL's
+//!   (the camera looks down −z, +y up on screen).
+//! - **Depth**: *reversed-Z*: clip `z ∈ [0, 1]`, the near plane → 1, the far plane → 0 (the
+//!   camera's far plane is infinite unless it sets one). The depth target is [`DEPTH_FORMAT`]
+//!   (`Depth32Float`), cleared to 0 and tested `Greater`; the sky is drawn at depth 0
+//!   (`GreaterEqual`), filling exactly what nothing nearer covered.
+//! - **Colour**: linear RGB everywhere until the tonemap pass (exposure, tone curve, then sRGB —
+//!   by the hardware into `*Srgb` views, by the shader into others). The camera's aspect ratio
+//!   is always the image's.
+//!
+//! # Embedding (first part)
+//!
+//! Supported today:
+//! - **Your device and queue**: [`GpuContext::from_device`] wraps them (cheap `wgpu` handles,
+//!   shared with your renderer) after [`check_device`] — a device short of a feature or limit
+//!   gives [`RenderError::MissingFeatures`] or [`RenderError::LimitsTooLow`] naming it and its
+//!   value, never a wgpu validation panic. [`pub use wgpu`](wgpu) pins the version.
+//! - **Your encoder and view**: [`Renderer::new`] for an output format, then per frame
+//!   [`Renderer::prepare`] and [`Renderer::record`] into your command encoder and any view of
+//!   that format and the prepared size. It writes every pixel of the view: the finished,
+//!   tone-mapped image (firmament's own objects included).
+//! - **Images in memory**: [`headless::HeadlessRenderer`] (8-bit display or linear HDR).
+//!
+//! Not yet (issue 9's later parts):
+//! - **Your depth buffer and depth convention**: the renderer draws with its own reversed-Z
+//!   depth target, so the sky does not yet lie behind your geometry and aerial perspective does
+//!   not fall on it; a depth buffer of yours in standard Z is not supported either.
+//! - **Your colour target in HDR** (to composite before your own tone mapping) and **MSAA**
+//!   targets: the output is always tone-mapped, single-sampled; the output format is not checked
+//!   (it must be a renderable colour format).
+//! - **Lighting your materials** (sun colours after transmittance, sky irradiance, the
+//!   aerial-perspective volume, a WGSL include), **scene builders** in code, and capturing GPU
+//!   errors of [`Renderer::prepare`] / [`Renderer::record`] (wgpu's default handler panics on
+//!   them; [`headless::HeadlessRenderer`] captures them as [`RenderError::Gpu`]).
 
 pub mod bench;
 pub mod context;
@@ -18,10 +96,18 @@ pub mod passes;
 pub mod probe;
 pub mod readback;
 pub mod renderer;
+pub mod requirements;
 pub mod shaders;
 pub mod targets;
 
+/// The wgpu this crate is built against: use it for your own device so that versions cannot drift.
+pub use wgpu;
+
 pub use context::{Backend, GpuContext};
-pub use error::RenderError;
+pub use error::{LimitShortfall, RenderError};
+pub use gpu_types::SkyLightingGpu;
+pub use passes::atmosphere::sky_lighting_layout_entry;
 pub use renderer::Renderer;
+pub use requirements::{check_device, required_features, required_limits};
+pub use shaders::{FIRMAMENT_LIGHTING_WGSL, firmament_lighting_wgsl};
 pub use targets::{DEPTH_FORMAT, FrameTargets, HDR_FORMAT};

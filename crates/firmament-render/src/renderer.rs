@@ -171,6 +171,17 @@ impl Renderer {
         &self.night
     }
 
+    /// The per-frame lighting values for users' own shaders ([`SkyLightingGpu`]: each sun's
+    /// direction and colour at the camera, the sky's radiance as spherical harmonics), when the
+    /// last frame's sky was a physical atmosphere. Bind it with
+    /// [`sky_lighting_layout_entry`](crate::sky_lighting_layout_entry) and sample it with
+    /// [`FIRMAMENT_LIGHTING_WGSL`](crate::FIRMAMENT_LIGHTING_WGSL).
+    ///
+    /// [`SkyLightingGpu`]: crate::SkyLightingGpu
+    pub fn sky_lighting_buffer(&self) -> Option<&wgpu::Buffer> {
+        (self.sky == SkyKind::Atmosphere).then(|| self.atmosphere.sky_lighting_buffer())
+    }
+
     /// The HDR and depth targets of the last `prepare` (for EXR output and tests).
     pub fn targets(&self) -> Option<&FrameTargets> {
         self.targets.as_ref()

@@ -63,7 +63,10 @@ pub const ATMOSPHERE_IRRADIANCE_LUT: &str = atmosphere_shader!("common", "luts";
 /// The atmosphere's sky-view LUT pass.
 pub const ATMOSPHERE_SKY_VIEW_LUT: &str = atmosphere_shader!("common", "luts", "view"; "sky_view_lut");
 /// The atmosphere's sky pass.
-pub const ATMOSPHERE_SKY: &str = atmosphere_shader!("common", "luts", "view"; "sky");
+pub const ATMOSPHERE_SKY: &str = atmosphere_shader!("common", "luts", "view", "sky_view"; "sky");
+/// The atmosphere's sky lighting at the camera (compute): the suns and the sky's spherical
+/// harmonics that [`FIRMAMENT_LIGHTING_WGSL`] reads.
+pub const ATMOSPHERE_SKY_LIGHTING: &str = atmosphere_shader!("common", "luts", "view", "sky_view"; "sky_lighting");
 
 /// The atmosphere's aerial-perspective volume (compute).
 pub const ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME: &str =
@@ -93,6 +96,40 @@ pub const FLARE: &str = concat!(
 /// The night-sky pass: stars and the Moon (one entry file, no includes).
 pub const NIGHT_SKY: &str = include_str!("shaders/night_sky.wgsl");
 
+/// The WGSL users put before their own shaders to read firmament's per-frame lighting: the
+/// `FirmamentSkyLighting` struct (mirrored by [`crate::gpu_types::SkyLightingGpu`]), its uniform
+/// binding `firmament_sky_lighting` at `@group(`[`FIRMAMENT_LIGHTING_GROUP`]`)
+/// @binding(`[`FIRMAMENT_LIGHTING_BINDING`]`)`, and the functions `firmament_sun_count()`,
+/// `firmament_sun_direction(i)`, `firmament_sun_color(i)`, `firmament_sky_irradiance(n)` and
+/// `firmament_irradiance(n)`. Bind
+/// [`AtmospherePass::sky_lighting_buffer`](crate::passes::AtmospherePass::sky_lighting_buffer)
+/// there with a layout entry from
+/// [`sky_lighting_layout_entry`](crate::passes::atmosphere::sky_lighting_layout_entry); for
+/// another group or binding use [`firmament_lighting_wgsl`]. Units and conventions are in the file
+/// (`shaders/include/firmament_lighting.wgsl`) and in `docs/ATMOSPHERE.md`.
+pub const FIRMAMENT_LIGHTING_WGSL: &str = include_str!("shaders/include/firmament_lighting.wgsl");
+
+/// The bind group [`FIRMAMENT_LIGHTING_WGSL`] declares its buffer in.
+pub const FIRMAMENT_LIGHTING_GROUP: u32 = 1;
+/// The binding [`FIRMAMENT_LIGHTING_WGSL`] declares its buffer at.
+pub const FIRMAMENT_LIGHTING_BINDING: u32 = 0;
+
+/// The binding declaration of [`FIRMAMENT_LIGHTING_WGSL`], after its group and binding.
+const FIRMAMENT_LIGHTING_DECLARATION: &str = " var<uniform> firmament_sky_lighting: FirmamentSkyLighting;";
+
+/// [`FIRMAMENT_LIGHTING_WGSL`] with its buffer at `@group(group) @binding(binding)` instead of
+/// the default ([`FIRMAMENT_LIGHTING_GROUP`], [`FIRMAMENT_LIGHTING_BINDING`]).
+pub fn firmament_lighting_wgsl(group: u32, binding: u32) -> String {
+    let default = format!(
+        "@group({FIRMAMENT_LIGHTING_GROUP}) @binding({FIRMAMENT_LIGHTING_BINDING}){FIRMAMENT_LIGHTING_DECLARATION}"
+    );
+    FIRMAMENT_LIGHTING_WGSL.replacen(
+        &default,
+        &format!("@group({group}) @binding({binding}){FIRMAMENT_LIGHTING_DECLARATION}"),
+        1,
+    )
+}
+
 /// Every composed shader by name, for validation and tooling.
 pub const ALL: &[(&str, &str)] = &[
     ("sky_gradient", SKY_GRADIENT),
@@ -112,6 +149,7 @@ pub const ALL: &[(&str, &str)] = &[
         ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
     ),
     ("atmosphere/aerial_perspective", ATMOSPHERE_AERIAL_PERSPECTIVE),
+    ("atmosphere/sky_lighting", ATMOSPHERE_SKY_LIGHTING),
 ];
 
 /// The include files on their own (validated as modules too, so errors point at the right file).
@@ -153,6 +191,23 @@ pub const INCLUDES: &[(&str, &str)] = &[
             include_str!("shaders/atmosphere/view.wgsl")
         ),
     ),
+    (
+        "atmosphere/sky_view",
+        concat!(
+            include_str!("shaders/common/ellipsoid.wgsl"),
+            "\n",
+            include_str!("shaders/common/view_ray.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/common.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/luts.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/view.wgsl"),
+            "\n",
+            include_str!("shaders/atmosphere/sky_view.wgsl")
+        ),
+    ),
+    ("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL),
 ];
 
 #[cfg(test)]
@@ -232,6 +287,92 @@ mod tests {
             ]
         );
         assert_layout!(night, "StarIn", StarInstance, [direction, color]);
+    }
+
+    #[test]
+    fn sky_lighting_layouts_match() {
+        use crate::gpu_types::{SkyLightingGpu, SkyLightingParamsUniforms, SkyLightingSunGpu};
+        let stage = validate("atmosphere/sky_lighting", ATMOSPHERE_SKY_LIGHTING);
+        assert_layout!(
+            stage,
+            "SkyLightingParams",
+            SkyLightingParamsUniforms,
+            [planet_to_world, flags]
+        );
+        assert_layout!(stage, "SkyLightingSun", SkyLightingSunGpu, [direction, color]);
+        assert_layout!(stage, "SkyLighting", SkyLightingGpu, [sun_count, suns, sky_sh]);
+        let include = validate("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL);
+        assert_layout!(include, "FirmamentSun", SkyLightingSunGpu, [direction, color]);
+        assert_layout!(
+            include,
+            "FirmamentSkyLighting",
+            SkyLightingGpu,
+            [sun_count, suns, sky_sh]
+        );
+    }
+
+    /// A user's own shader after the include: its camera in group 0, a mesh lit by firmament.
+    const USER_SHADER: &str = r"
+struct UserCamera {
+    view_proj: mat4x4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> user_camera: UserCamera;
+
+struct UserVertex {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+}
+
+@vertex
+fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> UserVertex {
+    var out: UserVertex;
+    out.clip = user_camera.view_proj * vec4<f32>(position, 1.0);
+    out.normal = normal;
+    return out;
+}
+
+@fragment
+fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
+    let n = normalize(in.normal);
+    let albedo = vec3<f32>(0.18);
+    var e = firmament_sky_irradiance(n);
+    for (var i = 0u; i < firmament_sun_count(); i++) {
+        e += firmament_sun_color(i) * max(dot(n, firmament_sun_direction(i)), 0.0);
+    }
+    let check = firmament_irradiance(n) - e;
+    return vec4<f32>(albedo / 3.14159265 * e + 0.0 * check, 1.0);
+}
+";
+
+    #[test]
+    fn a_user_shader_including_the_lighting_validates() {
+        let chosen = firmament_lighting_wgsl(3, 7);
+        assert_ne!(chosen, FIRMAMENT_LIGHTING_WGSL, "the binding line was found");
+        for (include, group, binding) in [
+            (
+                FIRMAMENT_LIGHTING_WGSL,
+                FIRMAMENT_LIGHTING_GROUP,
+                FIRMAMENT_LIGHTING_BINDING,
+            ),
+            (chosen.as_str(), 3, 7),
+        ] {
+            let module = validate("user shader", &format!("{include}\n{USER_SHADER}"));
+            let (_, lighting) = module
+                .global_variables
+                .iter()
+                .find(|(_, v)| v.name.as_deref() == Some("firmament_sky_lighting"))
+                .expect("the lighting binding");
+            assert_eq!(lighting.binding, Some(naga::ResourceBinding { group, binding }));
+            assert_eq!(lighting.space, naga::AddressSpace::Uniform);
+        }
+    }
+
+    #[test]
+    fn the_sky_lighting_grid_is_the_documented_one() {
+        let (columns, rows) = crate::gpu_types::sky_lighting::SKY_LIGHTING_GRID;
+        assert!(ATMOSPHERE_SKY_LIGHTING.contains(&format!("const GRID_AZIMUTH: u32 = {columns}u;")));
+        assert!(ATMOSPHERE_SKY_LIGHTING.contains(&format!("const GRID_ROWS: u32 = {rows}u;")));
     }
 
     #[test]

@@ -19,12 +19,14 @@ pub mod flare;
 pub mod night_sky;
 mod planet_view;
 pub mod seed;
+pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};
 pub use seed::{SeedSkyUniforms, SeedStarUniform};
+pub use sky_lighting::{SkyLightingGpu, SkyLightingParamsUniforms, SkyLightingSunGpu};
 
 /// `vec4<f32>` of a vector, `w` appended, rounded once.
 fn vec3_w(v: glam::DVec3, w: f64) -> [f32; 4] {

@@ -6,7 +6,10 @@
 //! 1. the transmittance LUT (Bruneton 2017's parameterisation; a compute pass) and
 //! 2. the multiple-scattering LUT and
 //! 3. the ground's sky-irradiance LUT — these three only when the medium changed —, then
-//! 4. the sky-view LUT, one tile per sun, at the camera;
+//! 4. the sky-view LUT, one tile per sun, at the camera, and
+//! 5. the light the sky and the suns give at the camera, for users' own materials (each sun's
+//!    direction and colour after the atmosphere, the sky's irradiance as spherical harmonics:
+//!    [`AtmospherePass::sky_lighting_buffer`], read by `shaders::FIRMAMENT_LIGHTING_WGSL`);
 //!
 //! [`AtmospherePass::draw`] draws the sky, the lit ground and the sun discs behind whatever
 //! the depth buffer holds, and [`AtmospherePass::record_aerial_perspective`] builds the
@@ -26,6 +29,7 @@
 mod aerial_perspective;
 pub mod luts;
 mod multiscattering;
+mod sky_lighting;
 mod stages;
 
 use std::cell::Cell;
@@ -43,6 +47,8 @@ pub use luts::AtmosphereLuts;
 use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
 pub use multiscattering::MULTISCATTERING_ITERATIONS;
 use multiscattering::MultiscatteringStages;
+pub use sky_lighting::sky_lighting_layout_entry;
+use sky_lighting::{SkyLightingResources, SkyLightingStage};
 use stages::{
     ComputeStage, Stage, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
@@ -87,6 +93,7 @@ pub struct AtmospherePass {
     irradiance: Stage,
     sky_view: Stage,
     aerial: AerialPerspectiveStages,
+    lighting: SkyLightingStage,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
@@ -242,8 +249,18 @@ impl AtmospherePass {
             },
             color,
         );
+        let lighting = SkyLightingStage::new(
+            device,
+            &SkyLightingResources {
+                params: &params,
+                view: &view,
+                luts: &luts,
+                sampler: &sampler,
+            },
+        );
         Self {
             aerial,
+            lighting,
             sampler,
             luts,
             params,
@@ -280,6 +297,7 @@ impl AtmospherePass {
         };
         self.sun_count = view.sun_count[0];
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
+        self.lighting.prepare(queue, sky, camera);
     }
 
     /// Chooses how the sky is computed from the next `prepare` on.
@@ -287,15 +305,35 @@ impl AtmospherePass {
         self.method = method;
     }
 
-    /// Encodes the LUT rebuilds: the medium's LUTs when it changed, the sky-view tiles of the
-    /// suns always (unless the method is [`SkyMethod::March`]).
+    /// Encodes the LUT rebuilds: the medium's LUTs when it changed, then always the sky-view
+    /// tiles of the suns and the sky lighting at the camera that reads them
+    /// ([`sky_lighting_buffer`](Self::sky_lighting_buffer); with [`SkyMethod::March`] too, though
+    /// the sky pass then does not read the tiles).
     pub fn record_luts(&self, encoder: &mut wgpu::CommandEncoder) {
         if self.medium_changed.replace(false) {
             self.record_medium_luts(encoder);
         }
-        if self.method == SkyMethod::Lut {
-            self.record_sky_view_lut(encoder);
-        }
+        self.record_sky_view_lut(encoder);
+        self.record_sky_lighting(encoder);
+    }
+
+    /// Encodes the sky lighting at the camera into
+    /// [`sky_lighting_buffer`](Self::sky_lighting_buffer) (part of
+    /// [`record_luts`](Self::record_luts), after the sky-view LUT it reads; on its own for
+    /// benchmarks).
+    pub fn record_sky_lighting(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.lighting.record(encoder);
+    }
+
+    /// The per-frame lighting for users' own shaders, a
+    /// [`SkyLightingGpu`](crate::gpu_types::SkyLightingGpu) (416 bytes): each sun's world
+    /// direction and colour after the atmosphere at the camera, and the sky's radiance as
+    /// spherical harmonics of bands 0–2 (linear sRGB, Y in cd/m²; irradiance in lux). Written by
+    /// [`record_luts`](Self::record_luts) each frame; bind it as a uniform buffer with
+    /// [`sky_lighting_layout_entry`] and read it with `shaders::FIRMAMENT_LIGHTING_WGSL`. Usable
+    /// as `UNIFORM`, `STORAGE` and `COPY_SRC`.
+    pub fn sky_lighting_buffer(&self) -> &wgpu::Buffer {
+        self.lighting.buffer()
     }
 
     /// Encodes the aerial-perspective volume at this frame's camera (part of

@@ -19,6 +19,8 @@ pub(super) mod binding {
     pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE: u32 = 11;
     pub(in crate::passes::atmosphere) const SCENE_DEPTH: u32 = 12;
     pub(in crate::passes::atmosphere) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
+    pub(in crate::passes::atmosphere) const SKY_LIGHTING_PARAMS: u32 = 25;
+    pub(in crate::passes::atmosphere) const SKY_LIGHTING_OUT: u32 = 26;
     /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z; `Moments` in `atmosphere/luts.wgsl`).
     pub(in crate::passes::atmosphere) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
         [MULTISCATTERING, 15, 17, 18, 21, 22];
@@ -60,6 +62,20 @@ pub(super) fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::
             access: wgpu::StorageTextureAccess::WriteOnly,
             format,
             view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
+}
+
+/// A read-write storage buffer, for compute stages.
+pub(super) fn storage_buffer_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
         },
         count: None,
     }

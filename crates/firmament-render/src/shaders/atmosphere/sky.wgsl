@@ -1,13 +1,12 @@
 // atmosphere/sky.wgsl — the atmosphere seen by the camera: sky, lit ground and sun discs, as
 // linear sRGB radiance (Y in cd/m²) into the HDR target, drawn at the far plane behind whatever
 // is already in the depth buffer.
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl,
+// sky_view.wgsl.
 //
 // Inside the atmosphere each pixel sums the sky-view LUT tiles of the suns; above it each pixel
 // marches its own ray (Hillaire 2020 does the same); across the top of the atmosphere the two
 // are blended by `view.local_up.w`, so crossing it does not pop. `SKY_MODE` picks the path.
-
-@group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
 
 // 0: sky-view LUT only, 1: per-pixel march only, 2: blend by `view.local_up.w`. A pipeline
 // constant, so each pipeline holds only the path it takes.
@@ -42,16 +41,6 @@ fn marched_sky(ray: ViewRay) -> SkySample {
     out.radiance = result.radiance;
     out.transmittance = select(result.transmittance, vec3<f32>(0.0), hits_ground);
     return out;
-}
-
-fn lut_radiance(d: vec3<f32>) -> vec3<f32> {
-    var radiance = vec3<f32>(0.0);
-    for (var i = 0u; i < view.sun_count.x; i++) {
-        let uv = sky_view_uv(d, sun_frame(i));
-        let atlas_uv = vec2<f32>((uv.x + f32(i)) / f32(MAX_SUNS), uv.y);
-        radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb * sky_view_scale(i);
-    }
-    return radiance;
 }
 
 // Transmittance from the camera along d to space, from the transmittance LUT.

@@ -23,7 +23,11 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let top = ellipsoid_hits(o, d, top_radii(), view.camera_shape.y);
     let ground = ellipsoid_hits(o, d, atmosphere.radii.xyz, view.camera_shape.x);
     let hits_ground = ground.x > 0.0 && ground.x <= ground.y;
+    // From above the atmosphere (the sky-lighting stage reads the LUT there) the march starts
+    // where the ray enters the air; inside it starts at the camera, denser near it.
+    let inside = top.x <= 0.0;
+    let t0 = max(top.x, 0.0);
     let t1 = select(max(top.y, 0.0), ground.x, hits_ground);
-    let result = march(o, d, 0.0, t1, hits_ground, sun, 1u, STEPS, true);
+    let result = march(o, d, t0, max(t1, t0), hits_ground, sun, 1u, STEPS, inside);
     return vec4<f32>(result.radiance / sky_view_scale(sun), 1.0);
 }

@@ -1,0 +1,18 @@
+// atmosphere/sky_view.wgsl — shared include: reading the sky-view LUT (sky_view_lut.wgsl writes
+// it), for the sky pass and the sky-lighting stage. Needs atmosphere/common.wgsl, luts.wgsl and
+// view.wgsl.
+
+@group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
+
+// The spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) reaching the camera from direction d (planet frame):
+// every sun's tile at d, each times the scale it was stored over (`sky_view_scale`). Sky and lit
+// ground, no sun discs.
+fn lut_radiance(d: vec3<f32>) -> vec3<f32> {
+    var radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let uv = sky_view_uv(d, sun_frame(i));
+        let atlas_uv = vec2<f32>((uv.x + f32(i)) / f32(MAX_SUNS), uv.y);
+        radiance += textureSampleLevel(sky_view_lut, lut_sampler, atlas_uv, 0.0).rgb * sky_view_scale(i);
+    }
+    return radiance;
+}
