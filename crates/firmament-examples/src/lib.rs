@@ -3,3 +3,6 @@
 //!
 //! - `headless_still`: a scene to a PNG on a device of your own, in about ten lines —
 //!   `cargo run -p firmament-examples --example headless_still -- [OUT.png] [WIDTH HEIGHT] [PRESET]`.
+//! - `custom_material`: your own WGSL material, in your own pipeline and HDR target, lit by
+//!   firmament's sun and sky and fogged by its aerial perspective —
+//!   `cargo run -p firmament-examples --example custom_material -- [OUT.png] [WIDTH HEIGHT]`.

@@ -74,6 +74,14 @@
 //!   that format and the prepared size. It writes every pixel of the view: the finished,
 //!   tone-mapped image (firmament's own objects included).
 //! - **Images in memory**: [`headless::HeadlessRenderer`] (8-bit display or linear HDR).
+//! - **Lighting and fogging your materials** with a physical sky: [`Renderer::sky_lighting_buffer`]
+//!   (each sun's direction and colour at the camera, the sky's irradiance as spherical harmonics;
+//!   [`sky_lighting_layout_entry`], [`firmament_lighting_wgsl`]) and
+//!   [`Renderer::aerial_perspective_bindings`] (the aerial-perspective froxel volume and its
+//!   uniforms; [`aerial_perspective_layout_entries`], [`firmament_aerial_perspective_wgsl`]'s
+//!   `firmament_apply_aerial_perspective(color, ndc_xy, distance_m)`). The renderer builds the
+//!   volume only in atmosphere frames with its own objects, or in every atmosphere frame once
+//!   the bindings were asked for. The `custom_material` example (`firmament-examples`) uses both.
 //!
 //! Not yet (issue 9's later parts):
 //! - **Your depth buffer and depth convention**: the renderer draws with its own reversed-Z
@@ -82,8 +90,7 @@
 //! - **Your colour target in HDR** (to composite before your own tone mapping) and **MSAA**
 //!   targets: the output is always tone-mapped, single-sampled; the output format is not checked
 //!   (it must be a renderable colour format).
-//! - **Lighting your materials** (sun colours after transmittance, sky irradiance, the
-//!   aerial-perspective volume, a WGSL include), **scene builders** in code, and capturing GPU
+//! - **Scene builders** in code, and capturing GPU
 //!   errors of [`Renderer::prepare`] / [`Renderer::record`] (wgpu's default handler panics on
 //!   them; [`headless::HeadlessRenderer`] captures them as [`RenderError::Gpu`]).
 
@@ -106,8 +113,11 @@ pub use wgpu;
 pub use context::{Backend, GpuContext};
 pub use error::{LimitShortfall, RenderError};
 pub use gpu_types::SkyLightingGpu;
-pub use passes::atmosphere::sky_lighting_layout_entry;
+pub use passes::atmosphere::{AerialPerspectiveBindings, aerial_perspective_layout_entries, sky_lighting_layout_entry};
 pub use renderer::Renderer;
 pub use requirements::{check_device, required_features, required_limits};
-pub use shaders::{FIRMAMENT_LIGHTING_WGSL, firmament_lighting_wgsl};
+pub use shaders::{
+    FIRMAMENT_AERIAL_PERSPECTIVE_WGSL, FIRMAMENT_LIGHTING_WGSL, firmament_aerial_perspective_wgsl,
+    firmament_lighting_wgsl,
+};
 pub use targets::{DEPTH_FORMAT, FrameTargets, HDR_FORMAT};

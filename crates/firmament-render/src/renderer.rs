@@ -7,6 +7,7 @@ use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
+use crate::passes::atmosphere::AerialPerspectiveBindings;
 use crate::passes::{
     AtmospherePass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
 };
@@ -35,6 +36,9 @@ pub struct Renderer {
     flares: FlarePass,
     tonemap: TonemapPass,
     targets: Option<FrameTargets>,
+    /// Build the aerial-perspective volume in every atmosphere frame, objects or not
+    /// ([`Renderer::set_aerial_perspective_for_users`]).
+    aerial_volume_wanted: bool,
 }
 
 impl Renderer {
@@ -50,6 +54,7 @@ impl Renderer {
             flares: FlarePass::new(&ctx.device),
             tonemap: TonemapPass::new(&ctx.device, output_format),
             targets: None,
+            aerial_volume_wanted: false,
         }
     }
 
@@ -146,8 +151,13 @@ impl Renderer {
             // Stars and the Moon, added over the sky where nothing nearer was drawn.
             self.night.draw(&mut pass);
         }
-        if self.sky == SkyKind::Atmosphere && !self.objects.is_empty() {
-            self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+        if self.sky == SkyKind::Atmosphere {
+            if !self.objects.is_empty() {
+                // Builds the volume too.
+                self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+            } else if self.aerial_volume_wanted {
+                self.atmosphere.record_aerial_perspective_volume(encoder);
+            }
         }
         // Flares last, over everything, hidden by what the depth buffer holds.
         self.flares.record(encoder, &targets.hdr_view);
@@ -180,6 +190,29 @@ impl Renderer {
     /// [`SkyLightingGpu`]: crate::SkyLightingGpu
     pub fn sky_lighting_buffer(&self) -> Option<&wgpu::Buffer> {
         (self.sky == SkyKind::Atmosphere).then(|| self.atmosphere.sky_lighting_buffer())
+    }
+
+    /// The aerial-perspective volume for users' own shaders (bind
+    /// [`AerialPerspectiveBindings::bind_group_entries`] in a layout of
+    /// [`aerial_perspective_layout_entries`](crate::aerial_perspective_layout_entries), include
+    /// [`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`](crate::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL)), when the
+    /// last frame's sky was a physical atmosphere.
+    ///
+    /// The rule for its cost: [`record`](Self::record) builds the volume (one 32 × 32 compute
+    /// dispatch) in every atmosphere frame with firmament objects, which need it themselves, and —
+    /// after [`set_aerial_perspective_for_users(true)`](Self::set_aerial_perspective_for_users) —
+    /// in every atmosphere frame, objects or not, so a renderer whose user never asks pays nothing
+    /// for it. The bindings stay valid for the renderer's life; the volume holds a frame's air for
+    /// commands encoded after that frame's `record`.
+    pub fn aerial_perspective_bindings(&self) -> Option<AerialPerspectiveBindings<'_>> {
+        (self.sky == SkyKind::Atmosphere).then(|| self.atmosphere.aerial_perspective_bindings())
+    }
+
+    /// Whether [`record`](Self::record) builds the aerial-perspective volume in every atmosphere
+    /// frame (for users' shaders, [`Self::aerial_perspective_bindings`]) or only in frames with
+    /// firmament objects (the default).
+    pub fn set_aerial_perspective_for_users(&mut self, every_frame: bool) {
+        self.aerial_volume_wanted = every_frame;
     }
 
     /// The HDR and depth targets of the last `prepare` (for EXR output and tests).

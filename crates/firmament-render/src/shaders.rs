@@ -72,7 +72,8 @@ pub const ATMOSPHERE_SKY_LIGHTING: &str = atmosphere_shader!("common", "luts", "
 pub const ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME: &str =
     atmosphere_shader!("common", "luts", "view"; "aerial_perspective_volume");
 /// The atmosphere's aerial-perspective application over geometry.
-pub const ATMOSPHERE_AERIAL_PERSPECTIVE: &str = atmosphere_shader!("common", "luts", "view"; "aerial_perspective");
+pub const ATMOSPHERE_AERIAL_PERSPECTIVE: &str =
+    atmosphere_shader!("common", "luts", "view", "aerial_lookup"; "aerial_perspective");
 
 /// The object pass: classic (fixed-function) lighting, textures and fog.
 pub const CLASSIC_LIGHTING: &str = include_str!("shaders/classic_lighting.wgsl");
@@ -128,6 +129,59 @@ pub fn firmament_lighting_wgsl(group: u32, binding: u32) -> String {
         &format!("@group({group}) @binding({binding}){FIRMAMENT_LIGHTING_DECLARATION}"),
         1,
     )
+}
+
+/// The WGSL users put before their own shaders to fog their surfaces with firmament's aerial
+/// perspective: the volume lookup shared with firmament's own pass
+/// (`shaders/atmosphere/aerial_lookup.wgsl`), then `shaders/include/firmament_aerial_perspective.wgsl`
+/// with its five bindings at `@group(`[`FIRMAMENT_AERIAL_PERSPECTIVE_GROUP`]`)
+/// @binding(`[`FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING`]` + 0 … 4)`: the atmosphere pass's view
+/// and medium uniforms, the volume's scattering and transmittance atlases and a filtering sampler,
+/// laid out by [`aerial_perspective_layout_entries`](crate::passes::atmosphere::aerial_perspective_layout_entries)
+/// and bound from
+/// [`AtmospherePass::aerial_perspective_bindings`](crate::passes::AtmospherePass::aerial_perspective_bindings).
+/// Its functions: `firmament_apply_aerial_perspective(color, ndc_xy, distance_m)` (`color · T + S`)
+/// and `firmament_aerial_perspective(ndc_xy, distance_m)` (T and S apart). The default slots follow
+/// [`FIRMAMENT_LIGHTING_WGSL`]'s, so both fit one bind group; for others use
+/// [`firmament_aerial_perspective_wgsl`]. Units and conventions: the file and `docs/ATMOSPHERE.md`.
+pub const FIRMAMENT_AERIAL_PERSPECTIVE_WGSL: &str = concat!(
+    include_str!("shaders/atmosphere/aerial_lookup.wgsl"),
+    "\n",
+    include_str!("shaders/include/firmament_aerial_perspective.wgsl")
+);
+
+/// The bind group [`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`] declares its bindings in.
+pub const FIRMAMENT_AERIAL_PERSPECTIVE_GROUP: u32 = 1;
+/// The first of the five consecutive bindings [`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`] declares.
+pub const FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING: u32 = 1;
+
+/// The declarations of [`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]'s bindings, in binding order, after
+/// their group and binding.
+const FIRMAMENT_AERIAL_PERSPECTIVE_DECLARATIONS: [&str; 5] = [
+    " var<uniform> firmament_aerial_view: FirmamentAerialView;",
+    " var<uniform> firmament_aerial_planet: FirmamentAerialPlanet;",
+    " var firmament_aerial_scattering: texture_2d<f32>;",
+    " var firmament_aerial_transmittance: texture_2d<f32>;",
+    " var firmament_aerial_sampler: sampler;",
+];
+
+/// [`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`] with its bindings at `@group(group)
+/// @binding(first_binding)` … `@binding(first_binding + 4)` instead of the default
+/// ([`FIRMAMENT_AERIAL_PERSPECTIVE_GROUP`], [`FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING`]).
+pub fn firmament_aerial_perspective_wgsl(group: u32, first_binding: u32) -> String {
+    let mut source = FIRMAMENT_AERIAL_PERSPECTIVE_WGSL.to_owned();
+    for (offset, declaration) in (0..).zip(FIRMAMENT_AERIAL_PERSPECTIVE_DECLARATIONS) {
+        let default = format!(
+            "@group({FIRMAMENT_AERIAL_PERSPECTIVE_GROUP}) @binding({}){declaration}",
+            FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING + offset
+        );
+        source = source.replacen(
+            &default,
+            &format!("@group({group}) @binding({}){declaration}", first_binding + offset),
+            1,
+        );
+    }
+    source
 }
 
 /// Every composed shader by name, for validation and tooling.
@@ -208,6 +262,14 @@ pub const INCLUDES: &[(&str, &str)] = &[
         ),
     ),
     ("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL),
+    (
+        "atmosphere/aerial_lookup",
+        include_str!("shaders/atmosphere/aerial_lookup.wgsl"),
+    ),
+    (
+        "include/firmament_aerial_perspective",
+        FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
+    ),
 ];
 
 #[cfg(test)]
@@ -366,6 +428,117 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             assert_eq!(lighting.binding, Some(naga::ResourceBinding { group, binding }));
             assert_eq!(lighting.space, naga::AddressSpace::Uniform);
         }
+    }
+
+    /// A user's material after both includes: lit by firmament's suns and sky, fogged by its air.
+    const USER_FOGGED_SHADER: &str = r"
+struct UserVertex {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) ndc: vec2<f32>,
+    @location(2) distance: f32,
+}
+
+@fragment
+fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
+    let n = normalize(in.normal);
+    let lit = vec3<f32>(0.18) / 3.14159265 * firmament_irradiance(n);
+    let air = firmament_aerial_perspective(in.ndc, in.distance);
+    let check = lit * air.transmittance + air.scattering - firmament_apply_aerial_perspective(lit, in.ndc, in.distance);
+    return vec4<f32>(firmament_apply_aerial_perspective(lit, in.ndc, in.distance) + 0.0 * check, 1.0);
+}
+";
+
+    #[test]
+    fn a_user_shader_including_the_aerial_perspective_validates() {
+        let names = [
+            "firmament_aerial_view",
+            "firmament_aerial_planet",
+            "firmament_aerial_scattering",
+            "firmament_aerial_transmittance",
+            "firmament_aerial_sampler",
+        ];
+        let chosen = firmament_aerial_perspective_wgsl(2, 10);
+        for (include, group, first) in [
+            (
+                FIRMAMENT_AERIAL_PERSPECTIVE_WGSL.to_owned(),
+                FIRMAMENT_AERIAL_PERSPECTIVE_GROUP,
+                FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING,
+            ),
+            (chosen, 2, 10),
+        ] {
+            let source = format!("{FIRMAMENT_LIGHTING_WGSL}\n{include}\n{USER_FOGGED_SHADER}");
+            let module = validate("user fogged shader", &source);
+            for (offset, name) in (0..).zip(names) {
+                let (_, global) = module
+                    .global_variables
+                    .iter()
+                    .find(|(_, v)| v.name.as_deref() == Some(name))
+                    .unwrap_or_else(|| panic!("no {name}"));
+                assert_eq!(
+                    global.binding,
+                    Some(naga::ResourceBinding {
+                        group,
+                        binding: first + offset
+                    }),
+                    "{name}"
+                );
+            }
+        }
+        // The layout entries name the same five bindings, in the same order.
+        let entries = crate::passes::atmosphere::aerial_perspective_layout_entries(10);
+        assert_eq!(entries.map(|e| e.binding), [10, 11, 12, 13, 14]);
+    }
+
+    #[test]
+    fn the_aerial_perspective_include_mirrors_the_pass() {
+        use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
+        let module = validate(
+            "include/firmament_aerial_perspective",
+            FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
+        );
+        let (_, members) = wgsl_layout(&module, "FirmamentAerialView");
+        let rust = [
+            (
+                "view_to_planet",
+                std::mem::offset_of!(AtmosphereViewUniforms, view_to_planet),
+            ),
+            ("camera", std::mem::offset_of!(AtmosphereViewUniforms, camera)),
+            (
+                "camera_shape",
+                std::mem::offset_of!(AtmosphereViewUniforms, camera_shape),
+            ),
+            ("center", std::mem::offset_of!(AtmosphereViewUniforms, center)),
+            ("local_up", std::mem::offset_of!(AtmosphereViewUniforms, local_up)),
+            ("to_srgb0", std::mem::offset_of!(AtmosphereViewUniforms, to_srgb0)),
+            ("to_srgb1", std::mem::offset_of!(AtmosphereViewUniforms, to_srgb1)),
+            ("to_srgb2", std::mem::offset_of!(AtmosphereViewUniforms, to_srgb2)),
+            ("aerial", std::mem::offset_of!(AtmosphereViewUniforms, aerial)),
+        ]
+        .map(|(n, o)| (n.to_owned(), o as u32));
+        assert_eq!(
+            members,
+            rust.to_vec(),
+            "FirmamentAerialView is a prefix of AtmosphereView"
+        );
+        let (_, members) = wgsl_layout(&module, "FirmamentAerialPlanet");
+        assert_eq!(
+            members,
+            vec![(
+                "radii".to_owned(),
+                std::mem::offset_of!(AtmosphereParamsUniforms, radii) as u32
+            )]
+        );
+        // The volume's size, as the compute pass that writes it declares it.
+        let size = crate::passes::atmosphere::luts::AERIAL_PERSPECTIVE_SIZE;
+        let declared = format!("vec3<u32>({}u, {}u, {}u)", size.0, size.1, size.2);
+        assert!(FIRMAMENT_AERIAL_PERSPECTIVE_WGSL.contains(&format!(
+            "const FIRMAMENT_AERIAL_PERSPECTIVE_SIZE: vec3<u32> = {declared};"
+        )));
+        assert!(
+            ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME
+                .contains(&format!("const AERIAL_PERSPECTIVE_SIZE: vec3<u32> = {declared};"))
+        );
     }
 
     #[test]

@@ -10,8 +10,96 @@ use super::stages::{
     ComputeStage, bind_group, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
+use std::num::NonZeroU64;
+
+use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
 use crate::passes::{PassPipeline, load_color_attachment};
 use crate::shaders;
+
+/// The five bind group layout entries of the aerial-perspective volume in a user's pipeline, at
+/// `first_binding` … `first_binding + 4`, as `shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`
+/// declares them: the atmosphere pass's view uniforms, its medium uniforms, the volume's
+/// scattering and transmittance atlases (filterable float 2D textures) and a filtering sampler,
+/// all seen by the vertex, fragment and compute stages. Bind them with
+/// [`AerialPerspectiveBindings::bind_group_entries`] at the same `first_binding`.
+pub fn aerial_perspective_layout_entries(first_binding: u32) -> [wgpu::BindGroupLayoutEntry; 5] {
+    let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+    let uniform = |offset: u32, size: usize| wgpu::BindGroupLayoutEntry {
+        binding: first_binding + offset,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: NonZeroU64::new(size as u64),
+        },
+        count: None,
+    };
+    let texture = |offset: u32| wgpu::BindGroupLayoutEntry {
+        binding: first_binding + offset,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    [
+        uniform(0, std::mem::size_of::<AtmosphereViewUniforms>()),
+        uniform(1, std::mem::size_of::<AtmosphereParamsUniforms>()),
+        texture(2),
+        texture(3),
+        wgpu::BindGroupLayoutEntry {
+            binding: first_binding + 4,
+            visibility,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        },
+    ]
+}
+
+/// What a user's shader binds to read the aerial-perspective volume
+/// (`shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`), from
+/// [`AtmospherePass::aerial_perspective_bindings`](super::AtmospherePass::aerial_perspective_bindings).
+/// The objects live as long as the pass; their contents are the frame's once the volume was
+/// encoded (`record_aerial_perspective_volume` or `record_aerial_perspective`).
+#[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
+pub struct AerialPerspectiveBindings<'a> {
+    /// The pass's per-frame view uniforms (`AtmosphereViewUniforms`): the camera, its rays, the
+    /// volume's range and the spectral → linear sRGB matrix.
+    pub view: &'a wgpu::Buffer,
+    /// The pass's medium uniforms (`AtmosphereParamsUniforms`; the include reads the planet's
+    /// radii and atmosphere height).
+    pub params: &'a wgpu::Buffer,
+    /// The scattered light of the volume's slices, side by side in a 1024 × 32 `Rgba16Float`
+    /// atlas (spectral radiance).
+    pub scattering: &'a wgpu::TextureView,
+    /// The transmittance of the volume's slices, laid out as `scattering`.
+    pub transmittance: &'a wgpu::TextureView,
+    /// A linear, clamp-to-edge sampler.
+    pub sampler: &'a wgpu::Sampler,
+}
+
+impl<'a> AerialPerspectiveBindings<'a> {
+    /// The five bind group entries at `first_binding` … `first_binding + 4`, matching
+    /// [`aerial_perspective_layout_entries`] at the same `first_binding`.
+    pub fn bind_group_entries(&self, first_binding: u32) -> [wgpu::BindGroupEntry<'a>; 5] {
+        let resources = [
+            self.view.as_entire_binding(),
+            self.params.as_entire_binding(),
+            wgpu::BindingResource::TextureView(self.scattering),
+            wgpu::BindingResource::TextureView(self.transmittance),
+            wgpu::BindingResource::Sampler(self.sampler),
+        ];
+        let mut binding = first_binding;
+        resources.map(|resource| {
+            let entry = wgpu::BindGroupEntry { binding, resource };
+            binding += 1;
+            entry
+        })
+    }
+}
 
 /// The draws that apply the volume, in order, with their blending.
 const APPLY_DRAWS: [(&str, f64, wgpu::BlendComponent); 2] = [

@@ -42,6 +42,7 @@ use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, unifor
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
+pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 pub use luts::AtmosphereLuts;
 use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
@@ -336,10 +337,31 @@ impl AtmospherePass {
         self.lighting.buffer()
     }
 
-    /// Encodes the aerial-perspective volume at this frame's camera (part of
-    /// [`record_aerial_perspective`](Self::record_aerial_perspective); on its own for benchmarks).
+    /// Encodes the aerial-perspective volume at this frame's camera, after
+    /// [`record_luts`](Self::record_luts) (part of
+    /// [`record_aerial_perspective`](Self::record_aerial_perspective); on its own for users'
+    /// shaders that read it through [`aerial_perspective_bindings`](Self::aerial_perspective_bindings),
+    /// and for benchmarks).
     pub fn record_aerial_perspective_volume(&self, encoder: &mut wgpu::CommandEncoder) {
         self.aerial.record_volume(encoder);
+    }
+
+    /// The aerial-perspective volume and what its lookup needs, for users' own shaders
+    /// (`shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`): bind
+    /// [`AerialPerspectiveBindings::bind_group_entries`] in a layout made with
+    /// [`aerial_perspective_layout_entries`]. The volume holds this frame's air once
+    /// [`record_aerial_perspective_volume`](Self::record_aerial_perspective_volume) (or
+    /// [`record_aerial_perspective`](Self::record_aerial_perspective)) was encoded after
+    /// [`record_luts`](Self::record_luts); encode your draws after it. The objects are the pass's
+    /// for its whole life, so one bind group serves every frame.
+    pub fn aerial_perspective_bindings(&self) -> AerialPerspectiveBindings<'_> {
+        AerialPerspectiveBindings {
+            view: &self.view,
+            params: &self.params,
+            scattering: &self.luts.aerial_scattering.view,
+            transmittance: &self.luts.aerial_transmittance.view,
+            sampler: &self.sampler,
+        }
     }
 
     /// Makes `depth` the depth buffer [`record_aerial_perspective`](Self::record_aerial_perspective)
