@@ -83,6 +83,18 @@ impl Camera {
         }
     }
 
+    /// View → clip projection in wgpu's `[0, 1]` clip depth for `convention`: near → 1 and
+    /// far → 0 for [`DepthConvention::Reversed`] (what [`Self::projection_matrix`] gives), near → 0
+    /// and far → 1 for [`DepthConvention::Standard`]; the far plane is infinite when `far` is
+    /// `None`.
+    pub fn projection_matrix_for(&self, convention: DepthConvention) -> DMat4 {
+        match (convention, self.far) {
+            (DepthConvention::Reversed, _) => self.projection_matrix(),
+            (DepthConvention::Standard, None) => projection::perspective_infinite(self.fov_y, self.aspect, self.near),
+            (DepthConvention::Standard, Some(far)) => projection::perspective(self.fov_y, self.aspect, self.near, far),
+        }
+    }
+
     /// The unit world-frame direction of the view ray through a point in normalised device
     /// coordinates (`x`, `y` in [-1, 1], +y up), independent of the far plane.
     pub fn view_direction(&self, ndc: DVec2) -> DVec3 {
@@ -92,6 +104,38 @@ impl Camera {
         let p = inverse * DVec4::new(ndc.x, ndc.y, 1.0, 1.0);
         let view_dir = (p.truncate() / p.w).normalize();
         (self.orientation * view_dir).normalize()
+    }
+}
+
+/// How a depth buffer maps distance to depth, in wgpu's `[0, 1]` clip depth (the far plane
+/// being finite or infinite as [`Camera::far`] says).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum DepthConvention {
+    /// Reversed-Z, firmament's own: the near plane → 1, the far plane (or infinity) → 0; cleared
+    /// to 0, nearer is greater.
+    #[default]
+    Reversed,
+    /// Standard: the near plane → 0, the far plane (or infinity) → 1; cleared to 1, nearer is
+    /// smaller.
+    Standard,
+}
+
+impl DepthConvention {
+    /// The depth of the far plane (and of a cleared buffer): 0 reversed, 1 standard.
+    pub fn far_depth(self) -> f64 {
+        match self {
+            Self::Reversed => 0.0,
+            Self::Standard => 1.0,
+        }
+    }
+
+    /// Whether depth `a` is nearer the camera than depth `b` under this convention.
+    pub fn is_nearer(self, a: f64, b: f64) -> bool {
+        match self {
+            Self::Reversed => a > b,
+            Self::Standard => a < b,
+        }
     }
 }
 
@@ -133,6 +177,35 @@ pub fn orientation_from_heading_pitch_roll(heading: f64, pitch: f64, roll: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn projection_for_each_convention_maps_near_and_far() {
+        let at = |m: DMat4, d: f64| {
+            let c = m * DVec4::new(0.0, 0.0, -d, 1.0);
+            c.z / c.w
+        };
+        for far in [Some(5000.0), None] {
+            let camera = Camera {
+                near: 0.25,
+                far,
+                ..Camera::default()
+            };
+            let distant = far.unwrap_or(1e13);
+            assert_eq!(
+                camera.projection_matrix_for(DepthConvention::Reversed),
+                camera.projection_matrix()
+            );
+            for convention in [DepthConvention::Reversed, DepthConvention::Standard] {
+                let m = camera.projection_matrix_for(convention);
+                assert!((at(m, 0.25) - (1.0 - convention.far_depth())).abs() < 1e-12);
+                assert!((at(m, distant) - convention.far_depth()).abs() < 1e-9);
+                assert!(convention.is_nearer(at(m, 10.0), at(m, 20.0)));
+                // x and y are the same matrix's either way.
+                assert_eq!(m.x_axis, camera.projection_matrix().x_axis);
+                assert_eq!(m.y_axis, camera.projection_matrix().y_axis);
+            }
+        }
+    }
 
     fn close(a: DVec3, b: DVec3) -> bool {
         (a - b).length() < 1e-12

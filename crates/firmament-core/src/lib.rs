@@ -38,7 +38,7 @@ pub mod texture;
 pub mod time_of_day;
 pub mod viewport;
 
-pub use camera::Camera;
+pub use camera::{Camera, DepthConvention};
 pub use color::LinearRgb;
 pub use error::CoreError;
 pub use frame::Frame;

@@ -26,6 +26,31 @@ pub fn perspective_reverse_z(fov_y: f64, aspect: f64, near: f64, far: f64) -> DM
     )
 }
 
+/// Standard-depth perspective with an infinite far plane: right-handed view space looking down
+/// `-z`, wgpu clip depth `[0, 1]` with the near plane at 0 and infinity at 1.
+pub fn perspective_infinite(fov_y: f64, aspect: f64, near: f64) -> DMat4 {
+    let f = 1.0 / (0.5 * fov_y).tan();
+    DMat4::from_cols(
+        DVec4::new(f / aspect, 0.0, 0.0, 0.0),
+        DVec4::new(0.0, f, 0.0, 0.0),
+        DVec4::new(0.0, 0.0, -1.0, -1.0),
+        DVec4::new(0.0, 0.0, -near, 0.0),
+    )
+}
+
+/// Standard-depth perspective with a finite far plane (Direct3D's and wgpu's `[0, 1]` clip
+/// depth): near → depth 0, far → depth 1.
+pub fn perspective(fov_y: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+    let f = 1.0 / (0.5 * fov_y).tan();
+    let range = far / (near - far);
+    DMat4::from_cols(
+        DVec4::new(f / aspect, 0.0, 0.0, 0.0),
+        DVec4::new(0.0, f, 0.0, 0.0),
+        DVec4::new(0.0, 0.0, range, -1.0),
+        DVec4::new(0.0, 0.0, near * range, 0.0),
+    )
+}
+
 fn finite_all(values: &[f64]) -> bool {
     values.iter().all(|v| v.is_finite())
 }
@@ -128,6 +153,54 @@ mod tests {
     fn clip_depth(m: &DMat4, view_z: f64) -> f64 {
         let c = *m * DVec4::new(0.0, 0.0, view_z, 1.0);
         c.z / c.w
+    }
+
+    /// The four `[0, 1]` perspective matrices against their textbook forms (row-major), and
+    /// their near and far planes' depths.
+    #[test]
+    fn zero_to_one_perspectives_are_the_textbook_matrices() {
+        let (fovy, aspect, n, f) = (50f64.to_radians(), 1.25, 0.5, 2000.0);
+        let cot = 1.0 / (fovy / 2.0).tan();
+        let rows = |z: [f64; 2]| {
+            [
+                [cot / aspect, 0.0, 0.0, 0.0],
+                [0.0, cot, 0.0, 0.0],
+                [0.0, 0.0, z[0], z[1]],
+                [0.0, 0.0, -1.0, 0.0],
+            ]
+        };
+        let cases = [
+            // (matrix, textbook row 3, depth at near, depth at far or at 1e12 m)
+            (
+                perspective(fovy, aspect, n, f),
+                rows([f / (n - f), n * f / (n - f)]),
+                0.0,
+                1.0,
+            ),
+            (perspective_infinite(fovy, aspect, n), rows([-1.0, -n]), 0.0, 1.0),
+            (
+                perspective_reverse_z(fovy, aspect, n, f),
+                rows([n / (f - n), n * f / (f - n)]),
+                1.0,
+                0.0,
+            ),
+            (
+                perspective_infinite_reverse_z(fovy, aspect, n),
+                rows([0.0, n]),
+                1.0,
+                0.0,
+            ),
+        ];
+        for (i, (m, expected, near_depth, far_depth)) in cases.iter().enumerate() {
+            for (r, row) in expected.iter().enumerate() {
+                for (c, value) in row.iter().enumerate() {
+                    assert!((at(m, r, c) - value).abs() < 1e-12, "case {i} ({r}, {c})");
+                }
+            }
+            assert!((clip_depth(m, -n) - near_depth).abs() < 1e-12, "case {i} near");
+            let far = if i % 2 == 0 { f } else { 1e12 };
+            assert!((clip_depth(m, -far) - far_depth).abs() < 1e-9, "case {i} far");
+        }
     }
 
     #[test]

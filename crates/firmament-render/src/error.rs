@@ -1,7 +1,6 @@
 //! The renderer's one error type.
 
-/// What can go wrong on the GPU side. More variants will come with the embedding API (target
-/// formats, sample counts, depth buffers), hence `#[non_exhaustive]`.
+/// What can go wrong on the GPU side. More variants may come, hence `#[non_exhaustive]`.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum RenderError {
@@ -59,6 +58,11 @@ pub enum RenderError {
         /// The device's largest 2D texture side, pixels.
         max: u32,
     },
+    /// A target given to [`Renderer::prepare_into`](crate::Renderer::prepare_into) or
+    /// [`Renderer::record_into`](crate::Renderer::record_into) cannot be drawn into: its colour
+    /// format, sample count, usages or depth buffer (the message names what is needed).
+    #[error("unsupported embedding target: {0}")]
+    InvalidTarget(String),
     /// A value given to the renderer broke its rule.
     #[error("{0}")]
     Invalid(#[from] firmament_core::CoreError),

@@ -57,7 +57,9 @@
 //! - **Depth**: *reversed-Z*: clip `z ∈ [0, 1]`, the near plane → 1, the far plane → 0 (the
 //!   camera's far plane is infinite unless it sets one). The depth target is [`DEPTH_FORMAT`]
 //!   (`Depth32Float`), cleared to 0 and tested `Greater`; the sky is drawn at depth 0
-//!   (`GreaterEqual`), filling exactly what nothing nearer covered.
+//!   (`GreaterEqual`), filling exactly what nothing nearer covered. Your own depth buffer
+//!   ([`EmbedTarget`]) may be standard-Z instead ([`DepthConvention::Standard`]: near → 0, far →
+//!   1, the sky drawn at 1 and tested `LessEqual`).
 //! - **Colour**: linear RGB everywhere until the tonemap pass (exposure, tone curve, then sRGB —
 //!   by the hardware into `*Srgb` views, by the shader into others). The camera's aspect ratio
 //!   is always the image's.
@@ -83,13 +85,21 @@
 //!   volume only in atmosphere frames with its own objects, or in every atmosphere frame once
 //!   the bindings were asked for. The `custom_material` example (`firmament-examples`) uses both.
 //!
+//! - **Your frame: your HDR target, depth buffer and depth convention**:
+//!   [`Renderer::prepare_into`] and [`Renderer::record_into`] with an [`EmbedTarget`] (your
+//!   colour view of one of [`EMBED_COLOR_FORMATS`], your depth view of one of
+//!   [`EMBED_DEPTH_FORMATS`] holding your geometry, and its [`DepthConvention`]: reversed or
+//!   standard Z, the far plane finite or infinite as the camera says). The sky lies behind your
+//!   geometry, aerial perspective falls on it, flares are hidden by it; linear radiance, for
+//!   your tone mapping. Bad targets (format, multisampling, size, depth format or usages) give
+//!   [`RenderError::InvalidTarget`] naming what is needed.
+//!
 //! Not yet (issue 9's later parts):
-//! - **Your depth buffer and depth convention**: the renderer draws with its own reversed-Z
-//!   depth target, so the sky does not yet lie behind your geometry and aerial perspective does
-//!   not fall on it; a depth buffer of yours in standard Z is not supported either.
-//! - **Your colour target in HDR** (to composite before your own tone mapping) and **MSAA**
-//!   targets: the output is always tone-mapped, single-sampled; the output format is not checked
-//!   (it must be a renderable colour format).
+//! - **MSAA targets** drawn directly (rejected: resolve first) and LDR targets of yours through
+//!   the output pass on the [`Renderer::record_into`] path ([`Renderer::record`]'s output format
+//!   is not checked: it must be a renderable colour format).
+//! - On the [`Renderer::record_into`] path, a clear-colour sky (the background is left to you)
+//!   and firmament's own objects are not drawn.
 //! - **Scene builders** in code, and capturing GPU
 //!   errors of [`Renderer::prepare`] / [`Renderer::record`] (wgpu's default handler panics on
 //!   them; [`headless::HeadlessRenderer`] captures them as [`RenderError::Gpu`]).
@@ -112,6 +122,7 @@ pub use wgpu;
 
 pub use context::{Backend, GpuContext};
 pub use error::{LimitShortfall, RenderError};
+pub use firmament_core::DepthConvention;
 pub use gpu_types::SkyLightingGpu;
 pub use passes::atmosphere::{AerialPerspectiveBindings, aerial_perspective_layout_entries, sky_lighting_layout_entry};
 pub use renderer::Renderer;
@@ -120,4 +131,4 @@ pub use shaders::{
     FIRMAMENT_AERIAL_PERSPECTIVE_WGSL, FIRMAMENT_LIGHTING_WGSL, firmament_aerial_perspective_wgsl,
     firmament_lighting_wgsl,
 };
-pub use targets::{DEPTH_FORMAT, FrameTargets, HDR_FORMAT};
+pub use targets::{DEPTH_FORMAT, EMBED_COLOR_FORMATS, EMBED_DEPTH_FORMATS, EmbedTarget, FrameTargets, HDR_FORMAT};

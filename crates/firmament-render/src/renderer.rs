@@ -2,16 +2,20 @@
 //! it, into HDR targets; aerial perspective over the objects when the sky is an atmosphere; lens
 //! flares over everything; tonemap → the caller's view.
 
+use std::collections::HashMap;
+
 use firmament_core::Frame;
 use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
+use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
 use crate::passes::{
     AtmospherePass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
+    begin_load_pass,
 };
-use crate::targets::{DEPTH_CLEAR, FrameTargets};
+use crate::targets::{DEPTH_CLEAR, EmbedTarget, FrameTargets};
 
 /// The sky passes a frame can use.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,80 +27,67 @@ enum SkyKind {
     Clear(wgpu::Color),
 }
 
-/// Renders [`Frame`]s into any texture view of the output format it was built for.
+/// The passes that draw the sky, the night sky, aerial perspective and the flares into one kind
+/// of target: a colour format, a depth format and its convention.
 #[derive(Debug)]
-pub struct Renderer {
-    sky_gradient: GradientSkyPass,
+struct SkyPasses {
+    gradient: GradientSkyPass,
     atmosphere: AtmospherePass,
     seed: SeedSkyPass,
-    /// Which sky the last `prepare` chose.
-    sky: SkyKind,
-    objects: ObjectPass,
     night: NightSkyPass,
     flares: FlarePass,
-    tonemap: TonemapPass,
-    targets: Option<FrameTargets>,
-    /// Build the aerial-perspective volume in every atmosphere frame, objects or not
-    /// ([`Renderer::set_aerial_perspective_for_users`]).
-    aerial_volume_wanted: bool,
 }
 
-impl Renderer {
-    /// Builds every pipeline once, for output views of `output_format`.
-    pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
+impl SkyPasses {
+    fn new(ctx: &GpuContext, key: SkyTarget, interval: Option<f64>) -> Self {
+        let device = &ctx.device;
+        let mut flares = FlarePass::with_format(device, key.color);
+        flares.set_depth_convention(key.convention);
+        flares.set_interval(interval);
         Self {
-            sky_gradient: GradientSkyPass::new(&ctx.device),
-            atmosphere: AtmospherePass::new(&ctx.device),
-            seed: SeedSkyPass::new(&ctx.device),
-            sky: SkyKind::Gradient,
-            objects: ObjectPass::new(&ctx.device, &ctx.queue),
-            night: NightSkyPass::new(&ctx.device),
-            flares: FlarePass::new(&ctx.device),
-            tonemap: TonemapPass::new(&ctx.device, output_format),
-            targets: None,
-            aerial_volume_wanted: false,
+            gradient: GradientSkyPass::for_target(device, key),
+            atmosphere: AtmospherePass::for_target(device, key),
+            seed: SeedSkyPass::for_target(device, key),
+            night: NightSkyPass::for_target(device, key),
+            flares,
         }
     }
 
-    /// Uploads everything `frame` needs and (re)creates the HDR targets at `width` × `height`.
-    /// The camera's aspect ratio is taken from the size.
-    pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
-        ctx.check_image_size(width, height)?;
-        if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
-            let targets = FrameTargets::new(&ctx.device, width, height);
-            self.atmosphere.bind_depth(&ctx.device, &targets.depth_view);
-            self.flares.bind_depth(&ctx.device, &targets.depth_view, width, height);
-            self.targets = Some(targets);
-        }
-        let camera = firmament_core::Camera {
-            aspect: f64::from(width) / f64::from(height),
-            ..frame.camera
-        };
-        match &frame.sky {
+    /// Binds the depth buffer the aerial perspective and the flares read.
+    fn bind_depth(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView, (width, height): (u32, u32)) {
+        self.atmosphere.bind_depth(device, depth);
+        self.flares.bind_depth(device, depth, width, height);
+    }
+
+    /// Uploads the sky, the night sky and the flares of `frame` seen by `camera`; which sky.
+    fn prepare(
+        &mut self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        camera: &firmament_core::Camera,
+        size: (u32, u32),
+    ) -> SkyKind {
+        let sky = match &frame.sky {
             Sky::Gradient(sky) => {
-                self.sky_gradient.prepare(&ctx.queue, sky, &camera);
-                self.sky = SkyKind::Gradient;
+                self.gradient.prepare(&ctx.queue, sky, camera);
+                SkyKind::Gradient
             }
             Sky::Atmosphere(sky) => {
-                self.atmosphere.prepare(&ctx.queue, sky, &camera);
-                self.sky = SkyKind::Atmosphere;
+                self.atmosphere.prepare(&ctx.queue, sky, camera);
+                SkyKind::Atmosphere
             }
             Sky::Seed(sky) => {
-                self.seed.prepare(&ctx.queue, sky, &camera);
-                self.sky = SkyKind::Seed;
+                self.seed.prepare(&ctx.queue, sky, camera);
+                SkyKind::Seed
             }
-            Sky::Clear(c) => {
-                self.sky = SkyKind::Clear(wgpu::Color {
-                    r: c.r,
-                    g: c.g,
-                    b: c.b,
-                    a: 1.0,
-                });
-            }
-        }
-        self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
-        self.night
-            .prepare(&ctx.device, &ctx.queue, &frame.night, &camera, (width, height));
+            Sky::Clear(c) => SkyKind::Clear(wgpu::Color {
+                r: c.r,
+                g: c.g,
+                b: c.b,
+                a: 1.0,
+            }),
+        };
+        self.night.prepare(&ctx.device, &ctx.queue, &frame.night, camera, size);
         let planet = match &frame.sky {
             Sky::Atmosphere(sky) => Some(&sky.atmosphere.planet),
             _ => None,
@@ -105,10 +96,88 @@ impl Renderer {
             &ctx.device,
             &ctx.queue,
             &frame.flares,
-            &camera,
+            camera,
             frame.display.exposure.multiplier,
             planet,
         );
+        sky
+    }
+
+    /// Draws the sky of kind `sky` (not a clear colour) into a pass with the depth attachment.
+    fn draw_sky(&self, pass: &mut wgpu::RenderPass<'_>, sky: SkyKind) {
+        match sky {
+            SkyKind::Gradient => self.gradient.draw(pass),
+            SkyKind::Atmosphere => self.atmosphere.draw(pass),
+            SkyKind::Seed => self.seed.draw(pass),
+            SkyKind::Clear(_) => {}
+        }
+    }
+}
+
+/// Renders [`Frame`]s into any texture view of the output format it was built for
+/// ([`prepare`](Self::prepare), [`record`](Self::record)), or into a frame of the caller's own —
+/// an HDR colour target and the depth buffer holding the caller's geometry
+/// ([`prepare_into`](Self::prepare_into), [`record_into`](Self::record_into)).
+#[derive(Debug)]
+pub struct Renderer {
+    /// The sky passes for the renderer's own targets.
+    own: SkyPasses,
+    /// The sky passes for callers' targets, built on first use for each kind and kept.
+    embedded: HashMap<SkyTarget, SkyPasses>,
+    /// The caller's target kind of the last `prepare_into`, `None` after a `prepare`.
+    active: Option<SkyTarget>,
+    /// Which sky the last `prepare` chose.
+    sky: SkyKind,
+    objects: ObjectPass,
+    tonemap: TonemapPass,
+    targets: Option<FrameTargets>,
+    /// Build the aerial-perspective volume in every atmosphere frame, objects or not
+    /// ([`Renderer::set_aerial_perspective_for_users`]).
+    aerial_volume_wanted: bool,
+    /// The flares' frame interval ([`Renderer::set_flare_interval`]).
+    flare_interval: Option<f64>,
+    /// The size of the caller's target at the last `prepare_into`.
+    embedded_size: (u32, u32),
+}
+
+impl Renderer {
+    /// Builds every pipeline once, for output views of `output_format`.
+    pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
+        Self {
+            own: SkyPasses::new(ctx, SkyTarget::OWN, None),
+            embedded: HashMap::new(),
+            active: None,
+            sky: SkyKind::Gradient,
+            objects: ObjectPass::new(&ctx.device, &ctx.queue),
+            tonemap: TonemapPass::new(&ctx.device, output_format),
+            targets: None,
+            aerial_volume_wanted: false,
+            flare_interval: None,
+            embedded_size: (0, 0),
+        }
+    }
+
+    /// The sky passes of the last `prepare` or `prepare_into`.
+    fn passes(&self) -> &SkyPasses {
+        self.active.and_then(|key| self.embedded.get(&key)).unwrap_or(&self.own)
+    }
+
+    /// Uploads everything `frame` needs and (re)creates the HDR targets at `width` × `height`.
+    /// The camera's aspect ratio is taken from the size.
+    pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
+        ctx.check_image_size(width, height)?;
+        if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
+            let targets = FrameTargets::new(&ctx.device, width, height);
+            self.own.bind_depth(&ctx.device, &targets.depth_view, (width, height));
+            self.targets = Some(targets);
+        }
+        let camera = firmament_core::Camera {
+            aspect: f64::from(width) / f64::from(height),
+            ..frame.camera
+        };
+        self.active = None;
+        self.sky = self.own.prepare(ctx, frame, &camera, (width, height));
+        self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
         if let Some(targets) = &self.targets {
             self.tonemap
                 .prepare(&ctx.device, &ctx.queue, &frame.display, &targets.hdr_view);
@@ -119,14 +188,19 @@ impl Renderer {
     /// Encodes the frame: clear the HDR and depth targets, draw the objects, the sky behind
     /// them and the stars and the Moon over the sky, aerial perspective over the objects in an
     /// atmosphere, lens flares, tone-map into `output`.
-    /// Does nothing before the first `prepare`.
+    /// Does nothing before the first `prepare`, or after a `prepare_into` (prepare again).
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, output: &wgpu::TextureView) {
         let Some(targets) = &self.targets else {
             tracing::warn!("Renderer::record before prepare: nothing drawn");
             return;
         };
+        if self.active.is_some() {
+            tracing::warn!("Renderer::record after prepare_into: nothing drawn (call prepare first)");
+            return;
+        }
+        let own = &self.own;
         if self.sky == SkyKind::Atmosphere {
-            self.atmosphere.record_luts(encoder);
+            own.atmosphere.record_luts(encoder);
         }
         let clear = match self.sky {
             SkyKind::Clear(color) => color,
@@ -142,43 +216,114 @@ impl Renderer {
             );
             // Opaque objects first; the sky then fills only what is left.
             self.objects.draw(&mut pass);
-            match self.sky {
-                SkyKind::Gradient => self.sky_gradient.draw(&mut pass),
-                SkyKind::Atmosphere => self.atmosphere.draw(&mut pass),
-                SkyKind::Seed => self.seed.draw(&mut pass),
-                SkyKind::Clear(_) => {}
-            }
+            own.draw_sky(&mut pass, self.sky);
             // Stars and the Moon, added over the sky where nothing nearer was drawn.
-            self.night.draw(&mut pass);
+            own.night.draw(&mut pass);
         }
         if self.sky == SkyKind::Atmosphere {
             if !self.objects.is_empty() {
                 // Builds the volume too.
-                self.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+                own.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
             } else if self.aerial_volume_wanted {
-                self.atmosphere.record_aerial_perspective_volume(encoder);
+                own.atmosphere.record_aerial_perspective_volume(encoder);
             }
         }
         // Flares last, over everything, hidden by what the depth buffer holds.
-        self.flares.record(encoder, &targets.hdr_view);
+        own.flares.record(encoder, &targets.hdr_view);
         self.tonemap.record(encoder, output);
+    }
+
+    /// Prepares `frame` for [`record_into`](Self::record_into) the caller's `target`: checks the
+    /// target ([`EmbedTarget`]'s rules; an error names what is needed), builds the pipelines for
+    /// its colour format, depth format and depth convention on first use (kept for later
+    /// frames), binds its depth buffer and uploads the frame. The camera's aspect ratio is taken
+    /// from the target's size, its near and far planes from `frame.camera` — the projection the
+    /// caller's geometry must be drawn with is
+    /// [`Camera::projection_matrix_for`](firmament_core::Camera::projection_matrix_for)`(convention)`.
+    /// The renderer's own objects (`frame.objects`) are not drawn on this path.
+    pub fn prepare_into(
+        &mut self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        target: &EmbedTarget<'_>,
+    ) -> Result<(), RenderError> {
+        let (width, height) = target.check(ctx)?;
+        let key = target.key();
+        let interval = self.flare_interval;
+        let passes = self
+            .embedded
+            .entry(key)
+            .or_insert_with(|| SkyPasses::new(ctx, key, interval));
+        passes.bind_depth(&ctx.device, target.depth, (width, height));
+        let camera = firmament_core::Camera {
+            aspect: f64::from(width) / f64::from(height),
+            ..frame.camera
+        };
+        self.sky = passes.prepare(ctx, frame, &camera, (width, height));
+        self.active = Some(key);
+        self.embedded_size = (width, height);
+        Ok(())
+    }
+
+    /// Encodes the frame prepared by [`prepare_into`](Self::prepare_into) into the caller's
+    /// `target` (the same one, its depth buffer holding the caller's geometry, drawn earlier in
+    /// this encoder or before): the sky behind that geometry where the depth buffer still holds
+    /// the far plane, the stars and the Moon over the sky, aerial perspective over the geometry
+    /// (`colour · T + S`, with distances from the depth buffer) when the sky is an atmosphere,
+    /// and the lens flares, hidden by the geometry, over everything. Colour is loaded and
+    /// blended, never cleared; depth is tested, never written. Linear radiance in the sky's
+    /// units: tone-map it yourself. A frame whose sky is a clear colour (`Sky::Clear`) draws no
+    /// background: that is yours.
+    ///
+    /// An error when nothing was prepared for a target of this kind and size (nothing encoded).
+    pub fn record_into(&self, encoder: &mut wgpu::CommandEncoder, target: &EmbedTarget<'_>) -> Result<(), RenderError> {
+        let size = target.size();
+        if self.active != Some(target.key()) || size != self.embedded_size {
+            return Err(RenderError::InvalidTarget(format!(
+                "record_into a {:?} target of {}x{} ({:?}, {:?} depth): prepare_into it first",
+                target.key().color,
+                size.0,
+                size.1,
+                target.convention,
+                target.key().depth
+            )));
+        }
+        let passes = self.passes();
+        if self.sky == SkyKind::Atmosphere {
+            passes.atmosphere.record_luts(encoder);
+        }
+        {
+            let mut pass = begin_load_pass(encoder, "firmament Renderer embedded sky", target.color, target.depth);
+            // A clear-colour sky leaves the background to the caller.
+            passes.draw_sky(&mut pass, self.sky);
+            passes.night.draw(&mut pass);
+        }
+        if self.sky == SkyKind::Atmosphere {
+            passes.atmosphere.record_aerial_perspective(encoder, target.color);
+        }
+        passes.flares.record(encoder, target.color);
+        Ok(())
     }
 
     /// Sets the time between frames for the lens flares' fade-in and fade-out rates (a viewer's
     /// frame interval, seconds); `None` (the default) takes each frame's visibility at once, as
     /// stills and time-lapses should.
     pub fn set_flare_interval(&mut self, seconds: Option<f64>) {
-        self.flares.set_interval(seconds);
+        self.flare_interval = seconds;
+        self.own.flares.set_interval(seconds);
+        for passes in self.embedded.values_mut() {
+            passes.flares.set_interval(seconds);
+        }
     }
 
     /// The lens-flare pass (its visibility buffer, for tests and tools).
     pub fn flares(&self) -> &FlarePass {
-        &self.flares
+        &self.passes().flares
     }
 
     /// The night-sky pass (how many stars it drew, for tests and tools).
     pub fn night_sky(&self) -> &NightSkyPass {
-        &self.night
+        &self.passes().night
     }
 
     /// The per-frame lighting values for users' own shaders ([`SkyLightingGpu`]: each sun's
@@ -189,7 +334,7 @@ impl Renderer {
     ///
     /// [`SkyLightingGpu`]: crate::SkyLightingGpu
     pub fn sky_lighting_buffer(&self) -> Option<&wgpu::Buffer> {
-        (self.sky == SkyKind::Atmosphere).then(|| self.atmosphere.sky_lighting_buffer())
+        (self.sky == SkyKind::Atmosphere).then(|| self.passes().atmosphere.sky_lighting_buffer())
     }
 
     /// The aerial-perspective volume for users' own shaders (bind
@@ -205,7 +350,7 @@ impl Renderer {
     /// for it. The bindings stay valid for the renderer's life; the volume holds a frame's air for
     /// commands encoded after that frame's `record`.
     pub fn aerial_perspective_bindings(&self) -> Option<AerialPerspectiveBindings<'_>> {
-        (self.sky == SkyKind::Atmosphere).then(|| self.atmosphere.aerial_perspective_bindings())
+        (self.sky == SkyKind::Atmosphere).then(|| self.passes().atmosphere.aerial_perspective_bindings())
     }
 
     /// Whether [`record`](Self::record) builds the aerial-perspective volume in every atmosphere

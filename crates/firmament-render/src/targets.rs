@@ -1,4 +1,10 @@
-//! The HDR colour and depth textures a frame is drawn into before tone mapping.
+//! The HDR colour and depth textures a frame is drawn into before tone mapping, and the
+//! caller's own ([`EmbedTarget`]).
+
+use firmament_core::DepthConvention;
+
+use crate::context::GpuContext;
+use crate::error::RenderError;
 
 /// Format of the HDR colour target: linear radiance, half float (renderable everywhere, unlike
 /// Rgba32Float on GL). Passes clamp to [`HDR_MAX`]: a sun disc (~1.6·10⁹ cd/m²) does not fit.
@@ -68,5 +74,137 @@ impl FrameTargets {
     /// Width and height in pixels.
     pub fn size(&self) -> (u32, u32) {
         (self.hdr.width(), self.hdr.height())
+    }
+}
+
+/// Colour formats [`EmbedTarget::color`] may have: linear float HDR targets.
+/// `Rgba32Float` also needs the device feature `FLOAT32_BLENDABLE` (firmament blends into it).
+pub const EMBED_COLOR_FORMATS: [wgpu::TextureFormat; 2] =
+    [wgpu::TextureFormat::Rgba16Float, wgpu::TextureFormat::Rgba32Float];
+
+/// Depth formats [`EmbedTarget::depth`] may have: depth-only formats a shader can read (a
+/// depth-stencil format cannot be bound as one texture).
+pub const EMBED_DEPTH_FORMATS: [wgpu::TextureFormat; 3] = [
+    wgpu::TextureFormat::Depth32Float,
+    wgpu::TextureFormat::Depth24Plus,
+    wgpu::TextureFormat::Depth16Unorm,
+];
+
+/// The caller's frame that [`Renderer::prepare_into`](crate::Renderer::prepare_into) and
+/// [`Renderer::record_into`](crate::Renderer::record_into) draw into.
+///
+/// Rules (each broken one is a [`RenderError::InvalidTarget`] naming what is needed, never a wgpu
+/// validation panic):
+/// - `color`: a view of a whole single-sampled 2D texture of one of [`EMBED_COLOR_FORMATS`]
+///   (linear radiance, to composite before your tone mapping) with `RENDER_ATTACHMENT` usage.
+///   Multisampled targets are rejected: resolve yours into a single-sampled one first.
+/// - `depth`: a view of a single-sampled texture of the colour target's size, of one of
+///   [`EMBED_DEPTH_FORMATS`], with `RENDER_ATTACHMENT | TEXTURE_BINDING` usage, holding your
+///   geometry's depth in `convention` (the sky is tested against its far plane, aerial
+///   perspective and flare occlusion read it; it is never written).
+#[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
+pub struct EmbedTarget<'a> {
+    /// Your HDR colour target.
+    pub color: &'a wgpu::TextureView,
+    /// Your depth buffer, holding your geometry.
+    pub depth: &'a wgpu::TextureView,
+    /// How `depth` maps distance (the far plane finite or not as the frame's camera says).
+    pub convention: DepthConvention,
+}
+
+impl<'a> EmbedTarget<'a> {
+    /// Your colour target and depth buffer, the depth in `convention`.
+    pub fn new(color: &'a wgpu::TextureView, depth: &'a wgpu::TextureView, convention: DepthConvention) -> Self {
+        Self {
+            color,
+            depth,
+            convention,
+        }
+    }
+
+    /// Width and height of the colour target, pixels.
+    pub fn size(&self) -> (u32, u32) {
+        let t = self.color.texture();
+        (t.width(), t.height())
+    }
+
+    /// What the pipelines depend on: colour format, depth format, convention.
+    pub(crate) fn key(&self) -> crate::passes::SkyTarget {
+        crate::passes::SkyTarget::new(
+            self.color.texture().format(),
+            self.depth.texture().format(),
+            self.convention,
+        )
+    }
+
+    /// Checks the rules above on `ctx`'s device; the target's size.
+    pub fn check(&self, ctx: &GpuContext) -> Result<(u32, u32), RenderError> {
+        let invalid = |m: String| Err(RenderError::InvalidTarget(m));
+        let color = self.color.texture();
+        let depth = self.depth.texture();
+        let format = color.format();
+        if color.sample_count() > 1 || depth.sample_count() > 1 {
+            return invalid(format!(
+                "the colour target has {} samples and the depth buffer {}: firmament draws into \
+                 single-sampled targets only; resolve your MSAA colour (and depth) into single-sampled \
+                 textures first and pass those",
+                color.sample_count(),
+                depth.sample_count()
+            ));
+        }
+        if !EMBED_COLOR_FORMATS.contains(&format) {
+            return invalid(format!(
+                "colour format {format:?} is not supported; firmament draws linear radiance into \
+                 {EMBED_COLOR_FORMATS:?} (tone-map afterwards, or use Renderer::record for a \
+                 finished image in any format)"
+            ));
+        }
+        if format == wgpu::TextureFormat::Rgba32Float
+            && !ctx.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE)
+        {
+            return invalid(
+                "an Rgba32Float colour target needs the device feature FLOAT32_BLENDABLE (firmament \
+                 blends into it); request it, or use Rgba16Float"
+                    .into(),
+            );
+        }
+        if color.dimension() != wgpu::TextureDimension::D2 || color.depth_or_array_layers() != 1 {
+            return invalid("the colour target must be a 2D texture with one layer".into());
+        }
+        if !color.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+            return invalid(format!(
+                "the colour target's usages {:?} lack RENDER_ATTACHMENT",
+                color.usage()
+            ));
+        }
+        let depth_format = depth.format();
+        if !EMBED_DEPTH_FORMATS.contains(&depth_format) {
+            return invalid(format!(
+                "depth format {depth_format:?} cannot be read by firmament's shaders; use one of \
+                 {EMBED_DEPTH_FORMATS:?} (a depth-stencil format cannot be sampled as one texture)"
+            ));
+        }
+        let needed = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        if !depth.usage().contains(needed) {
+            return invalid(format!(
+                "the depth buffer's usages {:?} lack {:?} (firmament tests against it and reads it)",
+                depth.usage(),
+                needed - depth.usage()
+            ));
+        }
+        let size = (color.width(), color.height());
+        if (depth.width(), depth.height()) != size || depth.depth_or_array_layers() != 1 {
+            return invalid(format!(
+                "the depth buffer is {}x{} but the colour target {}x{}: they must be the same size, \
+                 one layer",
+                depth.width(),
+                depth.height(),
+                size.0,
+                size.1
+            ));
+        }
+        ctx.check_image_size(size.0, size.1)?;
+        Ok(size)
     }
 }

@@ -5,9 +5,9 @@
 //! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::Camera;
 use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
+use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
@@ -152,7 +152,8 @@ pub struct AtmosphereViewUniforms {
     /// Third column.
     pub to_srgb2: [f32; 4],
     /// Range of the aerial-perspective volume (m); the projection's `A` and `B`, so that a
-    /// reversed-Z depth `z` lies at view depth `B / (z + A)`.
+    /// depth-buffer value `z` lies at view depth `B / (z + A)`; the far plane's depth (0 for
+    /// reversed-Z, 1 for standard).
     pub aerial: [f32; 4],
     /// x = number of suns.
     pub sun_count: [u32; 4],
@@ -166,6 +167,16 @@ fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 }
 
 impl AtmosphereViewUniforms {
+    /// The same view for a depth buffer in `convention`: the projection's `A`, `B` and the far
+    /// plane's depth in `aerial` (what [`Self::new`] gives is reversed-Z's).
+    pub fn for_depth_convention(mut self, camera: &Camera, convention: DepthConvention) -> Self {
+        let projection = camera.projection_matrix_for(convention);
+        self.aerial[1] = projection.z_axis.z as f32;
+        self.aerial[2] = projection.w_axis.z as f32;
+        self.aerial[3] = convention.far_depth() as f32;
+        self
+    }
+
     /// The view of `sky` by `camera` (whose aspect ratio is the target's).
     pub fn new(sky: &AtmosphereSky, camera: &Camera) -> Self {
         let atmosphere = &sky.atmosphere;

@@ -7,9 +7,9 @@
 //! the limb is occluded correctly from the ground to 100 AU.
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::Camera;
 use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareElement, FlareShape, FlareSource, LensFlare, SourceOnScreen};
+use firmament_core::{Camera, DepthConvention};
 use glam::{DVec2, DVec3, Mat4};
 
 use super::planet_view::PlanetView;
@@ -29,7 +29,8 @@ pub struct FlareFrameUniforms {
     /// tan of half the horizontal and vertical field of view; seconds since the last frame
     /// (0: a still, visibility taken at once); screen aspect (width / height).
     pub view: [f32; 4],
-    /// Fade-in and fade-out rates (visibility per second, 0 = at once), unused, unused.
+    /// Fade-in and fade-out rates (visibility per second, 0 = at once); 1 for a standard-Z depth
+    /// buffer (0 reversed-Z); unused.
     pub fade: [f32; 4],
 }
 
@@ -62,6 +63,16 @@ pub struct FlareInstance {
 }
 
 impl FlareFrameUniforms {
+    /// The same values over a depth buffer in `convention` (what [`Self::new`] gives is
+    /// reversed-Z's).
+    pub fn for_depth_convention(mut self, convention: DepthConvention) -> Self {
+        self.fade[2] = match convention {
+            DepthConvention::Standard => 1.0,
+            _ => 0.0,
+        };
+        self
+    }
+
     /// The frame's values: `sources` kept sources sampled as `flare` says over a depth buffer of
     /// `depth_size` pixels, seen by `camera`; `planet` (when the sky has one) hides sources
     /// behind it; `dt` seconds since the last frame, or `None` for a still.
@@ -105,13 +116,23 @@ impl FlareFrameUniforms {
 }
 
 impl FlareSourceGpu {
-    /// `source` as `camera` sees it, placed on screen at `at`.
+    /// `source` as `camera` sees it, placed on screen at `at`, over a reversed-Z depth buffer.
     pub fn new(camera: &Camera, source: &FlareSource, at: &SourceOnScreen) -> Self {
+        Self::in_convention(camera, source, at, DepthConvention::Reversed)
+    }
+
+    /// `source` as `camera` sees it, placed on screen at `at`, its depth in `convention`.
+    pub fn in_convention(
+        camera: &Camera,
+        source: &FlareSource,
+        at: &SourceOnScreen,
+        convention: DepthConvention,
+    ) -> Self {
         let (depth, distance) = if source.position.w == 0.0 {
-            (0.0, f32::MAX)
+            (convention.far_depth() as f32, f32::MAX)
         } else {
             let p: DVec3 = source.position.truncate() / source.position.w;
-            let clip = camera.projection_matrix() * camera.view_matrix() * p.extend(1.0);
+            let clip = camera.projection_matrix_for(convention) * camera.view_matrix() * p.extend(1.0);
             (
                 (clip.z / clip.w).clamp(0.0, 1.0) as f32,
                 (p - camera.position).length() as f32,

@@ -3,7 +3,9 @@
 
 use std::marker::PhantomData;
 
-use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::{
+    PassPipeline, SkyTarget, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer, uniform_entry,
+};
 
 /// A far-plane full-screen pipeline with its uniform buffer of `T` at binding 0.
 #[derive(Debug)]
@@ -17,13 +19,16 @@ pub(crate) struct FarPlaneDraw<T> {
 
 impl<T: bytemuck::Pod> FarPlaneDraw<T> {
     /// Builds the pipeline of `source` (`vs_main`, `fs_main`, one uniform at binding 0) for
-    /// `color` and `depth`, blending with `blend`; labels name `owner`.
+    /// `target`, blending with `blend`; labels name `owner`.
     pub(crate) fn new(
         device: &wgpu::Device,
         owner: &'static str,
         source: &str,
-        color: wgpu::TextureFormat,
-        depth: wgpu::TextureFormat,
+        SkyTarget {
+            color,
+            depth,
+            convention,
+        }: SkyTarget,
         blend: Option<wgpu::BlendState>,
     ) -> Self {
         let (pipeline, layout) = PassPipeline {
@@ -31,10 +36,10 @@ impl<T: bytemuck::Pod> FarPlaneDraw<T> {
             source,
             entries: &[uniform_entry(0)],
             color,
-            depth_stencil: Some(far_plane_depth_state(depth)),
+            depth_stencil: Some(far_plane_depth_state(depth, convention)),
             vertex_buffers: &[],
             primitive: wgpu::PrimitiveState::default(),
-            constants: &[],
+            constants: &[far_depth_constant(convention)],
         }
         .build_blended(device, blend);
         let uniforms = uniform_buffer::<T>(device, &format!("firmament {owner} uniforms"));

@@ -6,9 +6,9 @@
 //! Placement is the core's ([`firmament_core::flare`]): sources are projected and elements laid
 //! out in `f64` in `prepare`; the GPU only decides how much of each source is hidden.
 
-use firmament_core::Camera;
 use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareLayer, MAX_FLARE_ELEMENTS, MAX_FLARE_SOURCES, element_centers, on_screen};
+use firmament_core::{Camera, DepthConvention};
 
 use super::flare_images::FlareImageArray;
 use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
@@ -42,6 +42,8 @@ pub struct FlarePass {
     depth_size: (u32, u32),
     /// Seconds between frames for the fade rates; `None` for stills.
     interval: Option<f64>,
+    /// The convention of the bound depth buffer.
+    convention: DepthConvention,
 }
 
 fn storage_entry(binding: u32, visibility: wgpu::ShaderStages, read_only: bool) -> wgpu::BindGroupLayoutEntry {
@@ -276,10 +278,12 @@ impl FlarePass {
             instance_count: 0,
             depth_size: (0, 0),
             interval: None,
+            convention: DepthConvention::Reversed,
         }
     }
 
-    /// Binds the depth buffer (reversed-Z, `width` × `height`) whose geometry hides sources.
+    /// Binds the depth buffer (`width` × `height`, in the convention of
+    /// [`Self::set_depth_convention`]; reversed-Z by default) whose geometry hides sources.
     /// Call again when the depth texture changes.
     pub fn bind_depth(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView, width: u32, height: u32) {
         self.depth_size = (width, height);
@@ -346,7 +350,7 @@ impl FlarePass {
                 continue;
             };
             let index = sources.len() as u32;
-            sources.push(FlareSourceGpu::new(camera, source, &at));
+            sources.push(FlareSourceGpu::in_convention(camera, source, &at, self.convention));
             let centers = element_centers(camera, source, &positions);
             for (element, center) in flare.elements.iter().take(MAX_FLARE_ELEMENTS).zip(centers) {
                 if let Some(center) = center {
@@ -362,7 +366,8 @@ impl FlarePass {
             sources.len() as u32,
             self.depth_size,
             self.interval,
-        );
+        )
+        .for_depth_convention(self.convention);
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
         if !sources.is_empty() {
             queue.write_buffer(&self.sources, 0, bytemuck::cast_slice(&sources));
@@ -372,6 +377,12 @@ impl FlarePass {
         }
         self.source_count = sources.len() as u32;
         self.instance_count = instances.len() as u32;
+    }
+
+    /// Sets the convention of the depth buffer [`Self::bind_depth`] binds (reversed-Z, the
+    /// default, or standard), from the next `prepare` on.
+    pub fn set_depth_convention(&mut self, convention: DepthConvention) {
+        self.convention = convention;
     }
 
     /// Sets the time between frames (seconds) for the fade rates: a viewer's frame interval;

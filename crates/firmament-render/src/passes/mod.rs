@@ -2,6 +2,8 @@
 //! `prepare` and encodes commands in `record` (into its own render pass) or `draw` (into one the
 //! caller already began).
 
+use firmament_core::DepthConvention;
+
 pub mod atmosphere;
 mod far_plane;
 pub mod flare;
@@ -19,6 +21,42 @@ pub use objects::{GpuMesh, ObjectPass};
 pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
+
+/// What a sky pass draws into: the colour and depth formats and the depth buffer's convention
+/// (the sky goes at its far plane, tested against it). Pipelines are built for one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct SkyTarget {
+    /// The colour attachment's format.
+    pub color: wgpu::TextureFormat,
+    /// The depth attachment's format.
+    pub depth: wgpu::TextureFormat,
+    /// How its depths run.
+    pub convention: firmament_core::DepthConvention,
+}
+
+impl SkyTarget {
+    /// firmament's own targets: [`HDR_FORMAT`](crate::HDR_FORMAT) colour,
+    /// [`DEPTH_FORMAT`](crate::DEPTH_FORMAT) reversed-Z depth.
+    pub const OWN: Self = Self::new(
+        crate::targets::HDR_FORMAT,
+        crate::targets::DEPTH_FORMAT,
+        firmament_core::DepthConvention::Reversed,
+    );
+
+    /// A target of these formats and convention.
+    pub const fn new(
+        color: wgpu::TextureFormat,
+        depth: wgpu::TextureFormat,
+        convention: firmament_core::DepthConvention,
+    ) -> Self {
+        Self {
+            color,
+            depth,
+            convention,
+        }
+    }
+}
 
 /// A colour attachment of `view` that keeps (loads and stores) what earlier passes left.
 pub(crate) fn load_color_attachment(view: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
@@ -89,16 +127,30 @@ pub(crate) fn begin_clear_pass<'e>(
     })
 }
 
-/// Depth state of a sky drawn at the far plane (reversed-Z depth 0): tested `GreaterEqual`
-/// without writes, so it fills exactly the pixels nothing nearer covered.
-pub(crate) fn far_plane_depth_state(format: wgpu::TextureFormat) -> wgpu::DepthStencilState {
+/// Depth state of a sky drawn at the far plane (reversed-Z depth 0, standard depth 1): tested
+/// `GreaterEqual` (reversed) or `LessEqual` (standard) without writes, so it fills exactly the
+/// pixels nothing nearer covered.
+pub(crate) fn far_plane_depth_state(
+    format: wgpu::TextureFormat,
+    convention: DepthConvention,
+) -> wgpu::DepthStencilState {
+    let compare = match convention {
+        DepthConvention::Standard => wgpu::CompareFunction::LessEqual,
+        _ => wgpu::CompareFunction::GreaterEqual,
+    };
     wgpu::DepthStencilState {
         format,
         depth_write_enabled: Some(false),
-        depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+        depth_compare: Some(compare),
         stencil: wgpu::StencilState::default(),
         bias: wgpu::DepthBiasState::default(),
     }
+}
+
+/// The far-plane passes' `FAR_DEPTH` override (`common/fullscreen.wgsl`, `night_sky.wgsl`) for
+/// `convention`.
+pub(crate) fn far_depth_constant(convention: DepthConvention) -> (&'static str, f64) {
+    ("FAR_DEPTH", convention.far_depth())
 }
 
 /// A uniform buffer of `T`'s size, labelled for its owner.

@@ -14,9 +14,9 @@ use firmament_core::Camera;
 use firmament_core::night_sky::NightLayer;
 
 use crate::gpu_types::{MoonDraw, NightSkyUniforms, StarInstance};
-use crate::passes::{begin_load_pass, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::SkyTarget;
+use crate::passes::{begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer, uniform_entry};
 use crate::shaders;
-use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
 /// Stars the instance buffer holds at first (it grows when a layer has more): the naked-eye
 /// catalogue's 8867 fit.
@@ -63,14 +63,25 @@ fn instance_buffer(device: &wgpu::Device, stars: usize) -> wgpu::Buffer {
 }
 
 impl NightSkyPass {
-    /// Builds the star and Moon pipelines for an HDR target of [`HDR_FORMAT`] and depth of
-    /// [`DEPTH_FORMAT`].
+    /// Builds the star and Moon pipelines for an HDR target of [`HDR_FORMAT`](crate::HDR_FORMAT) and depth of
+    /// [`DEPTH_FORMAT`](crate::DEPTH_FORMAT).
     pub fn new(device: &wgpu::Device) -> Self {
-        Self::with_formats(device, HDR_FORMAT, DEPTH_FORMAT)
+        Self::for_target(device, SkyTarget::OWN)
     }
 
-    /// Builds the pipelines for other colour and depth formats.
-    pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
+    /// Builds the pipelines for `target`'s colour and depth formats and depth convention (drawn at
+    /// its far plane, tested against it).
+    pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
+        let SkyTarget {
+            color,
+            depth,
+            convention,
+        } = target;
+        let constants = [far_depth_constant(convention)];
+        let options = || wgpu::PipelineCompilationOptions {
+            constants: &constants,
+            ..Default::default()
+        };
         let uniforms = uniform_buffer::<NightSkyUniforms>(device, "firmament NightSkyPass uniforms");
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament NightSkyPass bind group layout"),
@@ -105,19 +116,19 @@ impl NightSkyPass {
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some(vertex),
-                    compilation_options: Default::default(),
+                    compilation_options: options(),
                     buffers,
                 },
                 primitive: wgpu::PrimitiveState {
                     topology: wgpu::PrimitiveTopology::TriangleStrip,
                     ..Default::default()
                 },
-                depth_stencil: Some(far_plane_depth_state(depth)),
+                depth_stencil: Some(far_plane_depth_state(depth, convention)),
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
                     entry_point: Some(fragment),
-                    compilation_options: Default::default(),
+                    compilation_options: options(),
                     targets: &[Some(wgpu::ColorTargetState {
                         format: color,
                         blend: Some(ADDITIVE),

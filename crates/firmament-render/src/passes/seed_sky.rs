@@ -16,9 +16,9 @@ use firmament_core::Camera;
 use firmament_core::frame::SeedSky;
 
 use crate::gpu_types::SeedSkyUniforms;
+use crate::passes::SkyTarget;
 use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
-use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
 /// The seed's blend (`glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA)`, seed line 252), for colour
 /// and alpha alike (alpha stays 1 over an opaque target).
@@ -31,15 +31,16 @@ pub struct SeedSkyPass {
 }
 
 impl SeedSkyPass {
-    /// Builds the pipeline for an HDR target of [`HDR_FORMAT`] and depth of [`DEPTH_FORMAT`].
+    /// Builds the pipeline for an HDR target of [`HDR_FORMAT`](crate::HDR_FORMAT) and depth of [`DEPTH_FORMAT`](crate::DEPTH_FORMAT).
     pub fn new(device: &wgpu::Device) -> Self {
-        Self::with_formats(device, HDR_FORMAT, DEPTH_FORMAT)
+        Self::for_target(device, SkyTarget::OWN)
     }
 
-    /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
-    pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
+    /// Builds the pipeline for `target`'s colour and depth formats and depth convention
+    /// (drawn at its far plane, tested against it).
+    pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
         Self {
-            sky: FarPlaneDraw::new(device, "SeedSkyPass", shaders::SEED_SKY, color, depth, Some(SEED_BLEND)),
+            sky: FarPlaneDraw::new(device, "SeedSkyPass", shaders::SEED_SKY, target, Some(SEED_BLEND)),
         }
     }
 

@@ -4,9 +4,9 @@ use firmament_core::Camera;
 use firmament_core::gradient_sky::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
+use crate::passes::SkyTarget;
 use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
-use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
 /// Draws the keyframed gradient sky behind everything already in the depth buffer.
 ///
@@ -19,15 +19,16 @@ pub struct GradientSkyPass {
 }
 
 impl GradientSkyPass {
-    /// Builds the pipeline for an HDR target of [`HDR_FORMAT`] and depth of [`DEPTH_FORMAT`].
+    /// Builds the pipeline for an HDR target of [`HDR_FORMAT`](crate::HDR_FORMAT) and depth of [`DEPTH_FORMAT`](crate::DEPTH_FORMAT).
     pub fn new(device: &wgpu::Device) -> Self {
-        Self::with_formats(device, HDR_FORMAT, DEPTH_FORMAT)
+        Self::for_target(device, SkyTarget::OWN)
     }
 
-    /// Builds the pipeline for other colour and depth formats (for embedding in another renderer).
-    pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
+    /// Builds the pipeline for `target`'s colour and depth formats and depth convention
+    /// (drawn at its far plane, tested against it).
+    pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
         Self {
-            sky: FarPlaneDraw::new(device, "GradientSkyPass", shaders::SKY_GRADIENT, color, depth, None),
+            sky: FarPlaneDraw::new(device, "GradientSkyPass", shaders::SKY_GRADIENT, target, None),
         }
     }
 

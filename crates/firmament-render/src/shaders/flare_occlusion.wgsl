@@ -12,7 +12,8 @@
 struct FlareSource {
     // xy = disc centre (NDC), zw = disc radii (NDC x, y).
     disc: vec4<f32>,
-    // x = the source's reversed-Z depth (0 for a sun), y = its distance (m).
+    // x = the source's depth in the buffer's convention (the far plane's for a sun), y = its
+    // distance (m).
     depth: vec4<f32>,
 }
 
@@ -51,7 +52,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         var hidden = planet_hides(p, source.depth.y);
         let pixel = vec2<f32>((p.x * 0.5 + 0.5) * size.x, (0.5 - p.y * 0.5) * size.y);
         if !hidden && all(pixel >= vec2<f32>(0.0)) && all(pixel < size) {
-            hidden = textureLoad(depth_buffer, vec2<i32>(pixel), 0).x > source.depth.x;
+            let depth = textureLoad(depth_buffer, vec2<i32>(pixel), 0).x;
+            hidden = select((depth > source.depth.x), (depth < source.depth.x), (frame.fade.z > 0.5));
         }
         if !hidden {
             seen = seen + 1u;

@@ -34,6 +34,9 @@
 // instead.)
 
 const HDR_MAX: f32 = 65504.0;
+// The far plane's clip depth: 0 for reversed-Z (firmament's), overridden with 1 for a
+// standard-Z depth buffer (an embedder's).
+override FAR_DEPTH: f32 = 0.0;
 
 struct NightSky {
     // Camera-relative world direction (w = 0) → clip space.
@@ -107,7 +110,7 @@ fn vs_star(@builtin(vertex_index) v: u32, star: StarIn) -> StarOut {
     // Half a pixel beyond the footprint's outermost pixel centres.
     let reach = (night.star.y + 1.0) * 2.0 / night.pixels.xy;
     let corner_ndc = ndc + quad_corner(v) * reach;
-    out.clip = vec4<f32>(corner_ndc, 0.0, 1.0);
+    out.clip = vec4<f32>(corner_ndc, FAR_DEPTH, 1.0);
     out.px = ndc_to_px(corner_ndc);
     out.center = ndc_to_px(ndc);
     return out;
@@ -153,7 +156,7 @@ fn vs_moon(@builtin(vertex_index) v: u32) -> MoonOut {
     let direction = night.moon_center.xyz + night.moon_e1.w * offset;
     let clip = night.view_proj * vec4<f32>(direction, 0.0);
     var out: MoonOut;
-    out.clip = vec4<f32>(clip.x, clip.y, 0.0, clip.w);
+    out.clip = vec4<f32>(clip.x, clip.y, FAR_DEPTH * clip.w, clip.w);
     out.uv = corner;
     return out;
 }

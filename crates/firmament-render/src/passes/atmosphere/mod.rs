@@ -34,13 +34,13 @@ mod stages;
 
 use std::cell::Cell;
 
-use firmament_core::Camera;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
+use firmament_core::{Camera, DepthConvention};
 
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
-use crate::passes::{PassPipeline, begin_load_pass, far_plane_depth_state, uniform_buffer};
+use crate::passes::SkyTarget;
+use crate::passes::{PassPipeline, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer};
 use crate::shaders;
-use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
@@ -106,16 +106,25 @@ pub struct AtmospherePass {
     medium_changed: Cell<bool>,
     sun_count: u32,
     method: SkyMethod,
+    /// The depth buffer's convention the pipelines were built for.
+    convention: DepthConvention,
 }
 
 impl AtmospherePass {
-    /// Builds the pipelines for an HDR target of [`HDR_FORMAT`] and depth of [`DEPTH_FORMAT`].
+    /// Builds the pipelines for an HDR target of [`HDR_FORMAT`](crate::HDR_FORMAT) and depth of [`DEPTH_FORMAT`](crate::DEPTH_FORMAT).
     pub fn new(device: &wgpu::Device) -> Self {
-        Self::with_formats(device, HDR_FORMAT, DEPTH_FORMAT)
+        Self::for_target(device, SkyTarget::OWN)
     }
 
-    /// Builds the pipelines for other colour and depth formats (for embedding in another renderer).
-    pub fn with_formats(device: &wgpu::Device, color: wgpu::TextureFormat, depth: wgpu::TextureFormat) -> Self {
+    /// Builds the pipelines for `target`'s colour and depth formats and depth convention: the sky
+    /// at its far plane, tested against it, and aerial perspective turning its depths into
+    /// distances with the matching projection.
+    pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
+        let SkyTarget {
+            color,
+            depth,
+            convention,
+        } = target;
         let luts = AtmosphereLuts::new(device);
         let params = uniform_buffer::<AtmosphereParamsUniforms>(device, "firmament AtmospherePass params");
         let view = uniform_buffer::<AtmosphereViewUniforms>(device, "firmament AtmospherePass view");
@@ -231,10 +240,10 @@ impl AtmospherePass {
                     source: shaders::ATMOSPHERE_SKY,
                     entries: &view_entries,
                     color,
-                    depth_stencil: Some(far_plane_depth_state(depth)),
+                    depth_stencil: Some(far_plane_depth_state(depth, convention)),
                     vertex_buffers: &[],
                     primitive: wgpu::PrimitiveState::default(),
-                    constants: &[("SKY_MODE", f64::from(mode as u32))],
+                    constants: &[("SKY_MODE", f64::from(mode as u32)), far_depth_constant(convention)],
                 },
                 &view_resources,
             )
@@ -276,6 +285,7 @@ impl AtmospherePass {
             sun_count: 0,
             method: SkyMethod::Lut,
             sky_mode: SkyMode::Lut,
+            convention,
         }
     }
 
@@ -287,7 +297,7 @@ impl AtmospherePass {
             self.uploaded = Some(params);
             self.medium_changed.set(true);
         }
-        let mut view = AtmosphereViewUniforms::new(sky, camera);
+        let mut view = AtmosphereViewUniforms::new(sky, camera).for_depth_convention(camera, self.convention);
         if self.method == SkyMethod::March {
             view.local_up[3] = 1.0;
         }

@@ -27,7 +27,9 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let depth = textureLoad(scene_depth, vec2<i32>(in.clip.xy), 0).x;
-    if depth <= 0.0 || view.center.w > 0.5 {
+    // The far plane: 0 (reversed-Z) or 1 (standard), as `view.aerial.w` says.
+    let at_far = select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5);
+    if at_far || view.center.w > 0.5 {
         discard;
     }
     let ray = view_ray(in.ndc);

@@ -29,7 +29,8 @@ struct AtmosphereView {
     to_srgb1: vec4<f32>,
     to_srgb2: vec4<f32>,
     // x = range of the aerial-perspective volume (m); y, z = the projection's A, B (view depth =
-    // B / (depth + A) for a reversed-Z depth-buffer value); w unused
+    // B / (depth + A) for a depth-buffer value); w = the far plane's depth (0 reversed-Z, 1
+    // standard)
     aerial: vec4<f32>,
     sun_count: vec4<u32>,        // x = number of suns; yzw unused
     suns: array<AtmosphereSun, 8>,

@@ -2,9 +2,10 @@
 //
 // Conventions: `ndc` is normalised device coordinates, x right and y up, both in [-1, 1] on
 // screen. Clip-space depth follows firmament's reversed-Z: 1 at the near plane, 0 at infinity,
-// so `FAR_DEPTH` puts a primitive at the far plane behind everything already drawn.
+// so `FAR_DEPTH` puts a primitive at the far plane behind everything already drawn. Pipelines
+// drawing into a standard-Z depth buffer (near 0, far 1: an embedder's) override it with 1.
 
-const FAR_DEPTH: f32 = 0.0;
+override FAR_DEPTH: f32 = 0.0;
 
 struct FullscreenVertex {
     @builtin(position) clip: vec4<f32>,

@@ -1,0 +1,452 @@
+//! Rendering into the caller's frame (`Renderer::prepare_into` / `record_into`): on a device this
+//! test creates, with its own HDR colour target and depth buffer holding a "cube" face drawn by
+//! its own pipeline, in both depth conventions, the sky pixels are the renderer's own HDR
+//! pixels for the same frame, the sky lies behind the face, and the face is fogged as the f64
+//! reference integrator predicts (`Reference::radiance_before`, as in `gpu_aerial_perspective.rs`).
+//! Bad targets give `RenderError::InvalidTarget` naming what is needed.
+
+use std::sync::{Mutex, MutexGuard};
+
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::atmosphere::{Planet, presets};
+use firmament_core::display::DisplaySettings;
+use firmament_core::frame::{AtmosphereSky, Sky};
+use firmament_core::geometry::Ray;
+use firmament_core::{Camera, Frame};
+use firmament_render::headless::HeadlessRenderer;
+use firmament_render::readback::{decode_f16, read_texture};
+use firmament_render::{DepthConvention, EmbedTarget, GpuContext, RenderError, Renderer, wgpu};
+use glam::{DVec3, DVec4};
+
+const WIDTH: u32 = 96;
+const HEIGHT: u32 = 64;
+/// The face covers NDC `[-FACE, FACE]²`.
+const FACE: f64 = 0.4;
+/// Radiance of the face that shows the transmittance, cd/m² (well inside half-float range).
+const BRIGHT: f64 = 30_000.0;
+
+/// Software rasterizers fight over cores: the tests take turns.
+fn turn() -> MutexGuard<'static, ()> {
+    static TURN: Mutex<()> = Mutex::new(());
+    TURN.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// The user's own device, made the way an embedder makes it.
+fn user_context() -> GpuContext {
+    let instance = wgpu::Instance::default();
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .unwrap_or_else(|e| panic!("GPU tests need an adapter and found none: {e}"));
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("gpu_embed_target user device"),
+        required_features: firmament_render::required_features(),
+        required_limits: firmament_render::required_limits().using_resolution(adapter.limits()),
+        ..Default::default()
+    }))
+    .unwrap_or_else(|e| panic!("no device: {e}"));
+    GpuContext::from_device(device, queue).expect("the device meets the requirements")
+}
+
+fn direction(azimuth: f64, elevation: f64) -> DVec3 {
+    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
+    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
+}
+
+/// Earth on Bruneton's sphere, ENU at (0°, 0°), a sun at 25°, a narrow camera 2 m up looking
+/// along `view` (so every pixel of the face is about as far as its centre).
+fn frame(view: DVec3, far: Option<f64>) -> Frame {
+    let mut atmosphere = presets::earth();
+    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
+    let eye = DVec3::Z * 2.0;
+    let camera = Camera::looking_at(eye, eye + view, DVec3::Z).expect("a view direction");
+    Frame {
+        camera: Camera {
+            fov_y: 0.5_f64.to_radians(),
+            far,
+            ..camera
+        },
+        sky: Sky::Atmosphere(AtmosphereSky {
+            atmosphere,
+            suns: vec![presets::earth_sun(direction(90.0, 25.0))],
+        }),
+        display: DisplaySettings::default(),
+        objects: Default::default(),
+        flares: Default::default(),
+        night: Default::default(),
+    }
+}
+
+/// The user's targets: an HDR colour texture and a depth buffer.
+struct UserTargets {
+    color: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+}
+
+fn texture(
+    ctx: &GpuContext,
+    label: &str,
+    (width, height, samples): (u32, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: samples,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+fn user_targets(ctx: &GpuContext) -> UserTargets {
+    use wgpu::TextureUsages as U;
+    let color = texture(
+        ctx,
+        "user colour",
+        (WIDTH, HEIGHT, 1),
+        wgpu::TextureFormat::Rgba16Float,
+        U::RENDER_ATTACHMENT | U::COPY_SRC,
+    );
+    let depth = texture(
+        ctx,
+        "user depth",
+        (WIDTH, HEIGHT, 1),
+        wgpu::TextureFormat::Depth32Float,
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+    );
+    UserTargets {
+        color_view: color.create_view(&Default::default()),
+        depth_view: depth.create_view(&Default::default()),
+        color,
+    }
+}
+
+/// The user's pipeline: a face-on square of colour `COLOR` at clip depth `DEPTH`, depth-tested
+/// in the user's convention and written.
+const USER_SHADER: &str = r"
+override DEPTH: f32 = 0.5;
+override COLOR: f32 = 1.0;
+override FACE: f32 = 0.5;
+
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let corner = vec2<f32>(f32(i & 1u), f32((i >> 1u) & 1u)) * 2.0 - 1.0;
+    return vec4<f32>(corner * FACE, DEPTH, 1.0);
+}
+
+@fragment
+fn fs_main() -> @location(0) vec4<f32> {
+    return vec4<f32>(COLOR, COLOR, COLOR, 1.0);
+}
+";
+
+/// Clears the user's targets (black; the convention's far depth) and draws the square of
+/// radiance `color` at view depth `distance`.
+fn draw_user_geometry(
+    ctx: &GpuContext,
+    encoder: &mut wgpu::CommandEncoder,
+    targets: &UserTargets,
+    camera: &Camera,
+    convention: DepthConvention,
+    (color, distance): (f64, f64),
+) {
+    let clip = camera.projection_matrix_for(convention) * DVec4::new(0.0, 0.0, -distance, 1.0);
+    let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("user square shader"),
+        source: wgpu::ShaderSource::Wgsl(USER_SHADER.into()),
+    });
+    let constants = [("DEPTH", clip.z / clip.w), ("COLOR", color), ("FACE", FACE)];
+    let options = || wgpu::PipelineCompilationOptions {
+        constants: &constants,
+        ..Default::default()
+    };
+    let compare = match convention {
+        DepthConvention::Standard => wgpu::CompareFunction::Less,
+        _ => wgpu::CompareFunction::Greater,
+    };
+    let pipeline = ctx.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("user square pipeline"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: options(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleStrip,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: options(),
+            targets: &[Some(wgpu::TextureFormat::Rgba16Float.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("user pass"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: &targets.color_view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth_view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(convention.far_depth() as f32),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    });
+    pass.set_pipeline(&pipeline);
+    pass.draw(0..4, 0..1);
+}
+
+/// The user's frame after firmament drew into it: RGBA f32, top row first.
+fn embedded_image(
+    ctx: &GpuContext,
+    renderer: &mut Renderer,
+    frame: &Frame,
+    convention: DepthConvention,
+    square: (f64, f64),
+) -> Vec<f32> {
+    let targets = user_targets(ctx);
+    let target = EmbedTarget::new(&targets.color_view, &targets.depth_view, convention);
+    renderer.prepare_into(ctx, frame, &target).expect("a valid target");
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("user frame"),
+    });
+    let camera = Camera {
+        aspect: f64::from(WIDTH) / f64::from(HEIGHT),
+        ..frame.camera
+    };
+    draw_user_geometry(ctx, &mut encoder, &targets, &camera, convention, square);
+    renderer.record_into(&mut encoder, &target).expect("prepared");
+    ctx.queue.submit([encoder.finish()]);
+    decode_f16(&read_texture(ctx, &targets.color).expect("readback"))
+}
+
+/// Whether pixel (`x`, `y`) is inside the square (a pixel's margin either way counts as neither).
+fn in_square(x: u32, y: u32) -> Option<bool> {
+    let ndc = |p: u32, n: u32| (2.0 * (f64::from(p) + 0.5) / f64::from(n) - 1.0).abs();
+    let (dx, dy) = (ndc(x, WIDTH), ndc(y, HEIGHT));
+    let margin = 2.0 * 1.5 / f64::from(HEIGHT);
+    if dx < FACE - margin && dy < FACE - margin {
+        Some(true)
+    } else if dx > FACE + margin || dy > FACE + margin {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+fn mean_rgb(pixels: &[f32], inside: bool) -> DVec3 {
+    let mut sum = DVec3::ZERO;
+    let mut n = 0.0;
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            if in_square(x, y) == Some(inside) {
+                let i = ((y * WIDTH + x) * 4) as usize;
+                sum += DVec3::new(f64::from(pixels[i]), f64::from(pixels[i + 1]), f64::from(pixels[i + 2]));
+                n += 1.0;
+            }
+        }
+    }
+    sum / n
+}
+
+#[test]
+fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
+    let _turn = turn();
+    let ctx = user_context();
+    let view = direction(60.0, 1.0);
+    let distance = 4_000.0;
+    let eye = DVec3::Z * 2.0;
+    let Sky::Atmosphere(sky) = frame(view, None).sky else {
+        unreachable!("an atmosphere frame")
+    };
+    let reference = Reference::new(
+        sky.atmosphere,
+        &sky.suns,
+        ReferenceSettings {
+            paths: 4096,
+            ..Default::default()
+        },
+    );
+    let want = reference.radiance_before(
+        &Ray {
+            origin: eye,
+            direction: view,
+        },
+        distance,
+    );
+    let conversion = sky.atmosphere.spectral_conversion();
+    let want_s = conversion.linear_srgb(want.scattered());
+    let want_s = DVec3::new(want_s.r, want_s.g, want_s.b);
+    let want_t = DVec3::new(want.transmittance.x, want.transmittance.y, want.transmittance.z);
+
+    let mut own = HeadlessRenderer::new(&ctx);
+    let mut renderer = Renderer::new(&ctx, wgpu::TextureFormat::Rgba8UnormSrgb);
+    for far in [None, Some(100_000.0)] {
+        let frame = frame(view, far);
+        let sky = own
+            .render_hdr(&ctx, &frame, WIDTH, HEIGHT)
+            .expect("own HDR render")
+            .pixels;
+        for convention in [DepthConvention::Reversed, DepthConvention::Standard] {
+            let dark = embedded_image(&ctx, &mut renderer, &frame, convention, (0.0, distance));
+            let bright = embedded_image(&ctx, &mut renderer, &frame, convention, (BRIGHT, distance));
+            // The sky: the renderer's own pixels, to half-float rounding.
+            let mut worst_sky = 0.0_f64;
+            let mut sky_pixels = 0;
+            for y in 0..HEIGHT {
+                for x in 0..WIDTH {
+                    if in_square(x, y) != Some(false) {
+                        continue;
+                    }
+                    sky_pixels += 1;
+                    let i = ((y * WIDTH + x) * 4) as usize;
+                    for c in 0..3 {
+                        for image in [&dark, &bright] {
+                            let (got, want) = (f64::from(image[i + c]), f64::from(sky[i + c]));
+                            let error = (got - want).abs() / want.abs().max(1e-3);
+                            worst_sky = worst_sky.max(error);
+                        }
+                    }
+                }
+            }
+            // The face: the user's colour · T + S.
+            let s = mean_rgb(&dark, true);
+            let t = (mean_rgb(&bright, true) - s) / BRIGHT;
+            let s_error = (s - want_s).abs().max_element() / want_s.max_element();
+            let t_error = (t - want_t).abs().max_element();
+            println!(
+                "{convention:?}, far {far:?}: sky vs own HDR path worst {:.2e} relative over {sky_pixels} \
+                 pixels; face S {s:.4} vs {want_s:.4} ({:.2} %), T {t:.4} vs {want_t:.4} ({t_error:.1e})",
+                worst_sky,
+                100.0 * s_error
+            );
+            assert!(
+                worst_sky <= 1e-3,
+                "{convention:?}: the sky differs from the renderer's own by {worst_sky}"
+            );
+            // The sky is behind the face: no sky light on it beyond the air's.
+            assert!(
+                s_error < 0.06,
+                "{convention:?}: scattered light off by {:.1} %",
+                100.0 * s_error
+            );
+            assert!(t_error < 3e-3, "{convention:?}: transmittance off by {t_error}");
+        }
+    }
+}
+
+/// The error of `prepare_into` for `color` and `depth` (and that `record_into` refuses it too).
+fn target_error(ctx: &GpuContext, renderer: &mut Renderer, color: &wgpu::Texture, depth: &wgpu::Texture) -> String {
+    let (color_view, depth_view) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
+    let target = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Standard);
+    let frame = frame(direction(0.0, 5.0), None);
+    let error = renderer
+        .prepare_into(ctx, &frame, &target)
+        .expect_err("an invalid target");
+    assert!(matches!(error, RenderError::InvalidTarget(_)), "{error:?}");
+    error.to_string()
+}
+
+#[test]
+fn bad_targets_are_refused_with_what_is_needed() {
+    use wgpu::TextureFormat as F;
+    use wgpu::TextureUsages as U;
+    let _turn = turn();
+    let ctx = user_context();
+    let mut renderer = Renderer::new(&ctx, F::Rgba8UnormSrgb);
+    let rt = U::RENDER_ATTACHMENT;
+    let depth_usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;
+    let size = (WIDTH, HEIGHT, 1);
+    let color = texture(&ctx, "good colour", size, F::Rgba16Float, rt);
+    let depth = texture(&ctx, "good depth", size, F::Depth32Float, depth_usage);
+    let cases: Vec<(&str, wgpu::Texture, wgpu::Texture, &str)> = vec![
+        (
+            "depth of another size",
+            texture(&ctx, "colour", size, F::Rgba16Float, rt),
+            texture(
+                &ctx,
+                "small depth",
+                (WIDTH / 2, HEIGHT, 1),
+                F::Depth32Float,
+                depth_usage,
+            ),
+            "must be the same size",
+        ),
+        (
+            "MSAA colour",
+            texture(&ctx, "msaa colour", (WIDTH, HEIGHT, 4), F::Rgba16Float, rt),
+            texture(&ctx, "msaa depth", (WIDTH, HEIGHT, 4), F::Depth32Float, rt),
+            "resolve",
+        ),
+        (
+            "8-bit colour",
+            texture(&ctx, "bgra colour", size, F::Bgra8Unorm, rt),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "Rgba16Float",
+        ),
+        (
+            "depth-stencil",
+            texture(&ctx, "colour", size, F::Rgba16Float, rt),
+            texture(&ctx, "depth stencil", size, F::Depth24PlusStencil8, depth_usage),
+            "Depth32Float",
+        ),
+        (
+            "depth not bindable",
+            texture(&ctx, "colour", size, F::Rgba16Float, rt),
+            texture(&ctx, "depth", size, F::Depth32Float, rt),
+            "TEXTURE_BINDING",
+        ),
+    ];
+    for (what, color, depth, needed) in &cases {
+        let message = target_error(&ctx, &mut renderer, color, depth);
+        println!("{what}: {message}");
+        assert!(message.contains(needed), "{what}: `{message}` does not name `{needed}`");
+    }
+    // Recording into a target nothing was prepared for is refused too, and encodes nothing.
+    let (color_view, depth_view) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
+    let target = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Reversed);
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
+    let error = renderer.record_into(&mut encoder, &target).expect_err("not prepared");
+    assert!(error.to_string().contains("prepare_into"), "{error}");
+}
