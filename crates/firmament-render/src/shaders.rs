@@ -37,8 +37,9 @@ pub const SEED_SKY: &str = concat!(
     include_str!("shaders/seed_sky.wgsl")
 );
 
-/// Composes an atmosphere pass: the full-screen triangle, the ellipsoid intersection and view ray, the atmosphere includes in dependency
-/// order (`common`, `luts`, `view`), then the entry file.
+/// Composes an atmosphere pass (or an atmosphere include with the ones it needs): the full-screen
+/// triangle, the ellipsoid intersection and view ray, the atmosphere includes in dependency order
+/// (`common`, `luts`, `view`, …), then the entry file.
 macro_rules! atmosphere_shader {
     ($($include:literal),* ; $entry:literal) => {
         concat!(
@@ -213,53 +214,12 @@ pub const INCLUDES: &[(&str, &str)] = &[
     ("common/ellipsoid", ELLIPSOID),
     ("common/view_ray", VIEW_RAY),
     ("flare_common", include_str!("shaders/flare_common.wgsl")),
-    (
-        "atmosphere/common",
-        concat!(
-            include_str!("shaders/common/ellipsoid.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/common.wgsl")
-        ),
-    ),
-    (
-        "atmosphere/luts",
-        concat!(
-            include_str!("shaders/common/ellipsoid.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/common.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/luts.wgsl")
-        ),
-    ),
-    (
-        "atmosphere/view",
-        concat!(
-            include_str!("shaders/common/ellipsoid.wgsl"),
-            "\n",
-            include_str!("shaders/common/view_ray.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/common.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/luts.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/view.wgsl")
-        ),
-    ),
+    ("atmosphere/common", atmosphere_shader!(; "common")),
+    ("atmosphere/luts", atmosphere_shader!("common"; "luts")),
+    ("atmosphere/view", atmosphere_shader!("common", "luts"; "view")),
     (
         "atmosphere/sky_view",
-        concat!(
-            include_str!("shaders/common/ellipsoid.wgsl"),
-            "\n",
-            include_str!("shaders/common/view_ray.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/common.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/luts.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/view.wgsl"),
-            "\n",
-            include_str!("shaders/atmosphere/sky_view.wgsl")
-        ),
+        atmosphere_shader!("common", "luts", "view"; "sky_view"),
     ),
     ("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL),
     (

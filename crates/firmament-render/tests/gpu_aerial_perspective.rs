@@ -3,33 +3,16 @@
 
 mod support;
 
-use support::{clear_targets, gpu};
+use support::{clear_targets, direction, gpu, street_sky};
 
 use firmament_core::Camera;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::atmosphere::{Planet, presets};
 use firmament_core::frame::AtmosphereSky;
 use firmament_core::geometry::Ray;
 use firmament_render::passes::AtmospherePass;
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::{FrameTargets, GpuContext};
 use glam::{DVec3, DVec4};
-
-/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, ENU.
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
-}
-
-/// Earth on Bruneton's sphere, posed so the world is ENU at (0°, 0°), one sun.
-fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> AtmosphereSky {
-    let mut atmosphere = presets::earth();
-    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
-    AtmosphereSky {
-        atmosphere,
-        suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
-    }
-}
 
 /// The reversed-Z depth-buffer value of a point at view depth `depth` metres.
 fn depth_value(camera: &Camera, depth: f64) -> f32 {

@@ -3,7 +3,7 @@
 
 mod support;
 
-use support::{Gpu, gpu};
+use support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};
@@ -21,12 +21,6 @@ fn earth_sphere() -> Atmosphere {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
     atmosphere
-}
-
-/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, ENU.
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
 }
 
 /// A camera at `position` looking along `view` with vertical field of view `fov_y` radians.

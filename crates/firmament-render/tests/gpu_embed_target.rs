@@ -5,7 +5,10 @@
 //! reference integrator predicts (`Reference::radiance_before`, as in `gpu_aerial_perspective.rs`).
 //! Bad targets give `RenderError::InvalidTarget` naming what is needed.
 
+mod support;
+
 use std::sync::{Mutex, MutexGuard};
+use support::direction;
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Planet, presets};
@@ -47,11 +50,6 @@ fn user_context() -> GpuContext {
     }))
     .unwrap_or_else(|e| panic!("no device: {e}"));
     GpuContext::from_device(device, queue).expect("the device meets the requirements")
-}
-
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
 }
 
 /// Earth on Bruneton's sphere, ENU at (0°, 0°), a sun at 25°, a narrow camera 2 m up looking

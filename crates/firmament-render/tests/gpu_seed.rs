@@ -9,7 +9,7 @@
 
 mod support;
 
-use support::{Gpu, gpu};
+use support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::Planet;
 use firmament_core::atmosphere::seed::{SeedAtmosphere, SeedStar};
@@ -46,12 +46,6 @@ fn seed_sky(preset: SeedAtmosphere, latitude: f64, longitude: f64, suns: &[(DVec
         stars,
         luminance: SEED_DEFAULT_LUMINANCE,
     }
-}
-
-/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, ENU.
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
 }
 
 fn camera(position: DVec3, target: DVec3, fov_y: f64) -> Camera {

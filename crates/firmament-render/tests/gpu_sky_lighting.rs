@@ -5,7 +5,7 @@
 
 mod support;
 
-use support::{Gpu, gpu};
+use support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};
@@ -22,12 +22,6 @@ use firmament_render::passes::atmosphere::sky_lighting_layout_entry;
 use firmament_render::readback::read_buffer;
 use firmament_render::shaders::firmament_lighting_wgsl;
 use glam::{DVec2, DVec3};
-
-/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, ENU.
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
-}
 
 /// Bruneton's 6360 km sphere with the `earth` medium, posed so the world is ENU at
 /// (`latitude`, `longitude`) — so the planet frame is not the world frame.

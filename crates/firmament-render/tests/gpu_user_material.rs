@@ -7,12 +7,10 @@
 
 mod support;
 
-use support::gpu;
+use support::{direction, gpu, street_sky};
 
 use firmament_core::Camera;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::atmosphere::{Planet, presets};
-use firmament_core::frame::AtmosphereSky;
 use firmament_core::geometry::Ray;
 use firmament_render::SkyLightingGpu;
 use firmament_render::passes::AtmospherePass;
@@ -20,22 +18,6 @@ use firmament_render::passes::atmosphere::{aerial_perspective_layout_entries, sk
 use firmament_render::readback::read_buffer;
 use firmament_render::shaders::{firmament_aerial_perspective_wgsl, firmament_lighting_wgsl};
 use glam::DVec3;
-
-/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, ENU.
-fn direction(azimuth: f64, elevation: f64) -> DVec3 {
-    let (a, e) = (azimuth.to_radians(), elevation.to_radians());
-    DVec3::new(e.cos() * a.sin(), e.cos() * a.cos(), e.sin())
-}
-
-/// Earth on Bruneton's sphere, posed so the world is ENU at (0°, 0°), one sun.
-fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> AtmosphereSky {
-    let mut atmosphere = presets::earth();
-    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
-    AtmosphereSky {
-        atmosphere,
-        suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
-    }
-}
 
 /// A camera at `position` looking along `view`, with a narrow field of view.
 fn camera(position: DVec3, view: DVec3) -> Camera {

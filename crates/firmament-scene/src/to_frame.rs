@@ -195,6 +195,7 @@ impl Scene {
     }
 
     fn frame_for(&self, moment: Moment) -> Result<Frame, SceneError> {
+        let camera = self.camera();
         let real_sun = moment.instant.map(|i| self.real_sun(&i)).transpose()?;
         let sky = match self.sky.model {
             SkyModelName::Gradient => Sky::Gradient(self.gradient_sky(moment.clock, real_sun.as_ref())?),
@@ -203,7 +204,7 @@ impl Scene {
                 match self.atmosphere.model {
                     AtmosphereModelName::Physical => {
                         if let Some(instant) = &moment.instant {
-                            crate::night::add_moonlight(self, instant, &self.camera(), &mut sky);
+                            crate::night::add_moonlight(self, instant, &camera, &mut sky);
                         }
                         Sky::Atmosphere(sky)
                     }
@@ -215,10 +216,8 @@ impl Scene {
                 Sky::Clear(firmament_core::LinearRgb::new(r, g, b))
             }
         };
-        let time = moment.clock;
-        let camera = self.camera();
         let flares = crate::flare::flare_layer(self, &camera, &sky)?;
-        let objects = crate::objects::object_layer(self, time, &sky)?;
+        let objects = crate::objects::object_layer(self, moment.clock, &sky)?;
         let night = moment
             .instant
             .map(|instant| crate::night::night_layer(self, &instant, &camera, &sky))

@@ -101,20 +101,6 @@ fn draw_bind_group(
     })
 }
 
-/// Additive blending: flares add light.
-const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::Zero,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
-
 impl FlarePass {
     /// Builds both pipelines for [`HDR_FORMAT`] targets.
     pub fn new(device: &wgpu::Device) -> Self {
@@ -238,7 +224,7 @@ impl FlarePass {
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
                     format,
-                    blend: Some(ADDITIVE),
+                    blend: Some(super::ADDITIVE),
                     write_mask: wgpu::ColorWrites::ALL,
                 })],
             }),

@@ -58,6 +58,21 @@ impl SkyTarget {
     }
 }
 
+/// Additive blending: light added to what the target holds (the night sky over the sky, flares
+/// over everything); alpha is kept.
+pub(crate) const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Zero,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
 /// A colour attachment of `view` that keeps (loads and stores) what earlier passes left.
 pub(crate) fn load_color_attachment(view: &wgpu::TextureView) -> wgpu::RenderPassColorAttachment<'_> {
     wgpu::RenderPassColorAttachment {

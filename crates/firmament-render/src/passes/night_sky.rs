@@ -22,20 +22,6 @@ use crate::shaders;
 /// catalogue's 8867 fit.
 const INITIAL_STAR_CAPACITY: usize = 9216;
 
-/// Additive blending: the night sky adds light to the sky behind it; alpha is kept.
-const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-    alpha: wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::Zero,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    },
-};
-
 /// Draws a frame's [`NightLayer`]: stars and the Moon.
 #[derive(Debug)]
 pub struct NightSkyPass {
@@ -131,7 +117,7 @@ impl NightSkyPass {
                     compilation_options: options(),
                     targets: &[Some(wgpu::ColorTargetState {
                         format: color,
-                        blend: Some(ADDITIVE),
+                        blend: Some(super::ADDITIVE),
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
                 }),

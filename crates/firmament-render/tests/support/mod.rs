@@ -61,3 +61,28 @@ pub(crate) fn gpu() -> std::sync::MutexGuard<'static, Gpu> {
     .lock()
     .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
+
+/// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, East-North-Up.
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them place suns or views"
+)]
+pub(crate) fn direction(azimuth: f64, elevation: f64) -> glam::DVec3 {
+    firmament_core::camera::direction_from_heading_elevation(azimuth.to_radians(), elevation.to_radians())
+}
+
+/// Earth on Bruneton's sphere, posed so the world is ENU at (0°, 0°), one sun at `sun_azimuth`,
+/// `sun_elevation` degrees.
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them need a street sky"
+)]
+pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core::frame::AtmosphereSky {
+    use firmament_core::atmosphere::{Planet, presets};
+    let mut atmosphere = presets::earth();
+    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
+    firmament_core::frame::AtmosphereSky {
+        atmosphere,
+        suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
+    }
+}
