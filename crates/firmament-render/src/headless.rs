@@ -10,6 +10,30 @@ use crate::renderer::Renderer;
 /// Format of the display image: 8-bit RGBA, sRGB-encoded by the hardware.
 pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
+/// A `width` × `height` texture of [`LDR_FORMAT`] a [`Renderer`] built for it can record into
+/// (`RENDER_ATTACHMENT`, plus `usage`), labelled `label`.
+pub fn ldr_texture(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: LDR_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
+        view_formats: &[],
+    })
+}
+
 /// An image read back from the GPU, rows top first.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Image<T> {
@@ -118,20 +142,12 @@ impl HeadlessRenderer {
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let oom = ctx.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         if self.output.as_ref().map(|t| (t.width(), t.height())) != Some((width, height)) {
-            self.output = Some(ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("firmament HeadlessRenderer output"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: LDR_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            }));
+            self.output = Some(ldr_texture(
+                &ctx.device,
+                "firmament HeadlessRenderer output",
+                (width, height),
+                wgpu::TextureUsages::COPY_SRC,
+            ));
         }
         self.renderer.prepare(ctx, frame, width, height)?;
         if let Some(output) = &self.output {

@@ -9,6 +9,10 @@ use firmament_core::frame::Sky;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
+use crate::pass_timing::{
+    FrameTiming, PHASE_AERIAL_PERSPECTIVE, PHASE_FLARES, PHASE_LUTS, PHASE_SKY_AND_OBJECTS, PHASE_TONEMAP, PassTimer,
+    PassTimes,
+};
 use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
 use crate::passes::{
@@ -138,6 +142,8 @@ pub struct Renderer {
     flare_interval: Option<f64>,
     /// The size of the caller's target at the last `prepare_into`.
     embedded_size: (u32, u32),
+    /// Per-pass GPU timing, when on ([`Renderer::enable_pass_timing`]).
+    pass_timer: Option<PassTimer>,
 }
 
 impl Renderer {
@@ -154,6 +160,7 @@ impl Renderer {
             aerial_volume_wanted: false,
             flare_interval: None,
             embedded_size: (0, 0),
+            pass_timer: None,
         }
     }
 
@@ -199,8 +206,10 @@ impl Renderer {
             return;
         }
         let own = &self.own;
+        let mut timing = FrameTiming::begin(self.pass_timer.as_ref(), encoder);
         if self.sky == SkyKind::Atmosphere {
             own.atmosphere.record_luts(encoder);
+            timing.mark(encoder, PHASE_LUTS);
         }
         let clear = match self.sky {
             SkyKind::Clear(color) => color,
@@ -220,17 +229,23 @@ impl Renderer {
             // Stars and the Moon, added over the sky where nothing nearer was drawn.
             own.night.draw(&mut pass);
         }
+        timing.mark(encoder, PHASE_SKY_AND_OBJECTS);
         if self.sky == SkyKind::Atmosphere {
             if !self.objects.is_empty() {
                 // Builds the volume too.
                 own.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+                timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
             } else if self.aerial_volume_wanted {
                 own.atmosphere.record_aerial_perspective_volume(encoder);
+                timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
             }
         }
         // Flares last, over everything, hidden by what the depth buffer holds.
         own.flares.record(encoder, &targets.hdr_view);
+        timing.mark(encoder, PHASE_FLARES);
         self.tonemap.record(encoder, output);
+        timing.mark(encoder, PHASE_TONEMAP);
+        timing.finish(encoder);
     }
 
     /// Prepares `frame` for [`record_into`](Self::record_into) the caller's `target`: checks the
@@ -289,8 +304,10 @@ impl Renderer {
             )));
         }
         let passes = self.passes();
+        let mut timing = FrameTiming::begin(self.pass_timer.as_ref(), encoder);
         if self.sky == SkyKind::Atmosphere {
             passes.atmosphere.record_luts(encoder);
+            timing.mark(encoder, PHASE_LUTS);
         }
         {
             let mut pass = begin_load_pass(encoder, "firmament Renderer embedded sky", target.color, target.depth);
@@ -298,10 +315,14 @@ impl Renderer {
             passes.draw_sky(&mut pass, self.sky);
             passes.night.draw(&mut pass);
         }
+        timing.mark(encoder, PHASE_SKY_AND_OBJECTS);
         if self.sky == SkyKind::Atmosphere {
             passes.atmosphere.record_aerial_perspective(encoder, target.color);
+            timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
         }
         passes.flares.record(encoder, target.color);
+        timing.mark(encoder, PHASE_FLARES);
+        timing.finish(encoder);
         Ok(())
     }
 
@@ -358,6 +379,43 @@ impl Renderer {
     /// firmament objects (the default).
     pub fn set_aerial_perspective_for_users(&mut self, every_frame: bool) {
         self.aerial_volume_wanted = every_frame;
+    }
+
+    /// Turns on per-pass GPU timing of [`record`](Self::record) and
+    /// [`record_into`](Self::record_into) ([`crate::pass_timing`]): builds a timestamp query set
+    /// and a few small read-back buffers. `true` when timing is on (it already was, or the device
+    /// has [`TIMESTAMP_FEATURES`](crate::bench::TIMESTAMP_FEATURES)); `false`, and timing stays
+    /// off, where the device has no timestamps inside encoders
+    /// ([`pass_timing_supported`](crate::pass_timing_supported)). Timing changes no pixel.
+    pub fn enable_pass_timing(&mut self, ctx: &GpuContext) -> bool {
+        if self.pass_timer.is_none() {
+            self.pass_timer = PassTimer::new(ctx);
+        }
+        self.pass_timer.is_some()
+    }
+
+    /// Turns per-pass GPU timing off (the default) and frees its GPU objects; the times already
+    /// read are forgotten.
+    pub fn disable_pass_timing(&mut self) {
+        self.pass_timer = None;
+    }
+
+    /// Whether per-pass GPU timing is on ([`enable_pass_timing`](Self::enable_pass_timing)).
+    pub fn pass_timing_enabled(&self) -> bool {
+        self.pass_timer.is_some()
+    }
+
+    /// The GPU time of each phase of the newest timed frame whose timestamps have come back —
+    /// milliseconds of GPU time, phases in the order they ran ([`PassTimes`]); `None` while timing
+    /// is off or before any timed frame finished.
+    ///
+    /// Never blocks: it polls the device once without waiting (`wgpu::PollType::Poll`), so the
+    /// times are usually one or two frames old. Nothing needs calling after `queue.submit`: the
+    /// read-back is mapped on submission. Call it once a frame (or at least now and then): a
+    /// frame is not timed while all of the few read-back buffers hold results not yet collected
+    /// (here or by the next `record`) or still on the GPU.
+    pub fn pass_times(&self, ctx: &GpuContext) -> Option<PassTimes> {
+        self.pass_timer.as_ref()?.pass_times(ctx)
     }
 
     /// The HDR and depth targets of the last `prepare` (for EXR output and tests).

@@ -34,24 +34,6 @@ fn turn() -> MutexGuard<'static, ()> {
     TURN.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-/// The user's own device, made the way an embedder makes it.
-fn user_context() -> GpuContext {
-    let instance = wgpu::Instance::default();
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        ..Default::default()
-    }))
-    .unwrap_or_else(|e| panic!("GPU tests need an adapter and found none: {e}"));
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("gpu_embed_target user device"),
-        required_features: firmament_render::required_features(),
-        required_limits: firmament_render::required_limits().using_resolution(adapter.limits()),
-        ..Default::default()
-    }))
-    .unwrap_or_else(|e| panic!("no device: {e}"));
-    GpuContext::from_device(device, queue).expect("the device meets the requirements")
-}
-
 /// Earth on Bruneton's sphere, ENU at (0°, 0°), a sun at 25°, a narrow camera 2 m up looking
 /// along `view` (so every pixel of the face is about as far as its centre).
 fn frame(view: DVec3, far: Option<f64>) -> Frame {
@@ -283,7 +265,7 @@ fn mean_rgb(pixels: &[f32], inside: bool) -> DVec3 {
 #[test]
 fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
     let _turn = turn();
-    let ctx = user_context();
+    let ctx = support::user_context("gpu_embed_target user device");
     let view = direction(60.0, 1.0);
     let distance = 4_000.0;
     let eye = DVec3::Z * 2.0;
@@ -386,7 +368,7 @@ fn bad_targets_are_refused_with_what_is_needed() {
     use wgpu::TextureFormat as F;
     use wgpu::TextureUsages as U;
     let _turn = turn();
-    let ctx = user_context();
+    let ctx = support::user_context("gpu_embed_target user device");
     let mut renderer = Renderer::new(&ctx, F::Rgba8UnormSrgb);
     let rt = U::RENDER_ATTACHMENT;
     let depth_usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING;

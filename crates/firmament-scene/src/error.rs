@@ -73,6 +73,14 @@ pub enum SceneError {
         /// What is wrong: the OS error, or the first broken rule of the format.
         reason: String,
     },
+    /// A scene file could not be written (nothing was written: saves are atomic).
+    #[error("cannot write scene file {path}: {reason}")]
+    Write {
+        /// The path given.
+        path: String,
+        /// What went wrong: the operating system's message, or what the scene cannot express.
+        reason: String,
+    },
     /// A `key.path=value` override that cannot be applied.
     #[error("--set {item}: {rule}")]
     BadOverride {

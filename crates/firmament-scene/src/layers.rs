@@ -57,14 +57,18 @@ pub(crate) fn apply_override(table: &mut toml::Table, item: &str) -> Result<(), 
         rule: rule.to_owned(),
     };
     let (path, raw) = item.split_once('=').ok_or_else(|| bad("expected key.path=value"))?;
-    let path = path.trim();
+    set_path(table, path.trim(), parse_value(raw.trim())).map_err(|rule| bad(&rule))
+}
+
+/// Sets the value at a dotted key path (`suns.0.elevation`), addressed as [`apply_override`]
+/// does; the error is the rule the path breaks.
+pub(crate) fn set_path(table: &mut toml::Table, path: &str, value: toml::Value) -> Result<(), String> {
     let keys: Vec<&str> = path.split('.').collect();
     if keys.iter().any(|k| k.is_empty()) {
-        return Err(bad("the key path has an empty part"));
+        return Err("the key path has an empty part".to_owned());
     }
-    let value = parse_value(raw.trim());
     let mut root = toml::Value::Table(std::mem::take(table));
-    let result = assign(&mut root, &keys, value).map_err(|rule| bad(&rule));
+    let result = assign(&mut root, &keys, value);
     if let toml::Value::Table(t) = root {
         *table = t;
     }

@@ -24,12 +24,16 @@
 //! the atmosphere. `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of the
 //! physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
 //!
+//! A [`SceneDocument`] keeps the layered table for editing key by key and saves it as a complete
+//! scene file; [`load`] and [`load_file`] build their scene through one.
+//!
 //! `[flare]` (off by default) gives every sun of the sky and every `[[lights]]` entry marked
 //! `flare = true` a lens flare: a built-in preset's elements or the scene's own `flare.elements`.
 
 pub mod assets;
 mod atmosphere;
 mod color;
+mod document;
 mod error;
 mod flare;
 mod layers;
@@ -44,6 +48,7 @@ mod validate;
 
 pub use atmosphere::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
 pub use color::SceneColor;
+pub use document::{SceneDocument, SceneOrigin};
 pub use error::SceneError;
 pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection,
@@ -80,37 +85,14 @@ pub enum SceneSource<'a> {
 }
 
 /// Builds and validates a scene: `source`, with an optional preset to start from, then
-/// `overrides` (each `key.path=value`, the value in TOML syntax or a bare string).
+/// `overrides` (each `key.path=value`, the value in TOML syntax or a bare string). The same as
+/// [`SceneDocument::load`] then [`SceneDocument::scene`].
 pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
-    let mut table = match source {
-        SceneSource::Preset(name) => presets::resolved_table(preset.unwrap_or(name))?,
-        SceneSource::Text { text, origin } => layers::layer_file(text, origin, preset)?,
-    };
-    for item in overrides {
-        layers::apply_override(&mut table, item)?;
-    }
-    let mut scene = model::from_table(table)?;
-    if let SceneSource::Text { origin, .. } = source
-        && let Some(folder) = std::path::Path::new(origin).parent()
-    {
-        scene.base_dir = folder.to_path_buf();
-    }
-    validate::validate(&scene)?;
-    Ok(scene)
+    SceneDocument::load(source, preset, overrides)?.scene()
 }
 
-/// Reads a scene file from disk and builds it like [`load`].
+/// Reads a scene file from disk and builds it like [`load`]; relative asset paths resolve against
+/// the file's folder. The same as [`SceneDocument::load_file`] then [`SceneDocument::scene`].
 pub fn load_file(path: &std::path::Path, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-        path: path.display().to_string(),
-        reason: source.to_string(),
-    })?;
-    load(
-        SceneSource::Text {
-            text: &text,
-            origin: &path.display().to_string(),
-        },
-        preset,
-        overrides,
-    )
+    SceneDocument::load_file(path, preset, overrides)?.scene()
 }

@@ -2,6 +2,7 @@
 
 use firmament_core::astro::CivilDateTime;
 use firmament_core::astro::spa::SolarPosition;
+use firmament_core::atmosphere::Planet;
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
 use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
@@ -171,11 +172,26 @@ impl Scene {
     /// inside it); meaningful for atmosphere scenes (the seed's planet when
     /// `atmosphere.model = "seed"`).
     pub fn camera_altitude(&self) -> Result<f64, SceneError> {
-        let planet = match self.atmosphere.model {
+        let planet = self.atmosphere_planet()?;
+        Ok(planet.altitude(planet.to_planet_frame(DVec3::from_array(self.camera.position))))
+    }
+
+    /// The planet the atmosphere is drawn around, posed in the world frame (the seed's planet when
+    /// `atmosphere.model = "seed"`), whatever `sky.model` is.
+    pub fn atmosphere_planet(&self) -> Result<Planet, SceneError> {
+        Ok(match self.atmosphere.model {
             AtmosphereModelName::Physical => self.atmosphere_sky()?.atmosphere.planet,
             AtmosphereModelName::Seed => crate::atmosphere::seed_planet(&self.seed_sky()?),
-        };
-        Ok(planet.altitude(planet.to_planet_frame(DVec3::from_array(self.camera.position))))
+        })
+    }
+
+    /// The planet under the sky, posed in the world frame, when `sky.model = "atmosphere"`;
+    /// `None` for the gradient and clear skies (their ground is the plane `up = 0`).
+    pub fn planet(&self) -> Result<Option<Planet>, SceneError> {
+        match self.sky.model {
+            SkyModelName::Atmosphere => self.atmosphere_planet().map(Some),
+            SkyModelName::Gradient | SkyModelName::Clear => Ok(None),
+        }
     }
 
     /// Everything needed to draw the scene at `time` (its own time when `None`; on a scene with

@@ -31,6 +31,7 @@ Examples:
   firmament sky-sample --altitude 0 --sun-zenith 60 --view-zenith 80 --view-azimuth 90
   firmament bench --preset earth-sunset --width 1280 --height 720 --frames 5
   firmament sun --time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786
+  firmament view --preset earth-sunset          # fly around; F1 panel, F12 screenshot
   firmament timelapse --from 2024-03-20T16:00Z --to 2024-03-20T20:00Z --frames 120 -o lapse
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
@@ -55,6 +56,9 @@ pub(crate) enum Command {
     /// Render a scene at N real instants from --from to --to into a folder of PNG frames, then an
     /// animated GIF and a contact sheet; Ctrl-C keeps the frames done, and a second run resumes.
     Timelapse(TimelapseArgs),
+    /// Open a window on a scene: fly around (mouse and WASD/QE, or NeHe's keys), run and scrub
+    /// the time, edit every scene value live in the panel, save the scene and screenshots.
+    View(ViewArgs),
 }
 
 /// Where a scene comes from and what overrides it.
@@ -244,6 +248,60 @@ pub(crate) struct TimelapseArgs {
     /// Graphics API to render with.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ViewArgs {
+    /// A scene file (TOML). Without one, the preset (or the built-in default scene) is shown.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// Window size in pixels, `WxH` (1 to 16384 each).
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = window_size)]
+    pub(crate) size: (u32, u32),
+    /// Draw N frames, then close (for scripts and tests).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
+    pub(crate) frames: Option<u64>,
+    /// After the last frame (with --frames, or on closing), write the scene as drawn to this PNG
+    /// or EXR file (the panel not included).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) screenshot: Option<PathBuf>,
+    /// Where the panel's "save scene" writes (it can be changed in the panel); with --frames, the
+    /// scene on screen is also saved there after the last frame, as that button does.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) save_scene: Option<PathBuf>,
+    /// Start with the clock stopped.
+    #[arg(long)]
+    pub(crate) paused: bool,
+    /// Start with NeHe lesson 44's controls (W/S/A/D heading and pitch, Z/C/X speed).
+    #[arg(long)]
+    pub(crate) nehe: bool,
+    /// Share of the window's pixels the scene is drawn at, (0, 1]: lower is faster on a slow
+    /// adapter (the panel stays sharp).
+    #[arg(long, value_name = "S", default_value_t = 1.0, value_parser = render_scale)]
+    pub(crate) scale: f32,
+    /// Graphics API to draw with.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
+}
+
+/// `WxH`, each side 1 to 16384 pixels.
+fn window_size(text: &str) -> Result<(u32, u32), String> {
+    let rule = "expected WxH, each 1 to 16384 pixels (e.g. 1280x720)";
+    let (w, h) = text.split_once(['x', 'X']).ok_or(rule)?;
+    let side = |s: &str| match s.trim().parse::<u32>() {
+        Ok(v) if (1..=16_384).contains(&v) => Ok(v),
+        _ => Err(rule.to_owned()),
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// A render scale in (0, 1].
+fn render_scale(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(v) if v > 0.0 && v <= 1.0 => Ok(v),
+        _ => Err("must be a number in (0, 1]".to_owned()),
+    }
 }
 
 /// A finite number (clap's own f64 parser accepts `NaN` and `inf`).

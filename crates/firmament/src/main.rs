@@ -28,7 +28,9 @@ fn init_logging(quiet: bool) {
         tracing_subscriber::EnvFilter::new(if quiet {
             "error"
         } else {
-            "warn,firmament=info,firmament_render=info"
+            // winit warns about harmless quirks of virtual displays (no XSETTINGS, a 0 mm screen),
+            // egui-wgpu about an sRGB window (the viewer's choice on GL, where views can't differ).
+            "warn,winit=error,egui_wgpu=error,firmament=info,firmament_render=info"
         })
     });
     let subscriber = tracing_subscriber::fmt()

@@ -62,6 +62,26 @@ pub(crate) fn gpu() -> std::sync::MutexGuard<'static, Gpu> {
     .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// A device of the caller's own, made the way an embedder makes it: firmament's required features
+/// and limits, nothing optional (no GPU timestamps). `label` names the test.
+#[allow(dead_code, reason = "each test binary compiles this module; not all of them embed")]
+pub(crate) fn user_context(label: &str) -> firmament_render::GpuContext {
+    let instance = wgpu::Instance::default();
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .unwrap_or_else(|e| panic!("GPU tests need an adapter and found none: {e}"));
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some(label),
+        required_features: firmament_render::required_features(),
+        required_limits: firmament_render::required_limits().using_resolution(adapter.limits()),
+        ..Default::default()
+    }))
+    .unwrap_or_else(|e| panic!("the adapter refused a device with firmament's requirements: {e}"));
+    firmament_render::GpuContext::from_device(device, queue).expect("a device with firmament's requirements")
+}
+
 /// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, East-North-Up.
 #[allow(
     dead_code,

@@ -7,6 +7,7 @@ mod render;
 mod sky_sample;
 pub(crate) mod sun;
 pub(crate) mod timelapse;
+mod view;
 
 use anyhow::Result;
 use firmament_scene::{Scene, SceneSource};
@@ -22,6 +23,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::SkySample(args) => sky_sample::run(&args),
         Command::Sun(args) => sun::run(&args),
         Command::Timelapse(args) => timelapse::run(&args),
+        Command::View(args) => view::run(&args),
         Command::Presets => {
             presets::run();
             Ok(())

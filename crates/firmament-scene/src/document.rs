@@ -1,0 +1,368 @@
+//! [`SceneDocument`]: a scene's fully layered TOML table, edited key by key, built into a
+//! [`Scene`] and saved as a complete scene file. It is what the viewer's panel edits and what its
+//! "save scene" writes; [`crate::load`] goes through it too, so there is one path from text to
+//! scene.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::error::SceneError;
+use crate::model::Scene;
+use crate::{SceneSource, layers, model, presets, validate};
+
+/// The first line of every saved scene file.
+const HEADER: &str = "# Written by firmament: a complete scene, every key resolved; it needs no preset.";
+
+/// Where a [`SceneDocument`] came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum SceneOrigin {
+    /// A built-in preset, by name (the one used: a `preset` given alongside replaces the source's).
+    Preset(String),
+    /// TOML text with this label, for messages (usually the path it was read from).
+    Text(String),
+    /// A scene file read from this path by [`SceneDocument::load_file`].
+    File(PathBuf),
+}
+
+impl std::fmt::Display for SceneOrigin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Preset(name) => write!(f, "preset `{name}`"),
+            Self::Text(origin) => f.write_str(origin),
+            Self::File(path) => write!(f, "{}", path.display()),
+        }
+    }
+}
+
+/// A scene as its resolved TOML table: every layer (the `default` preset, the named preset, the
+/// file, the overrides) merged into one table that holds every key, plus where it came from.
+///
+/// Edit it with [`set`](Self::set) or [`apply_override`](Self::apply_override) (the `--set`
+/// addressing: dotted keys, array indices, one past the end appends), or through
+/// [`table_mut`](Self::table_mut); [`scene`](Self::scene) parses and validates the result exactly
+/// as [`crate::load`] does. [`save`](Self::save) writes the whole table, so the file gives the
+/// identical scene on its own, whatever presets it was built from.
+#[derive(Debug, Clone)]
+pub struct SceneDocument {
+    /// The table as edited.
+    table: toml::Table,
+    /// The table as loaded (overrides applied), for [`reset`](Self::reset).
+    loaded: toml::Table,
+    /// Where it came from.
+    origin: SceneOrigin,
+    /// The folder relative asset paths resolve against; empty: the working directory.
+    base_dir: PathBuf,
+}
+
+impl SceneDocument {
+    /// Layers `source` (with an optional preset to start from; it replaces a file's own `preset`
+    /// key) and then `overrides` (each `key.path=value`, the value in TOML syntax or a bare
+    /// string), without parsing the result into a [`Scene`] yet.
+    ///
+    /// # Errors
+    /// Unknown presets, TOML syntax errors and overrides that cannot be applied. Unknown keys and
+    /// broken rules are found by [`scene`](Self::scene).
+    pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String]) -> Result<Self, SceneError> {
+        let (table, origin, base_dir) = match source {
+            SceneSource::Preset(name) => {
+                let name = preset.unwrap_or(name);
+                (
+                    presets::resolved_table(name)?,
+                    SceneOrigin::Preset(name.to_owned()),
+                    PathBuf::new(),
+                )
+            }
+            SceneSource::Text { text, origin } => (
+                layers::layer_file(text, origin, preset)?,
+                SceneOrigin::Text(origin.to_owned()),
+                folder_of(Path::new(origin)),
+            ),
+        };
+        Self::with_overrides(table, origin, base_dir, overrides)
+    }
+
+    /// Reads a scene file and layers it like [`load`](Self::load); relative asset paths resolve
+    /// against the file's folder.
+    ///
+    /// # Errors
+    /// [`SceneError::Read`] when the file cannot be read, then as [`load`](Self::load).
+    pub fn load_file(path: &Path, preset: Option<&str>, overrides: &[String]) -> Result<Self, SceneError> {
+        let shown = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: shown.clone(),
+            reason: source.to_string(),
+        })?;
+        let table = layers::layer_file(&text, &shown, preset)?;
+        Self::with_overrides(table, SceneOrigin::File(path.to_path_buf()), folder_of(path), overrides)
+    }
+
+    fn with_overrides(
+        mut table: toml::Table,
+        origin: SceneOrigin,
+        base_dir: PathBuf,
+        overrides: &[String],
+    ) -> Result<Self, SceneError> {
+        for item in overrides {
+            layers::apply_override(&mut table, item)?;
+        }
+        Ok(Self {
+            loaded: table.clone(),
+            table,
+            origin,
+            base_dir,
+        })
+    }
+
+    /// Parses and validates the table as it stands into a [`Scene`] (its `base_dir` is
+    /// [`base_dir`](Self::base_dir)); the document is unchanged.
+    ///
+    /// # Errors
+    /// Unknown keys (with a "did you mean"), wrong types and broken rules, each naming the key
+    /// path, exactly as [`crate::load`] reports them.
+    pub fn scene(&self) -> Result<Scene, SceneError> {
+        let mut scene = model::from_table(self.table.clone())?;
+        scene.base_dir.clone_from(&self.base_dir);
+        validate::validate(&scene)?;
+        Ok(scene)
+    }
+
+    /// The resolved table: every key of the scene, including `preset` (the name it was built on,
+    /// informational: changing it does not re-layer anything).
+    pub fn table(&self) -> &toml::Table {
+        &self.table
+    }
+
+    /// The resolved table, for editors that walk it; [`scene`](Self::scene) checks what they do.
+    pub fn table_mut(&mut self) -> &mut toml::Table {
+        &mut self.table
+    }
+
+    /// The value at a dotted key path, array elements by index (`suns.0.elevation`,
+    /// `sky.gradient.keyframes.2.time`); `None` when there is none.
+    pub fn get(&self, path: &str) -> Option<&toml::Value> {
+        let mut keys = path.split('.');
+        let mut node = self.table.get(keys.next()?)?;
+        for key in keys {
+            node = match node {
+                toml::Value::Table(t) => t.get(key)?,
+                toml::Value::Array(items) => items.get(key.parse::<usize>().ok()?)?,
+                _ => return None,
+            };
+        }
+        Some(node)
+    }
+
+    /// Sets the value at a dotted key path, addressed as `--set` does: missing tables are created,
+    /// numeric keys index arrays, and the index one past the end appends a table when keys are
+    /// left to set in it (`suns.1.azimuth` on a list of one sun). The value is taken as given;
+    /// whether it is right for the key is checked by [`scene`](Self::scene).
+    ///
+    /// # Errors
+    /// [`SceneError::BadOverride`] (worded like `--set path=value`) when the path cannot be
+    /// reached: an empty part, an index that is no number or past the end, a key inside a value
+    /// that is no table. The document is then unchanged.
+    pub fn set(&mut self, path: &str, value: toml::Value) -> Result<(), SceneError> {
+        let shown = value.to_string();
+        layers::set_path(&mut self.table, path, value).map_err(|rule| SceneError::BadOverride {
+            item: format!("{path}={shown}"),
+            rule,
+        })
+    }
+
+    /// Applies one `key.path=value` override, exactly as `--set` does (the value in TOML syntax,
+    /// else a bare string).
+    ///
+    /// # Errors
+    /// [`SceneError::BadOverride`] as for `--set`.
+    pub fn apply_override(&mut self, item: &str) -> Result<(), SceneError> {
+        layers::apply_override(&mut self.table, item)
+    }
+
+    /// Puts the table back as it was loaded (overrides included), undoing every edit.
+    pub fn reset(&mut self) {
+        self.table.clone_from(&self.loaded);
+    }
+
+    /// Whether the table differs from the one loaded (an edit set back to its old value is no
+    /// change).
+    pub fn is_modified(&self) -> bool {
+        self.table != self.loaded
+    }
+
+    /// The folder relative mesh, texture and flare image paths resolve against, as
+    /// [`Scene::base_dir`]: the scene file's folder; empty (the working directory) for presets.
+    pub fn base_dir(&self) -> &Path {
+        &self.base_dir
+    }
+
+    /// Where the document came from.
+    pub fn origin(&self) -> &SceneOrigin {
+        &self.origin
+    }
+
+    /// The whole resolved table as TOML: a one-line header, then every key, without `preset`.
+    /// Layered over `default` (as any scene file is) it gives the identical scene. Asset paths are
+    /// written as they stand (relative ones relative to [`base_dir`](Self::base_dir));
+    /// [`save`](Self::save) makes them absolute when it writes elsewhere.
+    pub fn to_toml_string(&self) -> String {
+        render(&self.table)
+    }
+
+    /// Writes [`to_toml_string`](Self::to_toml_string) to `path`, atomically: the text goes to a
+    /// temporary file in the same folder, which then replaces `path`, so a failed save never
+    /// leaves a truncated file. A new file is readable by everyone (0644 on Unix); a file that is
+    /// replaced keeps its permissions. The document is not validated (call
+    /// [`scene`](Self::scene) first) and is unchanged: it keeps its origin and `base_dir`.
+    ///
+    /// Relative asset paths (`objects.N.mesh.path`, `objects.N.texture.file`,
+    /// `flare.elements.N.file`) are rewritten as absolute paths (joined with
+    /// [`base_dir`](Self::base_dir) and the working directory) when `path`'s folder is not
+    /// `base_dir`, so the saved file names the same files; saved into `base_dir` they stay
+    /// relative. Absolute paths are kept as they are.
+    ///
+    /// # Errors
+    /// [`SceneError::Write`] naming `path` and the reason: the folder does not exist or cannot be
+    /// written, or an asset path is not valid UTF-8 once made absolute.
+    pub fn save(&self, path: &Path) -> Result<(), SceneError> {
+        let error = |reason: String| SceneError::Write {
+            path: path.display().to_string(),
+            reason,
+        };
+        let folder = match path.parent() {
+            Some(folder) if !folder.as_os_str().is_empty() => folder,
+            _ => Path::new("."),
+        };
+        let mut table = self.table.clone();
+        if !same_folder(folder, &self.base_dir) {
+            absolute_asset_paths(&mut table, &self.base_dir).map_err(error)?;
+        }
+        let text = render(&table);
+
+        let mut temp = tempfile::Builder::new()
+            .prefix(".firmament-scene-")
+            .suffix(".tmp")
+            .tempfile_in(folder)
+            .map_err(|e| {
+                error(if folder.is_dir() {
+                    format!("cannot create a file in {}: {e}", folder.display())
+                } else {
+                    format!("{} is not an existing folder", folder.display())
+                })
+            })?;
+        temp.write_all(text.as_bytes())
+            .and_then(|()| temp.as_file().sync_all())
+            .map_err(|e| error(format!("cannot write the temporary file: {e}")))?;
+        let permissions = match std::fs::metadata(path) {
+            Ok(existing) => Some(existing.permissions()),
+            Err(_) => new_file_permissions(),
+        };
+        if let Some(permissions) = permissions {
+            temp.as_file()
+                .set_permissions(permissions)
+                .map_err(|e| error(format!("cannot set the file's permissions: {e}")))?;
+        }
+        temp.persist(path).map_err(|e| error(e.error.to_string()))?;
+        Ok(())
+    }
+}
+
+/// The folder of a scene file, as [`Scene::base_dir`] has it (empty when the path has none).
+fn folder_of(path: &Path) -> PathBuf {
+    path.parent().map(Path::to_path_buf).unwrap_or_default()
+}
+
+/// The header and the table without `preset`, as TOML (short arrays inline, arrays of tables as
+/// `[[...]]` sections).
+fn render(table: &toml::Table) -> String {
+    let mut table = table.clone();
+    table.remove("preset");
+    // A table of TOML values always serialises: its keys are strings and it holds no `None`.
+    let body = toml::to_string(&table).expect("a TOML table serialises as TOML");
+    format!("{HEADER}\n\n{body}")
+}
+
+/// `folder` as an absolute path (empty: the working directory), without touching the disk.
+fn absolute(folder: &Path) -> std::io::Result<PathBuf> {
+    if folder.as_os_str().is_empty() {
+        std::env::current_dir()
+    } else {
+        std::path::absolute(folder)
+    }
+}
+
+/// Whether two folders are the same: compared resolved (symbolic links followed) when both
+/// exist, else as absolute paths.
+fn same_folder(a: &Path, b: &Path) -> bool {
+    let resolved = |p: &Path| absolute(p).and_then(std::fs::canonicalize);
+    match (resolved(a), resolved(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => matches!((absolute(a), absolute(b)), (Ok(a), Ok(b)) if a == b),
+    }
+}
+
+/// Makes every relative asset path in `table` absolute, joined with `base_dir` (and the working
+/// directory when that is relative); `.` parts are dropped, nothing else is resolved.
+fn absolute_asset_paths(table: &mut toml::Table, base_dir: &Path) -> Result<(), String> {
+    for (key, path) in asset_paths_mut(table) {
+        if Path::new(path.as_str()).is_absolute() {
+            continue;
+        }
+        let joined = absolute(&base_dir.join(path.as_str()))
+            .map_err(|e| format!("{key}: cannot make {path:?} an absolute path: {e}"))?;
+        *path = joined
+            .to_str()
+            .ok_or_else(|| format!("{key}: the absolute path {} is not valid UTF-8", joined.display()))?
+            .to_owned();
+    }
+    Ok(())
+}
+
+/// The string values that name files, with their key paths: `objects.N.mesh.path`,
+/// `objects.N.texture.file` and `flare.elements.N.file`.
+fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
+    let mut paths = Vec::new();
+    for (section, value) in table.iter_mut() {
+        match (section.as_str(), value) {
+            ("objects", toml::Value::Array(objects)) => {
+                for (i, object) in objects.iter_mut().enumerate() {
+                    let Some(object) = object.as_table_mut() else { continue };
+                    for (key, value) in object.iter_mut() {
+                        let field = match key.as_str() {
+                            "mesh" => "path",
+                            "texture" => "file",
+                            _ => continue,
+                        };
+                        if let Some(toml::Value::String(path)) = value.as_table_mut().and_then(|t| t.get_mut(field)) {
+                            paths.push((format!("objects.{i}.{key}.{field}"), path));
+                        }
+                    }
+                }
+            }
+            ("flare", toml::Value::Table(flare)) => {
+                if let Some(toml::Value::Array(elements)) = flare.get_mut("elements") {
+                    for (i, element) in elements.iter_mut().enumerate() {
+                        if let Some(toml::Value::String(path)) = element.as_table_mut().and_then(|t| t.get_mut("file"))
+                        {
+                            paths.push((format!("flare.elements.{i}.file"), path));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    paths
+}
+
+/// Permissions for a newly saved file: readable by everyone, writable by its owner.
+#[cfg(unix)]
+fn new_file_permissions() -> Option<std::fs::Permissions> {
+    use std::os::unix::fs::PermissionsExt as _;
+    Some(std::fs::Permissions::from_mode(0o644))
+}
+
+/// Permissions for a newly saved file: the temporary file's own.
+#[cfg(not(unix))]
+fn new_file_permissions() -> Option<std::fs::Permissions> {
+    None
+}

@@ -1,0 +1,114 @@
+//! `firmament view`: a window on a scene, drawn by the same `Renderer` and the same
+//! scene-to-frame path as `firmament render`, with a flying camera, a clock, and a panel that
+//! edits every scene value live and saves the scene.
+
+mod app;
+mod gpu;
+mod input;
+mod panel;
+mod session;
+
+use firmament_render::wgpu;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use firmament_render::Backend;
+use firmament_scene::{SceneDocument, SceneSource};
+use winit::event_loop::EventLoop;
+
+use crate::cli::ViewArgs;
+
+/// The viewer's settings from the command line.
+#[derive(Debug, Clone)]
+pub(crate) struct ViewOptions {
+    /// Window size, physical pixels.
+    pub(crate) size: (u32, u32),
+    /// Frames to draw before closing.
+    pub(crate) frames: Option<u64>,
+    /// Screenshot written after the last frame.
+    pub(crate) screenshot: Option<PathBuf>,
+    /// Where "save scene" writes by default.
+    pub(crate) save_path: PathBuf,
+    /// Save the scene to `save_path` after the last of `frames`.
+    pub(crate) save_at_exit: bool,
+    /// Start with the clock stopped.
+    pub(crate) paused: bool,
+    /// Start with NeHe's controls.
+    pub(crate) nehe: bool,
+    /// Share of the window's pixels the scene is drawn at.
+    pub(crate) render_scale: f32,
+    /// Graphics API.
+    pub(crate) backend: Backend,
+    /// What the window's title names.
+    pub(crate) title: String,
+}
+
+/// Opens the viewer and runs it until the window closes (or `--frames` are drawn).
+pub(crate) fn run(args: &ViewArgs) -> Result<()> {
+    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
+    // Check the outputs before opening anything, so a typo fails at once.
+    if let Some(path) = &args.screenshot {
+        crate::output::OutputFormat::from_path(path)?;
+        crate::output::check_parent_dir(path)?;
+    }
+    if let Some(path) = &args.save_scene {
+        crate::output::check_parent_dir(path)?;
+    }
+    let overrides = &args.scene_args.overrides;
+    let doc = match &args.scene {
+        Some(path) => SceneDocument::load_file(path, args.scene_args.preset.as_deref(), overrides),
+        None => SceneDocument::load(
+            SceneSource::Preset(args.scene_args.preset.as_deref().unwrap_or("default")),
+            None,
+            overrides,
+        ),
+    }
+    .with_context(|| format!("cannot build {what}"))?;
+    let session = session::Session::new(doc).with_context(|| format!("cannot build {what}"))?;
+
+    let event_loop = open_display()?;
+    let backend: Backend = args.backend.into();
+    let mut desc = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(event_loop.owned_display_handle()));
+    desc.backends = backend.backends();
+    let instance = wgpu::Instance::new(desc);
+    let options = ViewOptions {
+        size: args.size,
+        frames: args.frames,
+        screenshot: args.screenshot.clone(),
+        save_path: args
+            .save_scene
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("firmament-scene.toml")),
+        save_at_exit: args.frames.is_some() && args.save_scene.is_some(),
+        paused: args.paused,
+        nehe: args.nehe,
+        render_scale: args.scale,
+        backend,
+        title: what,
+    };
+    let mut app = app::App::new(options, instance, session);
+    event_loop.run_app(&mut app).context("the window's event loop failed")?;
+    tracing::info!("viewer: {}", app.summary());
+    match app.error.take() {
+        Some(error) => Err(error),
+        None => Ok(()),
+    }
+}
+
+/// The event loop of the desktop's display, or an error saying there is none.
+fn open_display() -> Result<EventLoop<()>> {
+    let unset = |name| std::env::var_os(name).is_none_or(|v| v.is_empty());
+    if cfg!(target_os = "linux") && unset("DISPLAY") && unset("WAYLAND_DISPLAY") && unset("WAYLAND_SOCKET") {
+        bail!(
+            "no display: `firmament view` needs a window, and neither DISPLAY nor WAYLAND_DISPLAY \
+             is set; render headless with `firmament render` (or run under a virtual display, \
+             e.g. `xvfb-run firmament view`)"
+        );
+    }
+    EventLoop::new().map_err(|e| {
+        anyhow::anyhow!(
+            "cannot connect to the display ({e}); `firmament view` needs a window — render \
+             headless with `firmament render`"
+        )
+    })
+}
