@@ -37,7 +37,8 @@ pub const PHASE_SKY_AND_OBJECTS: &str = "sky & objects";
 pub const PHASE_AERIAL_PERSPECTIVE: &str = "aerial perspective";
 /// The lens flares (occlusion and drawing), in every frame (near zero without flares).
 pub const PHASE_FLARES: &str = "flares";
-/// Tone mapping into the caller's view; [`record`](crate::Renderer::record) only.
+/// Tone mapping into the caller's view: [`record`](crate::Renderer::record), and
+/// [`record_into`](crate::Renderer::record_into) with an output view.
 pub const PHASE_TONEMAP: &str = "tonemap";
 
 /// Every phase a frame can have, in the order they run. A frame's [`PassTimes`] holds the ones it
@@ -76,7 +77,7 @@ pub struct PassTime {
 ///
 /// Phases the frame skipped are absent: [`PHASE_LUTS`] without an atmosphere,
 /// [`PHASE_AERIAL_PERSPECTIVE`] when no aerial perspective was built, [`PHASE_TONEMAP`] on the
-/// [`record_into`](crate::Renderer::record_into) path.
+/// [`record_into`](crate::Renderer::record_into) path without an output view.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PassTimes {
     /// Each phase that ran and its time.

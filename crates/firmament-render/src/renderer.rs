@@ -134,6 +134,12 @@ pub struct Renderer {
     sky: SkyKind,
     objects: ObjectPass,
     tonemap: TonemapPass,
+    /// The output passes for callers' output views, one per format, built on first use.
+    embedded_tonemaps: HashMap<wgpu::TextureFormat, TonemapPass>,
+    /// The output format of the last `prepare_into`'s target, if it had an output view.
+    embedded_output: Option<wgpu::TextureFormat>,
+    /// Set by [`Renderer::record_lighting`]: the next `record` or `record_into` skips the LUTs.
+    lighting_recorded: std::cell::Cell<bool>,
     targets: Option<FrameTargets>,
     /// Build the aerial-perspective volume in every atmosphere frame, objects or not
     /// ([`Renderer::set_aerial_perspective_for_users`]).
@@ -156,6 +162,9 @@ impl Renderer {
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
             tonemap: TonemapPass::new(&ctx.device, output_format),
+            embedded_tonemaps: HashMap::new(),
+            embedded_output: None,
+            lighting_recorded: std::cell::Cell::new(false),
             targets: None,
             aerial_volume_wanted: false,
             flare_interval: None,
@@ -183,6 +192,7 @@ impl Renderer {
             ..frame.camera
         };
         self.active = None;
+        self.lighting_recorded.set(false);
         self.sky = self.own.prepare(ctx, frame, &camera, (width, height));
         self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
         if let Some(targets) = &self.targets {
@@ -207,7 +217,7 @@ impl Renderer {
         }
         let own = &self.own;
         let mut timing = FrameTiming::begin(self.pass_timer.as_ref(), encoder);
-        if self.sky == SkyKind::Atmosphere {
+        if self.sky == SkyKind::Atmosphere && !self.lighting_recorded.replace(false) {
             own.atmosphere.record_luts(encoder);
             timing.mark(encoder, PHASE_LUTS);
         }
@@ -276,7 +286,16 @@ impl Renderer {
         };
         self.sky = passes.prepare(ctx, frame, &camera, (width, height));
         self.active = Some(key);
+        self.lighting_recorded.set(false);
         self.embedded_size = (width, height);
+        self.embedded_output = target.output.map(|view| view.texture().format());
+        if let Some(format) = self.embedded_output {
+            let tonemap = self
+                .embedded_tonemaps
+                .entry(format)
+                .or_insert_with(|| TonemapPass::new(&ctx.device, format));
+            tonemap.prepare(&ctx.device, &ctx.queue, &frame.display, target.color);
+        }
         Ok(())
     }
 
@@ -287,25 +306,29 @@ impl Renderer {
     /// (`colour · T + S`, with distances from the depth buffer) when the sky is an atmosphere,
     /// and the lens flares, hidden by the geometry, over everything. Colour is loaded and
     /// blended, never cleared; depth is tested, never written. Linear radiance in the sky's
-    /// units: tone-map it yourself. A frame whose sky is a clear colour (`Sky::Clear`) draws no
-    /// background: that is yours.
+    /// units: tone-map it yourself, or give the target an output view
+    /// ([`EmbedTarget::with_output`]) and firmament's output pass writes the finished image
+    /// there. A frame whose sky is a clear colour (`Sky::Clear`) draws no background: that is
+    /// yours.
     ///
     /// An error when nothing was prepared for a target of this kind and size (nothing encoded).
     pub fn record_into(&self, encoder: &mut wgpu::CommandEncoder, target: &EmbedTarget<'_>) -> Result<(), RenderError> {
         let size = target.size();
-        if self.active != Some(target.key()) || size != self.embedded_size {
+        let output = target.output.map(|view| view.texture().format());
+        if self.active != Some(target.key()) || size != self.embedded_size || output != self.embedded_output {
             return Err(RenderError::InvalidTarget(format!(
-                "record_into a {:?} target of {}x{} ({:?}, {:?} depth): prepare_into it first",
+                "record_into a {:?} target of {}x{} ({:?}, {:?} depth, output {:?}): prepare_into it first",
                 target.key().color,
                 size.0,
                 size.1,
                 target.convention,
-                target.key().depth
+                target.key().depth,
+                output
             )));
         }
         let passes = self.passes();
         let mut timing = FrameTiming::begin(self.pass_timer.as_ref(), encoder);
-        if self.sky == SkyKind::Atmosphere {
+        if self.sky == SkyKind::Atmosphere && !self.lighting_recorded.replace(false) {
             passes.atmosphere.record_luts(encoder);
             timing.mark(encoder, PHASE_LUTS);
         }
@@ -322,8 +345,31 @@ impl Renderer {
         }
         passes.flares.record(encoder, target.color);
         timing.mark(encoder, PHASE_FLARES);
+        if let (Some(view), Some(tonemap)) = (target.output, output.and_then(|f| self.embedded_tonemaps.get(&f))) {
+            tonemap.record(encoder, view);
+            timing.mark(encoder, PHASE_TONEMAP);
+        }
         timing.finish(encoder);
         Ok(())
+    }
+
+    /// Encodes this frame's lighting for your own shaders before you draw your geometry: the
+    /// atmosphere's LUTs with the [`sky_lighting_buffer`](Self::sky_lighting_buffer) (and, after
+    /// [`set_aerial_perspective_for_users(true)`](Self::set_aerial_perspective_for_users), the
+    /// aerial-perspective volume). The next [`record`](Self::record) or
+    /// [`record_into`](Self::record_into) then skips the LUTs. Without it, those values are the
+    /// last recorded frame's when your shaders read them. Nothing for a sky that is not an
+    /// atmosphere. Call after `prepare` / `prepare_into`, in the same or an earlier encoder.
+    pub fn record_lighting(&self, encoder: &mut wgpu::CommandEncoder) {
+        if self.sky != SkyKind::Atmosphere {
+            return;
+        }
+        let passes = self.passes();
+        passes.atmosphere.record_luts(encoder);
+        if self.aerial_volume_wanted {
+            passes.atmosphere.record_aerial_perspective_volume(encoder);
+        }
+        self.lighting_recorded.set(true);
     }
 
     /// Sets the time between frames for the lens flares' fade-in and fade-out rates (a viewer's

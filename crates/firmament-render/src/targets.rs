@@ -102,6 +102,13 @@ pub const EMBED_DEPTH_FORMATS: [wgpu::TextureFormat; 3] = [
 ///   [`EMBED_DEPTH_FORMATS`], with `RENDER_ATTACHMENT | TEXTURE_BINDING` usage, holding your
 ///   geometry's depth in `convention` (the sky is tested against its far plane, aerial
 ///   perspective and flare occlusion read it; it is never written).
+/// - `output` (optional, [`with_output`](Self::with_output)): a displayable view — your window's
+///   surface, an 8-bit texture — that firmament's output pass fills from `color` after
+///   compositing, with the frame's exposure, tone curve and encoding (exactly as
+///   [`Renderer::record`](crate::Renderer::record) finishes its own frames): a view of a whole
+///   single-sampled 2D texture of the colour target's size with `RENDER_ATTACHMENT` usage, in a
+///   colour-renderable format; `color` then also needs `TEXTURE_BINDING`. Without it, `color`
+///   holds linear radiance for your own tone mapping.
 #[derive(Debug, Clone, Copy)]
 #[non_exhaustive]
 pub struct EmbedTarget<'a> {
@@ -111,6 +118,8 @@ pub struct EmbedTarget<'a> {
     pub depth: &'a wgpu::TextureView,
     /// How `depth` maps distance (the far plane finite or not as the frame's camera says).
     pub convention: DepthConvention,
+    /// A displayable view that firmament's output pass tone-maps `color` into, if any.
+    pub output: Option<&'a wgpu::TextureView>,
 }
 
 impl<'a> EmbedTarget<'a> {
@@ -120,6 +129,16 @@ impl<'a> EmbedTarget<'a> {
             color,
             depth,
             convention,
+            output: None,
+        }
+    }
+
+    /// The same target, finished by firmament's output pass into `output` (see the rules above).
+    #[must_use]
+    pub fn with_output(self, output: &'a wgpu::TextureView) -> Self {
+        Self {
+            output: Some(output),
+            ..self
         }
     }
 
@@ -204,7 +223,58 @@ impl<'a> EmbedTarget<'a> {
                 size.1
             ));
         }
+        if let Some(output) = self.output {
+            check_output(color, output.texture())?;
+        }
         ctx.check_image_size(size.0, size.1)?;
         Ok(size)
     }
+}
+
+/// The rules for [`EmbedTarget::output`] against the colour target `color`.
+fn check_output(color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), RenderError> {
+    let invalid = |m: String| Err(RenderError::InvalidTarget(m));
+    if !color.usage().contains(wgpu::TextureUsages::TEXTURE_BINDING) {
+        return invalid(format!(
+            "with an output view, the colour target's usages {:?} also need TEXTURE_BINDING (the \
+             output pass reads it)",
+            color.usage()
+        ));
+    }
+    if output.sample_count() > 1 {
+        return invalid(format!(
+            "the output has {} samples: firmament's output pass writes single-sampled views only",
+            output.sample_count()
+        ));
+    }
+    let format = output.format();
+    let renderable = format
+        .guaranteed_format_features(wgpu::Features::empty())
+        .allowed_usages
+        .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
+    if !renderable || format.is_depth_stencil_format() || format.is_compressed() {
+        return invalid(format!(
+            "the output's format {format:?} is not a colour-renderable format"
+        ));
+    }
+    if !output.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+        return invalid(format!(
+            "the output's usages {:?} lack RENDER_ATTACHMENT",
+            output.usage()
+        ));
+    }
+    if (output.width(), output.height()) != (color.width(), color.height())
+        || output.dimension() != wgpu::TextureDimension::D2
+        || output.depth_or_array_layers() != 1
+    {
+        return invalid(format!(
+            "the output is {}x{} but the colour target {}x{}: it must be a 2D texture of the same \
+             size, one layer",
+            output.width(),
+            output.height(),
+            color.width(),
+            color.height()
+        ));
+    }
+    Ok(())
 }

@@ -430,3 +430,121 @@ fn bad_targets_are_refused_with_what_is_needed() {
     let error = renderer.record_into(&mut encoder, &target).expect_err("not prepared");
     assert!(error.to_string().contains("prepare_into"), "{error}");
 }
+
+#[test]
+fn an_output_view_gets_the_pixels_firmament_render_writes() {
+    use wgpu::TextureFormat as F;
+    use wgpu::TextureUsages as U;
+    let _turn = turn();
+    let ctx = support::user_context("gpu_embed_target user device");
+    let frame = frame(direction(60.0, 1.0), None);
+    // What `firmament render` writes to a PNG for this frame.
+    let png = HeadlessRenderer::new(&ctx)
+        .render_ldr(&ctx, &frame, WIDTH, HEIGHT)
+        .expect("own LDR render");
+    let mut renderer = Renderer::new(&ctx, F::Rgba8UnormSrgb);
+    let size = (WIDTH, HEIGHT, 1);
+    for convention in [DepthConvention::Reversed, DepthConvention::Standard] {
+        // The user's HDR target (readable by the output pass), depth and 8-bit sRGB output.
+        let color = texture(
+            &ctx,
+            "colour",
+            size,
+            F::Rgba16Float,
+            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+        );
+        let depth = texture(
+            &ctx,
+            "depth",
+            size,
+            F::Depth32Float,
+            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+        );
+        let output = texture(
+            &ctx,
+            "output",
+            size,
+            F::Rgba8UnormSrgb,
+            U::RENDER_ATTACHMENT | U::COPY_SRC,
+        );
+        let targets = UserTargets {
+            color_view: color.create_view(&Default::default()),
+            depth_view: depth.create_view(&Default::default()),
+            color,
+        };
+        let output_view = output.create_view(&Default::default());
+        let target = EmbedTarget::new(&targets.color_view, &targets.depth_view, convention).with_output(&output_view);
+        renderer.prepare_into(&ctx, &frame, &target).expect("a valid target");
+        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("user frame with output"),
+        });
+        let camera = Camera {
+            aspect: f64::from(WIDTH) / f64::from(HEIGHT),
+            ..frame.camera
+        };
+        if convention == DepthConvention::Standard {
+            // This frame's lighting before the user's geometry: record_into then skips the LUTs,
+            // and the pixels are the same.
+            renderer.record_lighting(&mut encoder);
+        }
+        draw_user_geometry(&ctx, &mut encoder, &targets, &camera, convention, (0.0, 4_000.0));
+        renderer.record_into(&mut encoder, &target).expect("prepared");
+        ctx.queue.submit([encoder.finish()]);
+        let got = read_texture(&ctx, &output).expect("readback");
+        let mut worst = 0;
+        for y in 0..HEIGHT {
+            for x in 0..WIDTH {
+                if in_square(x, y) != Some(false) {
+                    continue;
+                }
+                let i = ((y * WIDTH + x) * 4) as usize;
+                for c in 0..4 {
+                    worst = worst.max(got[i + c].abs_diff(png.pixels[i + c]));
+                }
+            }
+        }
+        println!("{convention:?}: output vs firmament render's PNG, worst {worst}/255 outside the face");
+        assert!(
+            worst <= 1,
+            "{convention:?}: the output differs from render's PNG by {worst}/255"
+        );
+    }
+
+    // An output of another size, or a colour target the output pass cannot read, is refused.
+    let color = texture(
+        &ctx,
+        "colour",
+        size,
+        F::Rgba16Float,
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+    );
+    let unreadable = texture(&ctx, "colour", size, F::Rgba16Float, U::RENDER_ATTACHMENT);
+    let depth = texture(
+        &ctx,
+        "depth",
+        size,
+        F::Depth32Float,
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+    );
+    let small = texture(
+        &ctx,
+        "small output",
+        (WIDTH / 2, HEIGHT, 1),
+        F::Rgba8UnormSrgb,
+        U::RENDER_ATTACHMENT,
+    );
+    let good = texture(&ctx, "output", size, F::Rgba8UnormSrgb, U::RENDER_ATTACHMENT);
+    let depth_view = depth.create_view(&Default::default());
+    for (what, color, output, needed) in [
+        ("small output", &color, &small, "same size"),
+        ("unreadable colour", &unreadable, &good, "TEXTURE_BINDING"),
+    ] {
+        let (color_view, output_view) = (
+            color.create_view(&Default::default()),
+            output.create_view(&Default::default()),
+        );
+        let target = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Reversed).with_output(&output_view);
+        let error = renderer.prepare_into(&ctx, &frame, &target).expect_err(what);
+        assert!(error.to_string().contains(needed), "{what}: {error}");
+    }
+}
