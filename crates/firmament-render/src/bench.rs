@@ -547,3 +547,100 @@ pub fn bench_flares(
         rows,
     })
 }
+
+/// The same frame drawn by the CLI's path and by the embedded path, median milliseconds each
+/// ([`bench_embedding`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EmbeddingBench {
+    /// Adapter name and backend.
+    pub adapter: String,
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Frames timed per figure (the median is reported).
+    pub frames: u32,
+    /// How the times were measured.
+    pub timing: Timing,
+    /// [`Renderer::record`](crate::Renderer::record) into an 8-bit sRGB view: firmament's own
+    /// targets, cleared, sky, tone mapping.
+    pub cli_ms: f64,
+    /// The caller's clear of their HDR target and depth buffer, then
+    /// [`Renderer::record_into`](crate::Renderer::record_into) (linear radiance left for the
+    /// caller's tone mapping).
+    pub embedded_hdr_ms: f64,
+    /// The same, finished by firmament's output pass into an 8-bit sRGB view
+    /// ([`EmbedTarget::with_output`](crate::EmbedTarget::with_output)): the CLI frame's
+    /// counterpart.
+    pub embedded_output_ms: f64,
+    /// The same without firmament's aerial perspective
+    /// ([`EmbedTarget::without_aerial_perspective`](crate::EmbedTarget::without_aerial_perspective)):
+    /// the work of a CLI frame without objects.
+    pub embedded_output_no_aerial_ms: f64,
+}
+
+/// Times one frame of `frame` at `width` × `height` on the CLI's path and on the embedded path
+/// (reversed Z, no geometry of the caller's: the same work as the CLI frame of a scene without
+/// objects, plus the aerial perspective the embedded path applies in every atmosphere frame).
+pub fn bench_embedding(
+    ctx: &GpuContext,
+    frame: &firmament_core::Frame,
+    width: u32,
+    height: u32,
+    frames: u32,
+) -> Result<EmbeddingBench, RenderError> {
+    use crate::headless::{LDR_FORMAT, ldr_texture};
+    use crate::{EmbedTarget, Renderer};
+    ctx.check_image_size(width, height)?;
+    let output = ldr_texture(
+        &ctx.device,
+        "firmament bench embedding output",
+        (width, height),
+        wgpu::TextureUsages::COPY_SRC,
+    );
+    let output_view = output.create_view(&wgpu::TextureViewDescriptor::default());
+    let mut renderer = Renderer::new(ctx, LDR_FORMAT);
+    renderer.prepare(ctx, frame, width, height)?;
+    let cli_ms = median_ms(ctx, frames, &output, |e| renderer.record(e, &output_view));
+
+    // The caller's targets: firmament's own formats, with the usages embedding needs.
+    let user = FrameTargets::new(&ctx.device, width, height);
+    let convention = firmament_core::DepthConvention::Reversed;
+    let mut embedded = |target: &EmbedTarget<'_>, written: &wgpu::Texture| -> Result<f64, RenderError> {
+        renderer.prepare_into(ctx, frame, target)?;
+        let mut result = Ok(());
+        let ms = median_ms(ctx, frames, written, |e| {
+            // The caller's own frame start: clear colour and depth.
+            drop(begin_clear_pass(
+                e,
+                "firmament bench caller's clear",
+                Some((&user.hdr_view, wgpu::Color::BLACK)),
+                &user.depth_view,
+                convention.far_depth() as f32,
+            ));
+            if let Err(error) = renderer.record_into(e, target) {
+                result = Err(error);
+            }
+        });
+        result.map(|()| ms)
+    };
+    let hdr_only = EmbedTarget::new(&user.hdr_view, &user.depth_view, convention);
+    let embedded_hdr_ms = embedded(&hdr_only, &user.hdr)?;
+    let embedded_output_ms = embedded(&hdr_only.with_output(&output_view), &output)?;
+    let embedded_output_no_aerial_ms = embedded(
+        &hdr_only.with_output(&output_view).without_aerial_perspective(),
+        &output,
+    )?;
+    let info = ctx.device.adapter_info();
+    Ok(EmbeddingBench {
+        adapter: format!("{} ({:?})", info.name, info.backend),
+        width,
+        height,
+        frames,
+        timing: timing(ctx),
+        cli_ms,
+        embedded_hdr_ms,
+        embedded_output_ms,
+        embedded_output_no_aerial_ms,
+    })
+}

@@ -303,7 +303,8 @@ impl Renderer {
     /// `target` (the same one, its depth buffer holding the caller's geometry, drawn earlier in
     /// this encoder or before): the sky behind that geometry where the depth buffer still holds
     /// the far plane, the stars and the Moon over the sky, aerial perspective over the geometry
-    /// (`colour · T + S`, with distances from the depth buffer) when the sky is an atmosphere,
+    /// (`colour · T + S`, with distances from the depth buffer) when the sky is an atmosphere
+    /// (unless [`EmbedTarget::without_aerial_perspective`]),
     /// and the lens flares, hidden by the geometry, over everything. Colour is loaded and
     /// blended, never cleared; depth is tested, never written. Linear radiance in the sky's
     /// units: tone-map it yourself, or give the target an output view
@@ -339,7 +340,7 @@ impl Renderer {
             passes.night.draw(&mut pass);
         }
         timing.mark(encoder, PHASE_SKY_AND_OBJECTS);
-        if self.sky == SkyKind::Atmosphere {
+        if self.sky == SkyKind::Atmosphere && target.aerial_perspective {
             passes.atmosphere.record_aerial_perspective(encoder, target.color);
             timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
         }

@@ -120,6 +120,11 @@ pub struct EmbedTarget<'a> {
     pub convention: DepthConvention,
     /// A displayable view that firmament's output pass tone-maps `color` into, if any.
     pub output: Option<&'a wgpu::TextureView>,
+    /// Whether firmament applies aerial perspective over your geometry (from the depth buffer;
+    /// the default). Off ([`without_aerial_perspective`](Self::without_aerial_perspective)) when
+    /// your shaders fog themselves with `firmament_apply_aerial_perspective`, or draw nothing
+    /// that needs it: two full-screen draws fewer.
+    pub aerial_perspective: bool,
 }
 
 impl<'a> EmbedTarget<'a> {
@@ -130,6 +135,17 @@ impl<'a> EmbedTarget<'a> {
             depth,
             convention,
             output: None,
+            aerial_perspective: true,
+        }
+    }
+
+    /// The same target, with no aerial perspective applied by firmament (see
+    /// [`aerial_perspective`](Self::aerial_perspective)).
+    #[must_use]
+    pub fn without_aerial_perspective(self) -> Self {
+        Self {
+            aerial_perspective: false,
+            ..self
         }
     }
 

@@ -216,9 +216,13 @@ fn embedded_image(
     frame: &Frame,
     convention: DepthConvention,
     square: (f64, f64),
+    aerial_perspective: bool,
 ) -> Vec<f32> {
     let targets = user_targets(ctx);
-    let target = EmbedTarget::new(&targets.color_view, &targets.depth_view, convention);
+    let mut target = EmbedTarget::new(&targets.color_view, &targets.depth_view, convention);
+    if !aerial_perspective {
+        target = target.without_aerial_perspective();
+    }
     renderer.prepare_into(ctx, frame, &target).expect("a valid target");
     let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("user frame"),
@@ -301,8 +305,15 @@ fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
             .expect("own HDR render")
             .pixels;
         for convention in [DepthConvention::Reversed, DepthConvention::Standard] {
-            let dark = embedded_image(&ctx, &mut renderer, &frame, convention, (0.0, distance));
-            let bright = embedded_image(&ctx, &mut renderer, &frame, convention, (BRIGHT, distance));
+            let dark = embedded_image(&ctx, &mut renderer, &frame, convention, (0.0, distance), true);
+            let bright = embedded_image(&ctx, &mut renderer, &frame, convention, (BRIGHT, distance), true);
+            // Without firmament's aerial perspective the face keeps the user's own colour.
+            let raw = embedded_image(&ctx, &mut renderer, &frame, convention, (BRIGHT, distance), false);
+            let raw_face = mean_rgb(&raw, true);
+            assert!(
+                (raw_face - DVec3::splat(BRIGHT)).abs().max_element() < BRIGHT * 1e-3,
+                "{convention:?}: without aerial perspective the face is {raw_face}, not the user's {BRIGHT}"
+            );
             // The sky: the renderer's own pixels, to half-float rounding.
             let mut worst_sky = 0.0_f64;
             let mut sky_pixels = 0;

@@ -138,6 +138,11 @@ pub(crate) struct BenchArgs {
     /// (the `classic` flare, 32 depth samples each).
     #[arg(long, conflicts_with = "objects")]
     pub(crate) flares: bool,
+    /// Time the scene's whole frame on the CLI's path (`Renderer::record`) against the embedded
+    /// path (`Renderer::record_into` into a caller's HDR target, with and without firmament's
+    /// output pass).
+    #[arg(long, conflicts_with_all = ["objects", "flares"])]
+    pub(crate) embedded: bool,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub(crate) json: bool,

@@ -411,6 +411,38 @@ fn bench_reports_every_pass_as_json() {
 }
 
 #[test]
+fn bench_embedded_times_both_paths() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let args = [
+        "bench",
+        "--embedded",
+        "--preset",
+        "earth-sunset",
+        "--width",
+        "16",
+        "--height",
+        "9",
+        "--frames",
+        "1",
+        "--json",
+        "-q",
+    ];
+    let out = firmament(dir.path(), &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    for key in [
+        "cli_ms",
+        "embedded_hdr_ms",
+        "embedded_output_ms",
+        "embedded_output_no_aerial_ms",
+    ] {
+        let ms = json[key].as_f64().unwrap_or(-1.0);
+        assert!(ms.is_finite() && ms > 0.0, "{key}: {stdout}");
+    }
+}
+
+#[test]
 fn bench_of_a_gradient_sky_says_it_needs_an_atmosphere() {
     let dir = tempfile::tempdir().expect("temp dir");
     let out = firmament(dir.path(), &["bench", "--preset", "noon", "--frames", "1"]);

@@ -1,11 +1,13 @@
 //! `firmament bench`: the atmosphere's per-pass times, the object pass's Gouraud and Phong
-//! times (`--objects`), or the lens-flare passes' (`--flares`), on this machine's adapter.
+//! times (`--objects`), the lens-flare passes' (`--flares`), or a whole frame on the CLI's path
+//! against the embedded path (`--embedded`), on this machine's adapter.
 
 use anyhow::{Context, Result, bail};
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use firmament_render::bench::{
-    AtmosphereBench, FlareBench, ObjectBench, bench_atmosphere, bench_flares, bench_objects, sphere_grid,
+    AtmosphereBench, EmbeddingBench, FlareBench, ObjectBench, bench_atmosphere, bench_embedding, bench_flares,
+    bench_objects, sphere_grid,
 };
 
 use crate::cli::BenchArgs;
@@ -25,6 +27,9 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     ];
     let scene = super::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
     let frame = scene.frame_at(None)?;
+    if args.embedded {
+        return run_embedded(args, &frame);
+    }
     let Sky::Atmosphere(sky) = &frame.sky else {
         bail!("bench times the atmosphere passes: the scene needs sky.model = \"atmosphere\"");
     };
@@ -36,6 +41,59 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
         print_table(&result);
     }
     Ok(())
+}
+
+/// `--embedded`: the scene's frame on both paths.
+fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
+    let ctx = GpuContext::headless(args.backend.into())?;
+    let b = bench_embedding(&ctx, frame, args.width, args.height, args.frames)?;
+    if args.json {
+        println!("{}", embedding_json(&b));
+        return Ok(());
+    }
+    println!(
+        "{} — {}x{}, median of {} frames, {}",
+        b.adapter,
+        b.width,
+        b.height,
+        b.frames,
+        b.timing.describe()
+    );
+    for (name, ms) in [
+        ("CLI path: Renderer::record into an 8-bit view", b.cli_ms),
+        (
+            "embedded: caller's clear + record_into (HDR, no tone mapping)",
+            b.embedded_hdr_ms,
+        ),
+        ("embedded: the same + firmament's output pass", b.embedded_output_ms),
+        (
+            "embedded: output pass, no aerial perspective",
+            b.embedded_output_no_aerial_ms,
+        ),
+    ] {
+        println!("  {name:<62} {ms:>10.3} ms");
+    }
+    println!(
+        "  embedded with output / CLI: {:.2}x ({:.2}x without aerial perspective)",
+        b.embedded_output_ms / b.cli_ms,
+        b.embedded_output_no_aerial_ms / b.cli_ms
+    );
+    Ok(())
+}
+
+fn embedding_json(b: &EmbeddingBench) -> String {
+    serde_json::json!({
+        "adapter": b.adapter,
+        "width": b.width,
+        "height": b.height,
+        "frames": b.frames,
+        "timing": b.timing.describe(),
+        "cli_ms": b.cli_ms,
+        "embedded_hdr_ms": b.embedded_hdr_ms,
+        "embedded_output_ms": b.embedded_output_ms,
+        "embedded_output_no_aerial_ms": b.embedded_output_no_aerial_ms,
+    })
+    .to_string()
 }
 
 fn print_table(b: &AtmosphereBench) {
