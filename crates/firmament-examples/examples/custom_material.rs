@@ -1,8 +1,9 @@
 //! Your own WGSL material under firmament's sky: a Lambert + ambient shader of yours, drawn with
 //! your own pipeline into your own HDR target and depth buffer, lit by firmament's suns
 //! (`firmament_sun_direction/color`) and sky (`firmament_sky_irradiance`) and fogged by its aerial
-//! perspective (`firmament_apply_aerial_perspective`); firmament's atmosphere pass then draws the
-//! sky behind your geometry. Headless: the HDR image is tone-mapped on the CPU and saved as a PNG.
+//! perspective (`firmament_apply_aerial_perspective`); firmament's renderer then draws the sky
+//! behind your geometry (`Renderer::record_into`, leaving the air over it to your shader).
+//! Headless: the HDR image is tone-mapped on the CPU and saved as a PNG.
 //!
 //! ```sh
 //! cargo run -p firmament-examples --example custom_material -- [OUT.png] [WIDTH HEIGHT]
@@ -17,11 +18,9 @@ use std::path::Path;
 
 use firmament_core::Camera;
 use firmament_core::color::{LinearRgb, linear_to_srgb};
-use firmament_core::frame::Sky;
-use firmament_render::passes::AtmospherePass;
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::wgpu::util::DeviceExt;
-use firmament_render::{DEPTH_FORMAT, GpuContext, HDR_FORMAT, wgpu};
+use firmament_render::{DEPTH_FORMAT, DepthConvention, EmbedTarget, GpuContext, HDR_FORMAT, Renderer, wgpu};
 use glam::DVec3;
 
 /// Your material: Lambert under firmament's suns plus its sky's irradiance as the ambient term,
@@ -130,18 +129,16 @@ pub(crate) fn render(path: &Path, width: u32, height: u32) -> Result<Camera, Box
     }))?;
     let ctx = GpuContext::from_device(device.clone(), queue.clone())?;
 
-    // firmament: the sky and camera of a preset, and its atmosphere pass.
+    // firmament: the sky and camera of a preset, and its renderer, asked to build the
+    // aerial-perspective volume for your shader in every frame.
     let frame =
         firmament_scene::load(firmament_scene::SceneSource::Preset("earth-objects"), None, &[])?.frame_at(None)?;
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        return Err("the preset has no physical sky".into());
-    };
     let camera = Camera {
         aspect: f64::from(width) / f64::from(height),
         ..frame.camera
     };
-    let mut atmosphere = AtmospherePass::new(&device);
-    atmosphere.prepare(&queue, sky, &camera);
+    let mut sky = Renderer::new(&ctx, wgpu::TextureFormat::Rgba8UnormSrgb);
+    sky.set_aerial_perspective_for_users(true);
 
     // Your targets: linear HDR colour and reversed-Z depth, in the formats the pass was built for.
     let target = |label, format, usage| {
@@ -174,6 +171,9 @@ pub(crate) fn render(path: &Path, width: u32, height: u32) -> Result<Camera, Box
         hdr.create_view(&Default::default()),
         depth.create_view(&Default::default()),
     );
+    // Your frame for firmament: your shader applies the air itself, so firmament does not.
+    let target = EmbedTarget::new(&hdr_view, &depth_view, DepthConvention::Reversed).without_aerial_perspective();
+    sky.prepare_into(&ctx, &frame, &target)?;
 
     // Your pipeline: your shader after firmament's includes; group 0 yours, group 1 firmament's.
     let source = format!(
@@ -261,13 +261,16 @@ pub(crate) fn render(path: &Path, width: u32, height: u32) -> Result<Camera, Box
             resource: camera_buffer.as_entire_binding(),
         }],
     });
-    // firmament's buffers and textures are the pass's for its whole life: one bind group serves
-    // every frame.
+    // firmament's buffers and textures last as long as the renderer draws into targets of this
+    // kind: one bind group serves every frame.
+    let (Some(lighting), Some(air)) = (sky.sky_lighting_buffer(), sky.aerial_perspective_bindings()) else {
+        return Err("the preset has no physical sky".into());
+    };
     let mut firmament_resources = vec![wgpu::BindGroupEntry {
         binding: 0,
-        resource: atmosphere.sky_lighting_buffer().as_entire_binding(),
+        resource: lighting.as_entire_binding(),
     }];
-    firmament_resources.extend(atmosphere.aerial_perspective_bindings().bind_group_entries(1));
+    firmament_resources.extend(air.bind_group_entries(1));
     let firmament_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("firmament lighting and aerial perspective"),
         layout: &firmament_layout,
@@ -277,8 +280,7 @@ pub(crate) fn render(path: &Path, width: u32, height: u32) -> Result<Camera, Box
     // The frame: firmament's lighting and aerial-perspective volume, your boxes, then the sky
     // behind them.
     let mut encoder = device.create_command_encoder(&Default::default());
-    atmosphere.record_luts(&mut encoder);
-    atmosphere.record_aerial_perspective_volume(&mut encoder);
+    sky.record_lighting(&mut encoder);
     {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("my boxes"),
@@ -307,7 +309,7 @@ pub(crate) fn render(path: &Path, width: u32, height: u32) -> Result<Camera, Box
         pass.set_vertex_buffer(0, vertex_buffer.slice(..));
         pass.draw(0..vertices.len() as u32, 0..1);
     }
-    atmosphere.record(&mut encoder, &hdr_view, &depth_view);
+    sky.record_into(&mut encoder, &target)?;
     queue.submit([encoder.finish()]);
 
     // Your tone mapping, here on the CPU: the preset's exposure and curve, then sRGB.

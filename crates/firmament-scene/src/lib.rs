@@ -27,6 +27,27 @@
 //! A [`SceneDocument`] keeps the layered table for editing key by key and saves it as a complete
 //! scene file; [`load`] and [`load_file`] build their scene through one.
 //!
+//! **Scenes in code**: a [`Scene`] is plain data — the TOML format is a serde layer over these
+//! structs, and every field documents its unit and rule. Start from a preset, change fields, check
+//! the rules, and draw; a change shows in the next frame built, and the renderer rebuilds the
+//! atmosphere's medium LUTs only when the medium itself changed (moving a sun or the camera
+//! re-renders only the per-frame sky-view LUT).
+//!
+//! ```
+//! use firmament_scene::Scene;
+//!
+//! let mut scene = Scene::preset("earth-sunset")?;
+//! scene.camera.fov_y = 40.0; // degrees
+//! scene.suns[0].elevation = Some(1.5); // degrees above the horizon
+//! scene.validate()?; // the rules a scene file is checked against
+//! let frame = scene.frame_at(None)?; // what firmament_render draws
+//! assert_eq!(frame.camera.fov_y, 40f64.to_radians());
+//!
+//! scene.camera.fov_y = 0.0;
+//! assert!(scene.validate().unwrap_err().to_string().contains("camera.fov_y"));
+//! # Ok::<(), firmament_scene::SceneError>(())
+//! ```
+//!
 //! `[flare]` (off by default) gives every sun of the sky and every `[[lights]]` entry marked
 //! `flare = true` a lens flare: a built-in preset's elements or the scene's own `flare.elements`.
 
@@ -95,4 +116,18 @@ pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String])
 /// the file's folder. The same as [`SceneDocument::load_file`] then [`SceneDocument::scene`].
 pub fn load_file(path: &std::path::Path, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
     SceneDocument::load_file(path, preset, overrides)?.scene()
+}
+
+impl Scene {
+    /// The built-in preset `name` as a scene, to change in code (see the crate docs); an unknown
+    /// name is an error with a "did you mean".
+    pub fn preset(name: &str) -> Result<Self, SceneError> {
+        load(SceneSource::Preset(name), None, &[])
+    }
+
+    /// Checks every rule of the scene format, as loading a file does: after changing fields in
+    /// code, before drawing. The error names the key, the value and the rule.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        validate::validate(self)
+    }
 }
