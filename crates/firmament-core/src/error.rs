@@ -2,6 +2,7 @@
 
 /// What can go wrong when building core models from user data.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum CoreError {
     /// A day cycle needs at least one keyframe.
     #[error("a day cycle needs at least one keyframe")]

@@ -47,6 +47,7 @@ impl Timing {
 
 /// Median milliseconds per pass, and how far the LUT path is from the brute-force march.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct AtmosphereBench {
     /// Adapter name and backend.
     pub adapter: String,
@@ -310,6 +311,7 @@ pub fn bench_atmosphere(
 /// Median milliseconds of the object pass drawing the same objects with Gouraud and with Phong
 /// shading (classic lighting, all lights on).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct ObjectBench {
     /// Adapter name and backend.
     pub adapter: String,
@@ -448,6 +450,7 @@ pub fn bench_objects(
 
 /// Median milliseconds of the lens-flare passes for one source count.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FlareTiming {
     /// Sources flaring (all on screen, none hidden).
     pub sources: usize,
@@ -459,6 +462,7 @@ pub struct FlareTiming {
 
 /// The lens-flare passes timed for 1, 8 and 64 sources (issue 6's benchmark).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct FlareBench {
     /// Adapter name and backend.
     pub adapter: String,
@@ -551,6 +555,7 @@ pub fn bench_flares(
 /// The same frame drawn by the CLI's path and by the embedded path, median milliseconds each
 /// ([`bench_embedding`]).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct EmbeddingBench {
     /// Adapter name and backend.
     pub adapter: String,

@@ -66,6 +66,7 @@ pub fn pass_timing_supported(device: &wgpu::Device) -> bool {
 
 /// One phase's GPU time.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct PassTime {
     /// The phase, one of [`PHASES`].
     pub name: &'static str,
@@ -79,6 +80,7 @@ pub struct PassTime {
 /// [`PHASE_AERIAL_PERSPECTIVE`] when no aerial perspective was built, [`PHASE_TONEMAP`] on the
 /// [`record_into`](crate::Renderer::record_into) path without an output view.
 #[derive(Debug, Clone, Default, PartialEq)]
+#[non_exhaustive]
 pub struct PassTimes {
     /// Each phase that ran and its time.
     pub phases: Vec<PassTime>,

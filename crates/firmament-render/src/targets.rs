@@ -18,6 +18,7 @@ pub const DEPTH_CLEAR: f32 = 0.0;
 
 /// HDR colour and depth targets of one size.
 #[derive(Debug)]
+#[non_exhaustive]
 pub struct FrameTargets {
     /// Linear HDR radiance ([`HDR_FORMAT`]); can be copied out for EXR files.
     pub hdr: wgpu::Texture,
