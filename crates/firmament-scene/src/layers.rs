@@ -3,6 +3,11 @@
 use crate::error::SceneError;
 use crate::presets;
 
+/// The most parts a key path may have (`suns.0.elevation` has 3): the nesting limit the `toml`
+/// crate sets for scene files, so that an override cannot build a table nested deeper than a file
+/// can (a path of thousands of parts would overflow the stack when the table is walked or dropped).
+pub(crate) const MAX_KEY_PARTS: usize = 80;
+
 /// Parses TOML text into a table, naming `origin` in the error.
 pub(crate) fn parse_table(text: &str, origin: &str) -> Result<toml::Table, SceneError> {
     text.parse::<toml::Table>().map_err(|e| SceneError::Syntax {
@@ -67,6 +72,13 @@ pub(crate) fn set_path(table: &mut toml::Table, path: &str, value: toml::Value) 
     if keys.iter().any(|k| k.is_empty()) {
         return Err("the key path has an empty part".to_owned());
     }
+    if keys.len() > MAX_KEY_PARTS {
+        return Err(format!(
+            "the key path has {} parts, more than the {MAX_KEY_PARTS} a scene's tables may nest (a hard limit of the \
+             scene format, as of TOML files)",
+            keys.len()
+        ));
+    }
     let mut root = toml::Value::Table(std::mem::take(table));
     let result = assign(&mut root, &keys, value);
     if let toml::Value::Table(t) = root {
@@ -111,4 +123,20 @@ fn assign(node: &mut toml::Value, keys: &[&str], value: toml::Value) -> Result<(
         other => return Err(format!("cannot set `{key}` inside a {}", other.type_str())),
     };
     assign(child, rest, value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn deep_key_paths_are_refused_before_they_are_built() {
+        let mut table = toml::Table::new();
+        let deep = vec!["a"; 100_000].join(".");
+        let error = apply_override(&mut table, &format!("{deep}=1")).expect_err("too deep");
+        assert!(error.to_string().contains("100000 parts, more than the 80"), "{error}");
+        assert!(table.is_empty());
+        let deepest = vec!["a"; MAX_KEY_PARTS].join(".");
+        apply_override(&mut table, &format!("{deepest}=1")).expect("80 parts");
+    }
 }

@@ -65,6 +65,30 @@ pub struct Scene {
     pub base_dir: std::path::PathBuf,
 }
 
+impl Scene {
+    /// Every file the scene reads — mesh files (`objects[i].mesh.path`), texture files
+    /// (`objects[i].texture.file`) and flare images (`flare.elements[i].file`) — as its key and
+    /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),
+    /// absolute ones as written.
+    pub fn asset_paths(&self) -> Vec<(String, std::path::PathBuf)> {
+        let mut paths = Vec::new();
+        for (i, object) in self.objects.iter().enumerate() {
+            if let MeshEntry::File { path } = &object.mesh {
+                paths.push((format!("objects[{i}].mesh.path"), self.base_dir.join(path)));
+            }
+            if let Some(file) = object.texture.as_ref().and_then(|t| t.file.as_ref()) {
+                paths.push((format!("objects[{i}].texture.file"), self.base_dir.join(file)));
+            }
+        }
+        for (i, element) in self.flare.elements.iter().flatten().enumerate() {
+            if let Some(file) = &element.file {
+                paths.push((format!("flare.elements[{i}].file"), self.base_dir.join(file)));
+            }
+        }
+        paths
+    }
+}
+
 /// `[render]`: the image.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]

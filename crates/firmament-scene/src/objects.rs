@@ -167,10 +167,10 @@ fn transform(key: &str, steps: &[TransformEntry]) -> Result<Vec<TransformStep>, 
 /// One mesh of an object: the triangles, mesh → object transform, and the file's base colour
 /// and texture if it gave them.
 struct ObjectMesh {
-    mesh: Mesh,
+    mesh: Arc<Mesh>,
     transform: DMat4,
     base_color: Option<DVec4>,
-    texture: Option<TextureImage>,
+    texture: Option<Arc<TextureImage>>,
 }
 
 /// Builds or loads the mesh of object `key`. A file with several meshes gives several.
@@ -178,7 +178,7 @@ fn meshes(key: &str, entry: &MeshEntry, base_dir: &Path) -> Result<Vec<ObjectMes
     let core = |r: Result<Mesh, firmament_core::CoreError>| {
         r.map(|mesh| {
             vec![ObjectMesh {
-                mesh,
+                mesh: Arc::new(mesh),
                 transform: DMat4::IDENTITY,
                 base_color: None,
                 texture: None,
@@ -308,12 +308,12 @@ fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject
             };
             let texture = texture.clone().or_else(|| {
                 file_texture.map(|image| ObjectTexture {
-                    image: Arc::new(image),
+                    image,
                     filter: TextureFilter::Linear,
                 })
             });
             out.push(SceneObject {
-                mesh: Arc::new(mesh),
+                mesh,
                 model: model * mesh_transform,
                 front: with_base(front),
                 back: with_base(back),

@@ -1,10 +1,24 @@
 //! Every rule a scene's values must follow, each error naming the key path, value and rule.
 
+use std::collections::HashSet;
+use std::path::{Component, Path, PathBuf};
+use std::sync::{Mutex, OnceLock};
+
 use firmament_core::TimeOfDay;
+use firmament_core::mesh::{GLU_CACHE_SIZE, MAX_GLT_SPHERE_DIVISIONS, MAX_QUAD_SUBDIVISIONS};
 
 use crate::MAX_IMAGE_SIDE;
 use crate::error::SceneError;
-use crate::model::{AtmosphereModelName, Scene, SkyModelName};
+use crate::model::{AtmosphereModelName, MeshEntry, Scene, SkyModelName};
+
+/// The most `[[objects]]` entries one scene may have (each costs about 20 KB to draw, whatever
+/// its mesh).
+pub(crate) const MAX_OBJECTS: usize = 16_384;
+
+/// The most triangles the built-in shapes (`glt_sphere`, `glu_sphere`, `quad`, `cube`) of one
+/// scene may have together: about 1.7 GB and half a minute to build at the most (a
+/// `glt_sphere` of 2896 × 2896). Mesh files are bounded by their loaders.
+pub(crate) const MAX_SHAPE_TRIANGLES: u64 = 1 << 24;
 
 /// Checks `ok`, or fails with `key = value: rule`.
 pub(crate) fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
@@ -200,6 +214,168 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         format!("{clear:?}"),
         "every component must be a finite number >= 0",
     )?;
+    check(
+        scene.objects.len() <= MAX_OBJECTS,
+        "objects",
+        format!("{} objects", scene.objects.len()),
+        &format!("at most {MAX_OBJECTS} objects"),
+    )?;
+    let mut triangles = 0_u64;
+    for (i, object) in scene.objects.iter().enumerate() {
+        let own = shape_triangles(&object.mesh);
+        triangles = triangles.saturating_add(own);
+        check(
+            triangles <= MAX_SHAPE_TRIANGLES,
+            &format!("objects[{i}].mesh"),
+            format!("{own} triangles"),
+            &format!(
+                "the built-in shapes of a scene may have at most {MAX_SHAPE_TRIANGLES} triangles together \
+                 (a glt_sphere of 2896 x 2896), and objects[0..={i}] have {triangles}: use fewer or coarser \
+                 shapes (slices, stacks, subdivisions)"
+            ),
+        )?;
+    }
     crate::objects::validate(scene)?;
-    crate::flare::validate(scene)
+    crate::flare::validate(scene)?;
+    log_paths_outside(scene);
+    Ok(())
+}
+
+/// Triangles a built-in shape will have, before it is built: the counts the core's builders give.
+/// 0 for a mesh file (its loader bounds it) and for a shape its builder refuses (its own rule then
+/// names the value).
+fn shape_triangles(mesh: &MeshEntry) -> u64 {
+    match *mesh {
+        MeshEntry::GltSphere { slices, stacks, .. } => {
+            if slices.max(stacks) > MAX_GLT_SPHERE_DIVISIONS {
+                return 0;
+            }
+            2 * u64::from(slices) * u64::from(stacks)
+        }
+        MeshEntry::GluSphere { slices, stacks, .. } => {
+            // GLU lowers both to its cache's size first.
+            let (slices, stacks) = (slices.min(GLU_CACHE_SIZE - 1), stacks.min(GLU_CACHE_SIZE - 1));
+            2 * u64::from(slices) * u64::from(stacks)
+        }
+        MeshEntry::Quad { subdivisions, .. } => {
+            if subdivisions > MAX_QUAD_SUBDIVISIONS {
+                return 0;
+            }
+            2 * u64::from(subdivisions) * u64::from(subdivisions)
+        }
+        MeshEntry::Cube { .. } => 12,
+        MeshEntry::File { .. } => 0,
+    }
+}
+
+/// Says in the log (once per file and key in a process) when a file the scene reads lies outside
+/// its folder (the working directory for a scene without a file): an absolute path elsewhere, or
+/// a relative one that climbs out with `..`. Judged on the paths as written, without following
+/// links.
+fn log_paths_outside(scene: &Scene) {
+    let paths = scene.asset_paths();
+    if paths.is_empty() {
+        return;
+    }
+    let absolute = |p: &Path| match p.is_absolute() {
+        true => p.to_path_buf(),
+        false => std::env::current_dir()
+            .map(|cwd| cwd.join(p))
+            .unwrap_or_else(|_| p.to_path_buf()),
+    };
+    let base = normalize(&absolute(&scene.base_dir));
+    static LOGGED: OnceLock<Mutex<HashSet<(String, PathBuf)>>> = OnceLock::new();
+    for (key, path) in paths {
+        let resolved = normalize(&absolute(&path));
+        if resolved.starts_with(&base) {
+            continue;
+        }
+        let first = LOGGED
+            .get_or_init(Mutex::default)
+            .lock()
+            .map(|mut logged| logged.insert((key.clone(), resolved.clone())))
+            .unwrap_or(true);
+        if first {
+            let folder = if scene.base_dir.as_os_str().is_empty() {
+                format!("the working directory {}", base.display())
+            } else {
+                format!("the scene's folder {}", base.display())
+            };
+            tracing::info!("{key}: reads {}, outside {folder}", resolved.display());
+        }
+    }
+}
+
+/// `path` with `.` dropped and each `..` taking away the component before it, on the text alone.
+fn normalize(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for component in path.components() {
+        match component {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use firmament_core::mesh::Mesh;
+
+    use super::*;
+
+    #[test]
+    fn shape_triangle_counts_are_the_builders_own() {
+        let cases = [
+            (
+                MeshEntry::GltSphere {
+                    radius: 1.0,
+                    slices: 7,
+                    stacks: 5,
+                },
+                Mesh::glt_sphere(1.0, 7, 5),
+            ),
+            (
+                MeshEntry::GluSphere {
+                    radius: 1.0,
+                    slices: 7,
+                    stacks: 5,
+                },
+                Mesh::glu_sphere(1.0, 7, 5),
+            ),
+            (
+                MeshEntry::GluSphere {
+                    radius: 1.0,
+                    slices: 1000,
+                    stacks: 300,
+                },
+                Mesh::glu_sphere(1.0, 1000, 300),
+            ),
+            (
+                MeshEntry::Quad {
+                    size: 1.0,
+                    subdivisions: 3,
+                },
+                Mesh::quad(1.0, 3),
+            ),
+            (MeshEntry::Cube { size: 1.0 }, Mesh::cube(1.0)),
+        ];
+        for (entry, mesh) in cases {
+            let built = mesh.expect("a valid shape").triangle_count() as u64;
+            assert_eq!(shape_triangles(&entry), built, "{entry:?}");
+        }
+    }
+
+    #[test]
+    fn normalize_climbs_out_with_dot_dot() {
+        assert_eq!(normalize(Path::new("/a/b/../c/./d")), PathBuf::from("/a/c/d"));
+        assert_eq!(normalize(Path::new("/a/b/../../../x")), PathBuf::from("/../x"));
+        assert!(!normalize(Path::new("/s/scenes/../shared/x.obj")).starts_with("/s/scenes"));
+        assert!(normalize(Path::new("/s/scenes/./sub/../x.obj")).starts_with("/s/scenes"));
+    }
 }

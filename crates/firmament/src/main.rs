@@ -2,6 +2,7 @@
 
 mod cli;
 mod commands;
+mod limits;
 mod output;
 
 use std::process::ExitCode;
@@ -15,10 +16,31 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             // One clear message: the outermost context first, then each cause.
-            eprintln!("error: {error:#}");
+            eprintln!("error: {}", shorten_lines(&format!("{error:#}")));
             ExitCode::FAILURE
         }
     }
+}
+
+/// The longest line an error message prints: a hostile input echoed back (a TOML parser's
+/// snippet of a megabyte-long line, a value of a million characters) keeps its start and end.
+const MAX_LINE_CHARS: usize = 400;
+
+/// `text` with every line over [`MAX_LINE_CHARS`] cut in the middle, saying how much was left out.
+fn shorten_lines(text: &str) -> String {
+    let keep = MAX_LINE_CHARS / 2;
+    text.split('\n')
+        .map(|line| {
+            let count = line.chars().count();
+            if count <= MAX_LINE_CHARS {
+                return line.to_owned();
+            }
+            let head: String = line.chars().take(keep).collect();
+            let tail: String = line.chars().skip(count - keep).collect();
+            format!("{head} … ({} characters left out) … {tail}", count - 2 * keep)
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 fn init_logging(quiet: bool) {

@@ -31,12 +31,22 @@ impl OutputFormat {
     }
 }
 
-/// Fails unless the output's folder exists and is a folder.
+/// Fails unless the output can be written: its folder exists, is a folder and takes a new file
+/// (proved with a temporary file, removed at once), and the output is not itself a folder. Run
+/// before the slow parts, so that a typo fails at once rather than after a render.
 pub(crate) fn check_parent_dir(path: &Path) -> Result<()> {
     let dir = parent(path);
     if !dir.is_dir() {
         bail!("output {}: the folder {} does not exist", path.display(), dir.display());
     }
+    if path.is_dir() {
+        bail!("output {}: is a folder; name a file in it", path.display());
+    }
+    tempfile::Builder::new()
+        .prefix(".firmament-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
+        .with_context(|| format!("output {}: cannot create a file in {}", path.display(), dir.display()))?;
     Ok(())
 }
 

@@ -23,6 +23,7 @@
 use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
+use std::sync::Arc;
 
 use ::gltf::accessor::sparse::IndexType;
 use ::gltf::accessor::{DataType, Dimensions};
@@ -37,7 +38,7 @@ use firmament_core::texture::TextureImage;
 use glam::{DMat4, DQuat, DVec3};
 use image::ImageFormat;
 
-use super::{LoadedMesh, RawMesh, finish_mesh, read_file, texture_file};
+use super::{Budget, LoadedMesh, RawMesh, finish_mesh, texture_file};
 
 /// Standard base64, padding optional (exporters differ).
 const BASE64: GeneralPurpose = GeneralPurpose::new(
@@ -51,28 +52,21 @@ const MAX_ACCESSOR_VALUES: usize = 1 << 28;
 /// The most validation problems quoted in a message.
 const MAX_PROBLEMS_SHOWN: usize = 5;
 
-/// Loads a `.gltf` or `.glb` file.
-pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
-    let bytes = read_file(path, "glTF file")?;
-    let Gltf { document, blob } = Gltf::from_slice_without_validation(&bytes).map_err(describe_parse_error)?;
+/// Loads a `.gltf` or `.glb` file whose contents are `bytes`.
+pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec<LoadedMesh>, String> {
+    check_glb_length(bytes)?;
+    let Gltf { document, blob } = Gltf::from_slice_without_validation(bytes).map_err(describe_parse_error)?;
     let root = document.into_json();
     check_position_accessors(&root)?;
+    check_image_sources(&root)?;
     let document = Document::from_json(root).map_err(describe_parse_error)?;
     if let Some(extension) = document.extensions_required().next() {
         return Err(format!(
             "the file requires the glTF extension {extension}, which firmament does not support"
         ));
     }
-    let folder = path.parent().unwrap_or(Path::new(""));
-    let buffers = load_buffers(&document, folder, blob)?;
-    let mut loader = Loader {
-        path,
-        folder,
-        buffers,
-        primitives: HashMap::new(),
-        images: HashMap::new(),
-    };
 
+    // The nodes that draw a mesh, with their world matrices, before any data is read.
     let roots: Vec<Node<'_>> = match document.default_scene().or_else(|| document.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => {
@@ -82,9 +76,12 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
     };
     let mut visited = vec![false; document.nodes().len()];
     let mut stack: Vec<(Node<'_>, DMat4)> = roots.into_iter().rev().map(|n| (n, DMat4::IDENTITY)).collect();
-    let (mut meshes, mut skipped) = (Vec::new(), 0_usize);
+    let mut drawn: Vec<(::gltf::Mesh<'_>, usize, DMat4)> = Vec::new();
     while let Some((node, parent)) = stack.pop() {
-        if std::mem::replace(&mut visited[node.index()], true) {
+        let seen = visited
+            .get_mut(node.index())
+            .ok_or_else(|| format!("node {} does not exist", node.index()))?;
+        if std::mem::replace(seen, true) {
             return Err(format!(
                 "node {} is reached twice from the scene's roots (glTF node hierarchies must be trees: a cycle, or \
                  a node with two parents)",
@@ -100,18 +97,33 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
                     node.index()
                 );
             }
-            for primitive in mesh.primitives() {
-                match loader.primitive(&mesh, &primitive)? {
-                    Some(loaded) => meshes.push(LoadedMesh {
-                        transform: world,
-                        ..loaded
-                    }),
-                    None => skipped += 1,
-                }
-            }
+            let triangle_lists = mesh.primitives().filter(|p| p.mode() == Mode::Triangles).count();
+            budget.take_meshes(triangle_lists)?;
+            drawn.push((mesh, node.index(), world));
         }
         let children: Vec<Node<'_>> = node.children().collect();
         stack.extend(children.into_iter().rev().map(|c| (c, world)));
+    }
+
+    let buffers = load_buffers(&document, path, blob, budget)?;
+    let mut loader = Loader {
+        path,
+        buffers,
+        budget,
+        primitives: HashMap::new(),
+        images: HashMap::new(),
+    };
+    let (mut meshes, mut skipped) = (Vec::new(), 0_usize);
+    for (mesh, _, world) in drawn {
+        for primitive in mesh.primitives() {
+            match loader.primitive(&mesh, &primitive)? {
+                Some(loaded) => meshes.push(LoadedMesh {
+                    transform: world,
+                    ..loaded
+                }),
+                None => skipped += 1,
+            }
+        }
     }
     if meshes.is_empty() {
         return Err(if skipped > 0 {
@@ -121,6 +133,20 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
         });
     }
     Ok(meshes)
+}
+
+/// Checks that a GLB header's length covers at least the header: `gltf` subtracts the header's
+/// size from it unchecked (an overflow panic in builds with overflow checks).
+fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
+    if let Some([b'g', b'l', b'T', b'F', _, _, _, _, a, b, c, d, ..]) = bytes.get(..12) {
+        let length = u32::from_le_bytes([*a, *b, *c, *d]);
+        if length < 12 {
+            return Err(format!(
+                "malformed GLB file: its header gives a length of {length} bytes, less than the header's 12"
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Checks that every `POSITION` attribute names an accessor that exists: `gltf`'s validation
@@ -139,6 +165,25 @@ fn check_position_accessors(root: &::gltf::json::Root) -> Result<(), String> {
                     ));
                 }
             }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that every image has a source `gltf` can give: a `uri`, or a `bufferView` with a
+/// `mimeType` (`gltf` unwraps both without checking, and panics on an image without).
+fn check_image_sources(root: &::gltf::json::Root) -> Result<(), String> {
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (_, Some(_), None) => {
+                return Err(format!(
+                    "invalid glTF: images[{i}]: an image in a buffer view needs a mimeType"
+                ));
+            }
+            (None, None, _) => {
+                return Err(format!("invalid glTF: images[{i}] has neither a uri nor a bufferView"));
+            }
+            _ => {}
         }
     }
     Ok(())
@@ -196,7 +241,12 @@ fn local_transform(node: &Node<'_>) -> Result<DMat4, String> {
 }
 
 /// The data of every buffer: the GLB binary chunk, a `data:` URI or a file.
-fn load_buffers(document: &Document, folder: &Path, mut blob: Option<Vec<u8>>) -> Result<Vec<Vec<u8>>, String> {
+fn load_buffers(
+    document: &Document,
+    path: &Path,
+    mut blob: Option<Vec<u8>>,
+    budget: &mut Budget,
+) -> Result<Vec<Vec<u8>>, String> {
     document
         .buffers()
         .map(|buffer| {
@@ -205,7 +255,7 @@ fn load_buffers(document: &Document, folder: &Path, mut blob: Option<Vec<u8>>) -
                 ::gltf::buffer::Source::Bin => blob
                     .take()
                     .ok_or_else(|| format!("{what} is the GLB binary chunk, which the file does not have"))?,
-                ::gltf::buffer::Source::Uri(uri) => read_uri(uri, folder, &what)?.0,
+                ::gltf::buffer::Source::Uri(uri) => read_uri(uri, path, &what, budget)?.0,
             };
             if data.len() < buffer.length() {
                 return Err(format!(
@@ -219,9 +269,15 @@ fn load_buffers(document: &Document, folder: &Path, mut blob: Option<Vec<u8>>) -
         .collect()
 }
 
-/// The bytes a URI names (a base64 `data:` URI, or a file relative to `folder` or as a
-/// `file:` URI) and the image format its media type or file extension suggests.
-fn read_uri(uri: &str, folder: &Path, what: &str) -> Result<(Vec<u8>, Option<ImageFormat>), String> {
+/// The bytes a URI names (a base64 `data:` URI, or a file relative to the folder of the glTF
+/// file `path` or as a `file:` URI) and the image format its media type or file extension
+/// suggests; what is decoded or read is taken from `budget`.
+pub(super) fn read_uri(
+    uri: &str,
+    path: &Path,
+    what: &str,
+    budget: &mut Budget,
+) -> Result<(Vec<u8>, Option<ImageFormat>), String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let Some((header, payload)) = rest.split_once(',') else {
             return Err(format!("{what}: malformed data URI (no `,`)"));
@@ -229,8 +285,11 @@ fn read_uri(uri: &str, folder: &Path, what: &str) -> Result<(Vec<u8>, Option<Ima
         let Some(media_type) = header.strip_suffix(";base64") else {
             return Err(format!("{what}: only base64 data URIs are supported"));
         };
+        let payload = payload.trim();
+        // Three bytes for every four characters, at most.
+        budget.take_bytes((payload.len() as u64).div_ceil(4) * 3, &format!("{what}'s data URI"))?;
         let bytes = BASE64
-            .decode(payload.trim())
+            .decode(payload)
             .map_err(|e| format!("{what}: bad base64 in its data URI: {e}"))?;
         return Ok((bytes, ImageFormat::from_mime_type(media_type)));
     }
@@ -243,6 +302,7 @@ fn read_uri(uri: &str, folder: &Path, what: &str) -> Result<(Vec<u8>, Option<Ima
             ));
         }
     };
+    let folder = path.parent().unwrap_or(Path::new(""));
     let file = if relative {
         folder.join(percent_decode(uri).map_err(|e| format!("{what}: URI `{uri}`: {e}"))?)
     } else {
@@ -251,7 +311,8 @@ fn read_uri(uri: &str, folder: &Path, what: &str) -> Result<(Vec<u8>, Option<Ima
         let rest = rest.strip_prefix("//").unwrap_or(rest);
         Path::new(&percent_decode(rest).map_err(|e| format!("{what}: URI `{uri}`: {e}"))?).to_path_buf()
     };
-    let bytes = read_file(&file, &format!("the file of {what}"))?;
+    super::note_outside(path, &file, what);
+    let bytes = budget.read_file(&file, &format!("the file of {what}"))?;
     Ok((bytes, ImageFormat::from_path(&file).ok()))
 }
 
@@ -320,13 +381,16 @@ impl Components {
 
 /// A file's buffers, and the primitives and images read so far.
 struct Loader<'a> {
+    /// The glTF file, for messages and the folder of its URIs.
     path: &'a Path,
-    folder: &'a Path,
+    /// Every buffer's data.
     buffers: Vec<Vec<u8>>,
+    /// What the file may still allocate.
+    budget: &'a mut Budget,
     /// By (mesh, primitive) index; `None` for skipped primitives. Transform left at identity.
     primitives: HashMap<(usize, usize), Option<LoadedMesh>>,
     /// By image index.
-    images: HashMap<usize, TextureImage>,
+    images: HashMap<usize, Arc<TextureImage>>,
 }
 
 impl Loader<'_> {
@@ -359,6 +423,9 @@ impl Loader<'_> {
             return Err(format!("{label} has no POSITION attribute"));
         };
         let count = positions.count();
+        // The declared sizes, before any of them is read.
+        let index_count = primitive.indices().map_or(count, |indices| indices.count());
+        self.budget.take_mesh(count, index_count, label)?;
         if primitive.morph_targets().len() > 0 {
             tracing::warn!("{}: {label}: morph targets are ignored", self.path.display());
         }
@@ -438,7 +505,7 @@ impl Loader<'_> {
         };
         let mesh: Mesh = finish_mesh(raw, self.path, label)?;
         Ok(LoadedMesh {
-            mesh,
+            mesh: Arc::new(mesh),
             transform: DMat4::IDENTITY,
             base_color,
             texture,
@@ -492,7 +559,7 @@ impl Loader<'_> {
     }
 
     /// An image, decoded and flipped (bottom row first).
-    fn image(&mut self, image: &::gltf::image::Image<'_>) -> Result<TextureImage, String> {
+    fn image(&mut self, image: &::gltf::image::Image<'_>) -> Result<Arc<TextureImage>, String> {
         if let Some(texture) = self.images.get(&image.index()) {
             return Ok(texture.clone());
         }
@@ -506,15 +573,15 @@ impl Loader<'_> {
                 ImageFormat::from_mime_type(mime_type),
             ),
             ::gltf::image::Source::Uri { uri, mime_type } => {
-                let (bytes, hint) = read_uri(uri, self.folder, &what)?;
+                let (bytes, hint) = read_uri(uri, self.path, &what, self.budget)?;
                 (
                     Cow::Owned(bytes),
                     mime_type.and_then(ImageFormat::from_mime_type).or(hint),
                 )
             }
         };
-        let texture = texture_file::decode(&bytes, hint).map_err(|e| format!("{what}: {e}"))?;
-        self.images.insert(image.index(), texture.clone());
+        let texture = Arc::new(texture_file::decode(&bytes, hint, self.budget).map_err(|e| format!("{what}: {e}"))?);
+        self.images.insert(image.index(), Arc::clone(&texture));
         Ok(texture)
     }
 }
@@ -681,21 +748,49 @@ mod tests {
         assert_eq!(uri_scheme("http://x/y.bin"), Some("http"));
         assert_eq!(uri_scheme("C:/x.bin"), None);
         assert_eq!(uri_scheme("dir/x.bin"), None);
-        let (bytes, hint) = read_uri("data:image/png;base64,AAEC", Path::new(""), "buffer 0").expect("valid");
+        let (bytes, hint) = read_uri(
+            "data:image/png;base64,AAEC",
+            Path::new("m.gltf"),
+            "buffer 0",
+            &mut Budget::new(),
+        )
+        .expect("valid");
         assert_eq!((bytes, hint), (vec![0, 1, 2], Some(ImageFormat::Png)));
         // Padding optional.
-        let (bytes, _) = read_uri("data:application/octet-stream;base64,AAE", Path::new(""), "b").expect("valid");
+        let (bytes, _) = read_uri(
+            "data:application/octet-stream;base64,AAE",
+            Path::new("m.gltf"),
+            "b",
+            &mut Budget::new(),
+        )
+        .expect("valid");
         assert_eq!(bytes, [0, 1]);
         assert!(
-            read_uri("data:,abc", Path::new(""), "b")
+            read_uri("data:,abc", Path::new("m.gltf"), "b", &mut Budget::new())
                 .expect_err("not base64")
                 .contains("only base64")
         );
         assert!(
-            read_uri("https://example.invalid/a.bin", Path::new(""), "b")
-                .expect_err("remote")
-                .contains("https")
+            read_uri(
+                "https://example.invalid/a.bin",
+                Path::new("m.gltf"),
+                "b",
+                &mut Budget::new()
+            )
+            .expect_err("remote")
+            .contains("https")
         );
+    }
+
+    #[test]
+    fn glb_lengths_below_the_header_are_errors() {
+        let mut glb = b"glTF\x02\0\0\0\x0b\0\0\0\x08\0\0\0JSON{}      ".to_vec();
+        let error = check_glb_length(&glb).expect_err("11 bytes");
+        assert!(error.contains("a length of 11 bytes"), "{error}");
+        glb[8] = 12;
+        assert_eq!(check_glb_length(&glb), Ok(()));
+        assert_eq!(check_glb_length(b"glTF"), Ok(()));
+        assert_eq!(check_glb_length(b"{}"), Ok(()));
     }
 
     #[test]

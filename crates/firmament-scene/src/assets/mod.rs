@@ -41,15 +41,39 @@
 //!
 //! Non-finite positions or texture coordinates, indices out of range and accessors that do not
 //! fit their buffers are errors. Every returned mesh passes [`Mesh::validate`].
+//!
+//! # Limits
+//! Every size a file can ask for is checked before anything of that size is allocated, and an
+//! over-limit file is an error naming the limit, never an out-of-memory kill. These are hard
+//! limits of the scene format (no scene key raises them): a model past them must be decimated,
+//! split over several objects, or its textures scaled down.
+//! - [`MAX_ASSET_BYTES`]: the bytes read for one mesh or texture file, every buffer, image and
+//!   material library a model names (and its decoded `data:` URIs) included; each file's size is
+//!   checked before it is read, and only regular files are read (not devices, pipes or folders).
+//! - [`MAX_MODEL_VERTICES`], [`MAX_MODEL_INDICES`]: a model file's vertices and triangle
+//!   indices, all its meshes together, checked from the declared counts (glTF accessors, OBJ
+//!   `v` lines and face corners) before the data is read.
+//! - [`MAX_MODEL_MESHES`]: the meshes one model file gives (a glTF mesh drawn by several nodes
+//!   counts once per node).
+//! - [`MAX_TEXTURE_SIDE`] for each image, checked from its header, and [`MAX_MODEL_TEXELS`] for
+//!   all the images of one model file together.
+//!
+//! A glTF node hierarchy must be a tree (a cycle, or a node with two parents, is an error), and
+//! every index must name an existing vertex.
 
 mod gltf;
+#[cfg(test)]
+mod hostile_tests;
 mod obj;
 mod texture_file;
 
+use std::io::Read as _;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
+use std::sync::Arc;
 
 use firmament_core::mesh::Mesh;
+pub use firmament_core::texture::MAX_TEXTURE_SIDE;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3};
 
@@ -58,17 +82,39 @@ use crate::error::SceneError;
 /// The file extensions [`load_model`] reads (compared case-insensitively).
 pub const MODEL_EXTENSIONS: [&str; 3] = ["obj", "gltf", "glb"];
 
+/// The most bytes firmament reads for one mesh or texture file named by a scene: the file itself
+/// and, for a model, every buffer, image and material library it names (decoded `data:` URIs
+/// included), together. 1 GiB.
+pub const MAX_ASSET_BYTES: u64 = 1 << 30;
+
+/// The most vertices one model file may give, all its meshes together (a mesh drawn by several
+/// glTF nodes counts once): 2²⁴ = 16 777 216.
+pub const MAX_MODEL_VERTICES: usize = 1 << 24;
+
+/// The most triangle indices (three per triangle) one model file may give, all its meshes
+/// together: 3 · 2²⁴ = 50 331 648 (16 777 216 triangles).
+pub const MAX_MODEL_INDICES: usize = 3 << 24;
+
+/// The most meshes one model file may give: OBJ objects, groups and material runs, or glTF
+/// triangle-list primitives once per node that draws them. 65 536.
+pub const MAX_MODEL_MESHES: usize = 1 << 16;
+
+/// The most texels the images of one model file may hold together (each distinct image once):
+/// 2²⁸ = 268 435 456, 1 GiB as 8-bit RGBA (four images of [`MAX_TEXTURE_SIDE`]²).
+pub const MAX_MODEL_TEXELS: u64 = 1 << 28;
+
 /// One mesh of a model file, with what the file says about its look.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadedMesh {
-    /// The triangles, validated (`Mesh::validate` passes).
-    pub mesh: Mesh,
+    /// The triangles, validated (`Mesh::validate` passes); shared between the meshes of a file
+    /// that draw the same primitive (a glTF mesh used by several nodes).
+    pub mesh: Arc<Mesh>,
     /// Mesh → model-file root transform (a glTF node's world matrix; identity for OBJ).
     pub transform: DMat4,
     /// Base (diffuse) colour factor, linear RGBA, if the file gives one.
     pub base_color: Option<[f64; 4]>,
-    /// Base colour texture, if the file gives one.
-    pub texture: Option<TextureImage>,
+    /// Base colour texture, if the file gives one; shared between the meshes that use it.
+    pub texture: Option<Arc<TextureImage>>,
 }
 
 /// Loads every mesh of an OBJ (`.obj`) or glTF (`.gltf`, `.glb`) file; `key` names the scene
@@ -76,37 +122,71 @@ pub struct LoadedMesh {
 ///
 /// OBJ gives one mesh per object or group (and per material change within one); glTF one mesh
 /// per triangle-list primitive of every mesh node in the default scene (else the first scene,
-/// else every root node). See the [module documentation](self) for the conventions and repairs.
+/// else every root node). See the [module documentation](self) for the conventions, repairs and
+/// limits.
 ///
 /// # Errors
 /// [`SceneError::Asset`] naming `key`, the path and the reason.
 pub fn load_model(key: &str, path: &Path) -> Result<Vec<LoadedMesh>, SceneError> {
-    let error = |reason: String| SceneError::Asset {
-        key: key.to_owned(),
-        path: path.display().to_string(),
-        reason,
-    };
+    let loader = model_loader(key, path)?;
+    guarded(|| {
+        let mut budget = Budget::new();
+        let bytes = budget.read_file(path, "model file")?;
+        loader(path, &bytes, &mut budget)
+    })
+    .map_err(asset_error(key, path))
+}
+
+/// Loads every mesh of a model whose file contents are `bytes`, as [`load_model`] does: `path`
+/// gives the format (by its extension), the folder that the files it names are read from, and
+/// the name in messages; the file itself is not read.
+///
+/// # Errors
+/// As [`load_model`].
+pub fn load_model_bytes(key: &str, path: &Path, bytes: &[u8]) -> Result<Vec<LoadedMesh>, SceneError> {
+    let loader = model_loader(key, path)?;
+    guarded(|| {
+        let mut budget = Budget::new();
+        budget.take_bytes(bytes.len() as u64, "the model file")?;
+        loader(path, bytes, &mut budget)
+    })
+    .map_err(asset_error(key, path))
+}
+
+/// A model loader: the path (for its folder and messages), the file's bytes and the budget.
+type ModelLoader = fn(&Path, &[u8], &mut Budget) -> Result<Vec<LoadedMesh>, String>;
+
+/// The loader for `path`'s extension.
+fn model_loader(key: &str, path: &Path) -> Result<ModelLoader, SceneError> {
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .unwrap_or_default();
-    let loader: fn(&Path) -> Result<Vec<LoadedMesh>, String> = match extension.as_str() {
-        "obj" => obj::load,
-        "gltf" | "glb" => gltf::load,
+    match extension.as_str() {
+        "obj" => Ok(obj::load),
+        "gltf" | "glb" => Ok(gltf::load),
         _ => {
             let found = if extension.is_empty() {
                 "no extension".to_owned()
             } else {
                 format!("extension `.{extension}`")
             };
-            return Err(error(format!(
+            Err(asset_error(key, path)(format!(
                 "unsupported model format ({found}); supported extensions are: {}",
                 MODEL_EXTENSIONS.map(|e| format!(".{e}")).join(", ")
-            )));
+            )))
         }
-    };
-    guarded(|| loader(path)).map_err(error)
+    }
+}
+
+/// A [`SceneError::Asset`] for `key` and `path` with a reason.
+fn asset_error<'a>(key: &'a str, path: &'a Path) -> impl Fn(String) -> SceneError + 'a {
+    move |reason| SceneError::Asset {
+        key: key.to_owned(),
+        path: path.display().to_string(),
+        reason,
+    }
 }
 
 /// Loads an image file (PNG, …) as a texture, bottom row first.
@@ -116,13 +196,29 @@ pub fn load_model(key: &str, path: &Path) -> Result<Vec<LoadedMesh>, SceneError>
 ///
 /// # Errors
 /// [`SceneError::Asset`] naming `key`, the path and the reason: the file cannot be read or
-/// decoded, or a side is 0 or more than [`MAX_TEXTURE_SIDE`](firmament_core::texture::MAX_TEXTURE_SIDE).
+/// decoded, it is larger than [`MAX_ASSET_BYTES`], or a side is 0 or more than
+/// [`MAX_TEXTURE_SIDE`].
 pub fn load_texture(key: &str, path: &Path) -> Result<TextureImage, SceneError> {
-    guarded(|| texture_file::read(path)).map_err(|reason| SceneError::Asset {
-        key: key.to_owned(),
-        path: path.display().to_string(),
-        reason,
+    guarded(|| {
+        let mut budget = Budget::new();
+        let bytes = budget.read_file(path, "image file")?;
+        texture_file::decode(&bytes, image::ImageFormat::from_path(path).ok(), &mut budget)
     })
+    .map_err(asset_error(key, path))
+}
+
+/// Decodes an image whose file contents are `bytes`, as [`load_texture`] does; `path` is the
+/// name in messages, and its extension the format to assume when the contents do not tell.
+///
+/// # Errors
+/// As [`load_texture`].
+pub fn load_texture_bytes(key: &str, path: &Path, bytes: &[u8]) -> Result<TextureImage, SceneError> {
+    guarded(|| {
+        let mut budget = Budget::new();
+        budget.take_bytes(bytes.len() as u64, "the image file")?;
+        texture_file::decode(bytes, image::ImageFormat::from_path(path).ok(), &mut budget)
+    })
+    .map_err(asset_error(key, path))
 }
 
 /// Loads an image file as a flare element's picture: [`load_texture`], then resampled to
@@ -147,12 +243,176 @@ fn guarded<T>(load: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
     })
 }
 
-/// Reads a whole file, with the operating system's reason on failure.
-fn read_file(path: &Path, what: &str) -> Result<Vec<u8>, String> {
-    std::fs::read(path).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => format!("{what} {} does not exist", path.display()),
-        _ => format!("cannot read {what} {}: {e}", path.display()),
-    })
+/// The message of an over-limit file: `what` ("the model gives 20000000 vertices"), then the
+/// limit's value and name, and what to do instead.
+fn over_limit(what: &str, limit: impl std::fmt::Display, name: &str, advice: &str) -> String {
+    format!(
+        "{what}, more than the limit of {limit} (firmament_scene::assets::{name}, a hard limit of firmament's scene \
+         format that no scene key raises; {advice})"
+    )
+}
+
+/// What one load may still read and allocate: the limits of the [module documentation](self),
+/// counted down as files are read, meshes built and images decoded.
+#[derive(Debug, Clone)]
+struct Budget {
+    /// Bytes left of [`MAX_ASSET_BYTES`].
+    bytes: u64,
+    /// Vertices left of [`MAX_MODEL_VERTICES`].
+    vertices: usize,
+    /// Indices left of [`MAX_MODEL_INDICES`].
+    indices: usize,
+    /// Meshes left of [`MAX_MODEL_MESHES`].
+    meshes: usize,
+    /// Texels left of [`MAX_MODEL_TEXELS`].
+    texels: u64,
+}
+
+impl Budget {
+    /// The whole budget of one load.
+    fn new() -> Self {
+        Self {
+            bytes: MAX_ASSET_BYTES,
+            vertices: MAX_MODEL_VERTICES,
+            indices: MAX_MODEL_INDICES,
+            meshes: MAX_MODEL_MESHES,
+            texels: MAX_MODEL_TEXELS,
+        }
+    }
+
+    /// Takes `n` bytes for `what` (read or decoded).
+    fn take_bytes(&mut self, n: u64, what: &str) -> Result<(), String> {
+        let used = MAX_ASSET_BYTES - self.bytes;
+        self.bytes = self.bytes.checked_sub(n).ok_or_else(|| {
+            let before = if used > 0 {
+                format!(" (after {used} bytes of the file and the files it names)")
+            } else {
+                String::new()
+            };
+            over_limit(
+                &format!("{what} is {n} bytes{before}"),
+                format!("{MAX_ASSET_BYTES} bytes"),
+                "MAX_ASSET_BYTES",
+                "split the model, or scale its textures down",
+            )
+        })?;
+        Ok(())
+    }
+
+    /// Takes the vertices and indices of one mesh (`label`), from its declared counts.
+    fn take_mesh(&mut self, vertices: usize, indices: usize, label: &str) -> Result<(), String> {
+        let total = |left: usize, max: usize, n: usize| (max - left).saturating_add(n);
+        self.vertices = self.vertices.checked_sub(vertices).ok_or_else(|| {
+            over_limit(
+                &format!(
+                    "{label}: with its {vertices} vertices the file's meshes have {}",
+                    total(self.vertices, MAX_MODEL_VERTICES, vertices)
+                ),
+                MAX_MODEL_VERTICES,
+                "MAX_MODEL_VERTICES",
+                "decimate the model, or split it over several files",
+            )
+        })?;
+        self.indices = self.indices.checked_sub(indices).ok_or_else(|| {
+            over_limit(
+                &format!(
+                    "{label}: with its {indices} triangle indices the file's meshes have {}",
+                    total(self.indices, MAX_MODEL_INDICES, indices)
+                ),
+                MAX_MODEL_INDICES,
+                "MAX_MODEL_INDICES",
+                "decimate the model, or split it over several files",
+            )
+        })?;
+        Ok(())
+    }
+
+    /// Takes `n` meshes (parts returned).
+    fn take_meshes(&mut self, n: usize) -> Result<(), String> {
+        self.meshes = self.meshes.checked_sub(n).ok_or_else(|| {
+            over_limit(
+                &format!(
+                    "the file gives {} meshes or more",
+                    (MAX_MODEL_MESHES - self.meshes).saturating_add(n)
+                ),
+                MAX_MODEL_MESHES,
+                "MAX_MODEL_MESHES",
+                "merge meshes, or split the model over several files",
+            )
+        })?;
+        Ok(())
+    }
+
+    /// Takes the texels of one `width` × `height` image (`what`), before it is decoded.
+    fn take_texels(&mut self, width: u32, height: u32, what: &str) -> Result<(), String> {
+        let n = u64::from(width) * u64::from(height);
+        self.texels = self.texels.checked_sub(n).ok_or_else(|| {
+            over_limit(
+                &format!(
+                    "{what} is {width} × {height}: with it the file's images have {} texels",
+                    (MAX_MODEL_TEXELS - self.texels).saturating_add(n)
+                ),
+                MAX_MODEL_TEXELS,
+                "MAX_MODEL_TEXELS",
+                "scale the textures down, or share one image between materials",
+            )
+        })?;
+        Ok(())
+    }
+
+    /// Reads a whole regular file for `what`, with the operating system's reason on failure,
+    /// after checking its size against the bytes left.
+    fn read_file(&mut self, path: &Path, what: &str) -> Result<Vec<u8>, String> {
+        let os_error = |e: std::io::Error| match e.kind() {
+            std::io::ErrorKind::NotFound => format!("{what} {} does not exist", path.display()),
+            _ => format!("cannot read {what} {}: {e}", path.display()),
+        };
+        // `metadata` first: opening a pipe would wait for a writer.
+        let metadata = std::fs::metadata(path).map_err(os_error)?;
+        if !metadata.is_file() {
+            return Err(format!(
+                "{what} {} is not a regular file (a folder, device or pipe)",
+                path.display()
+            ));
+        }
+        let shown = format!("{what} {}", path.display());
+        self.take_bytes(metadata.len(), &shown)?;
+        let file = std::fs::File::open(path).map_err(os_error)?;
+        let mut bytes = Vec::with_capacity(usize::try_from(metadata.len()).unwrap_or(0));
+        // The file may grow between the check and the read: read at most what is left, plus one.
+        file.take(metadata.len().saturating_add(self.bytes).saturating_add(1))
+            .read_to_end(&mut bytes)
+            .map_err(os_error)?;
+        let grown = (bytes.len() as u64).saturating_sub(metadata.len());
+        self.take_bytes(grown, &shown)?;
+        Ok(bytes)
+    }
+}
+
+/// Logs (`warn`) that the model file `model` names a `what` at `file` outside its own folder (an
+/// absolute path, a `file:` URI, or `..` past the folder): the user asked for the model, and
+/// should hear of what else it reads.
+fn note_outside(model: &Path, file: &Path, what: &str) {
+    let folder = model.parent().unwrap_or(Path::new(""));
+    let inside = file.strip_prefix(folder).is_ok_and(|rest| {
+        let mut depth = 0_i64;
+        rest.components().all(|c| {
+            match c {
+                std::path::Component::Normal(_) => depth += 1,
+                std::path::Component::ParentDir => depth -= 1,
+                std::path::Component::CurDir => {}
+                std::path::Component::RootDir | std::path::Component::Prefix(_) => depth = -1,
+            }
+            depth >= 0
+        })
+    });
+    if !inside {
+        tracing::warn!(
+            "{}: reading its {what} {}, which is outside the model's folder",
+            model.display(),
+            file.display()
+        );
+    }
 }
 
 /// A mesh as a file gives it, before the repairs of [`finish_mesh`].

@@ -19,34 +19,43 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::Cursor;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use firmament_core::texture::TextureImage;
 use glam::DMat4;
 
-use super::{LoadedMesh, RawMesh, finish_mesh, read_file, texture_file};
+use super::{Budget, LoadedMesh, RawMesh, finish_mesh, texture_file};
 
 /// Triangulated, one index per vertex, no points or lines: `tobj`'s `GPU_LOAD_OPTIONS`
 /// (`single_index`, `triangulate`, `ignore_points`, `ignore_lines`).
 const OPTIONS: tobj::LoadOptions = tobj::GPU_LOAD_OPTIONS;
 
-/// Loads an OBJ file and the materials it names.
-pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
-    let bytes = read_file(path, "OBJ file")?;
-    check_face_indices(&bytes)?;
+/// Loads an OBJ file (its contents `bytes`) and the materials it names.
+pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec<LoadedMesh>, String> {
+    let (positions, indices) = check_face_indices(bytes)?;
+    // Bound what `tobj` allocates before it parses: every `v` line, and the fans of every face.
+    budget
+        .clone()
+        .take_mesh(positions, indices, "the file's `v` and `f` lines")?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let problems = RefCell::new(Vec::new());
-    let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(&bytes), &OPTIONS, |library| {
-        load_library(&folder.join(library), &problems)
-    })
-    .map_err(|e| describe_error(&bytes, e))?;
+    let shared = RefCell::new(std::mem::replace(budget, Budget::new()));
+    let parsed = tobj::load_obj_buf(&mut Cursor::new(bytes), &OPTIONS, |library| {
+        let file = folder.join(library);
+        super::note_outside(path, &file, "material library");
+        load_library(&file, &problems, &mut shared.borrow_mut())
+    });
+    *budget = shared.into_inner();
+    let (models, materials) = parsed.map_err(|e| describe_error(bytes, e))?;
     for problem in problems.into_inner() {
         tracing::warn!("{}: {problem}; going on without its materials", path.display());
     }
     // A library that failed is in `problems`, already logged.
     let materials = materials.unwrap_or_default();
 
-    let mut textures: HashMap<usize, Option<TextureImage>> = HashMap::new();
+    // By resolved path: materials that share an image share one decoded texture.
+    let mut textures: HashMap<PathBuf, Option<Arc<TextureImage>>> = HashMap::new();
     let mut meshes = Vec::with_capacity(models.len());
     for (i, model) in models.into_iter().enumerate() {
         let label = if model.name.is_empty() {
@@ -60,6 +69,8 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
             continue;
         }
         let n = m.positions.len() / 3;
+        budget.take_meshes(1)?;
+        budget.take_mesh(n, m.indices.len(), &label)?;
         let normals = match m.normals.len() {
             0 => None,
             len if len == 3 * n => Some(m.normals.chunks_exact(3).map(|v| [v[0], v[1], v[2]]).collect()),
@@ -95,14 +106,17 @@ pub(super) fn load(path: &Path) -> Result<Vec<LoadedMesh>, String> {
             .material_id
             .and_then(|id| materials.get(id).map(|material| (id, material)));
         let base_color = material.and_then(|(_, material)| base_color(path, material));
-        let texture = material.and_then(|(id, material)| {
-            textures
-                .entry(id)
-                .or_insert_with(|| diffuse_map(path, folder, material))
-                .clone()
+        let texture = material.and_then(|(_, material)| {
+            let (file, given) = diffuse_map_path(folder, material)?;
+            if let Some(texture) = textures.get(&file) {
+                return texture.clone();
+            }
+            let texture = diffuse_map(path, material, &file, given, budget).map(Arc::new);
+            textures.insert(file, texture.clone());
+            texture
         });
         meshes.push(LoadedMesh {
-            mesh,
+            mesh: Arc::new(mesh),
             transform: DMat4::IDENTITY,
             base_color,
             texture,
@@ -130,8 +144,8 @@ fn base_color(path: &Path, material: &tobj::Material) -> Option<[f64; 4]> {
     }
 }
 
-/// The material's `map_Kd` image, or `None` (logged) when it cannot be loaded.
-fn diffuse_map(path: &Path, folder: &Path, material: &tobj::Material) -> Option<TextureImage> {
+/// The file of the material's `map_Kd` image, and the name as given, if it has one.
+fn diffuse_map_path<'m>(folder: &Path, material: &'m tobj::Material) -> Option<(PathBuf, &'m str)> {
     let given = material.diffuse_texture.as_deref()?;
     // `map_Kd -s 1 1 1 -bm 0.5 file.png`: options come first, the file name last.
     let name = if given.starts_with('-') {
@@ -143,7 +157,23 @@ fn diffuse_map(path: &Path, folder: &Path, material: &tobj::Material) -> Option<
     if !file.exists() && name.contains('\\') {
         file = folder.join(name.replace('\\', "/"));
     }
-    match texture_file::read(&file) {
+    Some((file, given))
+}
+
+/// The material's `map_Kd` image `file` (`given` in the material), or `None` (logged) when it
+/// cannot be loaded.
+fn diffuse_map(
+    path: &Path,
+    material: &tobj::Material,
+    file: &Path,
+    given: &str,
+    budget: &mut Budget,
+) -> Option<TextureImage> {
+    super::note_outside(path, file, "diffuse map");
+    let loaded = budget
+        .read_file(file, "image file")
+        .and_then(|bytes| texture_file::decode(&bytes, image::ImageFormat::from_path(file).ok(), budget));
+    match loaded {
         Ok(texture) => Some(texture),
         Err(reason) => {
             tracing::warn!(
@@ -157,8 +187,8 @@ fn diffuse_map(path: &Path, folder: &Path, material: &tobj::Material) -> Option<
 }
 
 /// Reads a material library for `tobj`, recording why it could not be read in `problems`.
-fn load_library(path: &Path, problems: &RefCell<Vec<String>>) -> tobj::MTLLoadResult {
-    let loaded = read_file(path, "material library").and_then(|bytes| {
+fn load_library(path: &Path, problems: &RefCell<Vec<String>>, budget: &mut Budget) -> tobj::MTLLoadResult {
+    let loaded = budget.read_file(path, "material library").and_then(|bytes| {
         let text = expand_grey_colors(&String::from_utf8_lossy(&bytes))
             .map_err(|e| format!("material library {} is malformed: {e}", path.display()))?;
         tobj::load_mtl_buf(&mut Cursor::new(text))
@@ -196,8 +226,9 @@ fn expand_grey_colors(text: &str) -> Result<String, String> {
 
 /// Checks every face index against the vertex counts, as `tobj` resolves them (positive: from 1
 /// over the whole file; negative: back from the last one read so far). `tobj` does not check
-/// them all itself and can panic on huge ones.
-fn check_face_indices(bytes: &[u8]) -> Result<(), String> {
+/// them all itself and can panic on huge ones. Returns the number of positions (`v` lines) and
+/// of the triangle indices the faces give once triangulated as fans.
+fn check_face_indices(bytes: &[u8]) -> Result<(usize, usize), String> {
     const KINDS: [&str; 3] = ["vertex", "texture coordinate", "normal"];
     let kind_of = |keyword: &str| ["v", "vt", "vn"].iter().position(|k| *k == keyword);
     let lines = || {
@@ -212,10 +243,15 @@ fn check_face_indices(bytes: &[u8]) -> Result<(), String> {
         }
     }
     let mut so_far = [0_i64; 3];
+    let mut indices = 0_usize;
     for (number, line) in lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
-            Some("f" | "l") => {}
+            Some("f") => {
+                let corners = words.clone().count();
+                indices = indices.saturating_add(3 * corners.saturating_sub(2));
+            }
+            Some("l") => {}
             Some(keyword) => {
                 if let Some(kind) = kind_of(keyword) {
                     so_far[kind] += 1;
@@ -247,12 +283,19 @@ fn check_face_indices(bytes: &[u8]) -> Result<(), String> {
             }
         }
     }
-    Ok(())
+    Ok((usize::try_from(totals[0]).unwrap_or(usize::MAX), indices))
 }
 
+/// The largest OBJ file whose parse errors are located to their line: locating parses about
+/// log₂(lines) prefixes of the file, seconds for a file of this size.
+const LOCATE_MAX_BYTES: usize = 32 << 20;
+
 /// `tobj`'s error, with the first line at which parsing fails (found by parsing ever shorter
-/// prefixes: `tobj` reports no line numbers).
+/// prefixes: `tobj` reports no line numbers; not for files over [`LOCATE_MAX_BYTES`]).
 fn describe_error(bytes: &[u8], error: tobj::LoadError) -> String {
+    if bytes.len() > LOCATE_MAX_BYTES {
+        return format!("malformed OBJ: {error} (the file is too large to find the line)");
+    }
     let mut ends: Vec<usize> = bytes
         .iter()
         .enumerate()
@@ -308,7 +351,7 @@ mod tests {
     #[test]
     fn face_indices_are_checked() {
         let ok = b"v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\nf -3 -2 -1\nvt 0 0\nf 1/1 2/-1 3/1\n";
-        assert_eq!(check_face_indices(ok), Ok(()));
+        assert_eq!(check_face_indices(ok), Ok((3, 9)));
         let error = check_face_indices(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n").expect_err("4");
         assert!(
             error.contains("line 4: vertex index 4 is out of range (the file has 3)"),

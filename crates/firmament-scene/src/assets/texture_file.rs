@@ -4,22 +4,19 @@
 //! `t = 0`, as `glTexImage2D` takes it.
 
 use std::io::Cursor;
-use std::path::Path;
 
 use firmament_core::texture::{MAX_TEXTURE_SIDE, TextureImage};
 use image::{ImageFormat, ImageReader, Limits};
 
+use super::Budget;
+
 /// The formats the workspace builds the `image` crate with, for messages.
 const FORMATS: &str = "PNG, JPEG and OpenEXR";
 
-/// Reads and decodes an image file (the format from its contents, else its extension).
-pub(super) fn read(path: &Path) -> Result<TextureImage, String> {
-    let bytes = super::read_file(path, "image file")?;
-    decode(&bytes, ImageFormat::from_path(path).ok())
-}
-
-/// Decodes an encoded image; `hint` is the format to assume when the contents do not tell.
-pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>) -> Result<TextureImage, String> {
+/// Decodes an encoded image; `hint` is the format to assume when the contents do not tell. The
+/// size from the header is checked against [`MAX_TEXTURE_SIDE`] and taken from `budget`'s texels
+/// before the pixels are decoded.
+pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>, budget: &mut Budget) -> Result<TextureImage, String> {
     let guessed = ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| format!("cannot read the image: {e}"))?
@@ -37,6 +34,7 @@ pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>) -> Result<TextureI
         .map_err(failed)?;
     check_side("width", width)?;
     check_side("height", height)?;
+    budget.take_texels(width, height, "the image")?;
 
     let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = Limits::default();
@@ -78,13 +76,19 @@ pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
     }
 }
 
+/// Checks one side of an image against [`MAX_TEXTURE_SIDE`].
 fn check_side(name: &str, side: u32) -> Result<(), String> {
-    if (1..=MAX_TEXTURE_SIDE).contains(&side) {
-        Ok(())
-    } else {
-        Err(format!(
-            "the image {name} is {side} pixels; textures must be 1 to {MAX_TEXTURE_SIDE} pixels on a side"
+    if side == 0 {
+        Err(format!("the image {name} is 0 pixels"))
+    } else if side > MAX_TEXTURE_SIDE {
+        Err(super::over_limit(
+            &format!("the image {name} is {side} pixels"),
+            format!("{MAX_TEXTURE_SIDE} pixels on a side"),
+            "MAX_TEXTURE_SIDE",
+            "scale the image down",
         ))
+    } else {
+        Ok(())
     }
 }
 
@@ -110,7 +114,7 @@ mod tests {
             2 => Rgba([0, 0, 255, 128]),
             _ => Rgba([0, x as u8, 0, 255]),
         });
-        let texture = decode(&png(&image), None).expect("decodes");
+        let texture = decode(&png(&image), None, &mut Budget::new()).expect("decodes");
         assert_eq!((texture.width, texture.height), (2, 3));
         assert_eq!(texture.texel(0, 0), Some([0, 0, 255, 128]));
         assert_eq!(texture.texel(1, 1), Some([0, 1, 0, 255]));
@@ -120,7 +124,7 @@ mod tests {
     #[test]
     fn resampling_keeps_a_flat_image_flat_and_rows_in_order() {
         let image = RgbaImage::from_fn(4, 6, |_, y| if y < 3 { Rgba([200; 4]) } else { Rgba([0, 0, 0, 255]) });
-        let texture = decode(&png(&image), None).expect("decodes");
+        let texture = decode(&png(&image), None, &mut Budget::new()).expect("decodes");
         let scaled = resampled(&texture, 16);
         assert_eq!((scaled.width, scaled.height), (16, 16));
         // Row 0 is the bottom of the picture, which is black; the top is grey.
@@ -130,15 +134,15 @@ mod tests {
 
     #[test]
     fn bad_images_are_errors() {
-        let error = decode(b"not an image", None).expect_err("garbage");
+        let error = decode(b"not an image", None, &mut Budget::new()).expect_err("garbage");
         assert!(error.contains("not an image file of a known format"), "{error}");
-        let error = decode(b"not an image", Some(ImageFormat::Png)).expect_err("garbage");
+        let error = decode(b"not an image", Some(ImageFormat::Png), &mut Budget::new()).expect_err("garbage");
         assert!(error.contains("cannot decode the Png image"), "{error}");
         let mut truncated = png(&RgbaImage::new(4, 4));
         truncated.truncate(truncated.len() / 2);
-        assert!(decode(&truncated, None).is_err());
+        assert!(decode(&truncated, None, &mut Budget::new()).is_err());
         let wide = png(&RgbaImage::new(MAX_TEXTURE_SIDE + 1, 1));
-        let error = decode(&wide, None).expect_err("too wide");
+        let error = decode(&wide, None, &mut Budget::new()).expect_err("too wide");
         assert!(error.contains("width is 8193 pixels"), "{error}");
     }
 }

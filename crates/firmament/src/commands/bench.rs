@@ -15,9 +15,11 @@ use crate::cli::BenchArgs;
 /// Loads the scene (an atmosphere preset by default), times the passes and prints the figures.
 pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     if let Some(count) = args.objects {
+        crate::limits::check_pixels("the image", args.width, args.height)?;
         return run_objects(args, count);
     }
     if args.flares {
+        crate::limits::check_pixels("the image", args.width, args.height)?;
         return run_flares(args);
     }
     let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
@@ -26,6 +28,7 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
         format!("render.height={}", args.height),
     ];
     let scene = super::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
+    crate::limits::check_pixels("the image", args.width, args.height)?;
     let frame = scene.frame_at(None)?;
     if args.embedded {
         return run_embedded(args, &frame);

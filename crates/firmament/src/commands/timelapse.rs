@@ -331,6 +331,7 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
+    crate::limits::check_pixels("each frame", width, height)?;
     let n = args.frames;
     let instants: Vec<CivilDateTime> = (0..n).map(|k| frame_instant(&args.from, span, k, n)).collect();
     let (Some(first), Some(last)) = (instants.first(), instants.last()) else {

@@ -23,6 +23,11 @@ const QUANTISER_SPEED: i32 = 10;
 /// At most this many frames are prepared at once (and held in memory).
 const MAX_WORKERS: usize = 16;
 
+/// Memory the frames being prepared at once may take, bytes: each is decoded whole (RGB, then
+/// RGBA: about 8 bytes a pixel) before it is scaled down, so large frames are prepared fewer at a
+/// time.
+const PREPARE_MEMORY: u64 = 1 << 30;
+
 /// One frame, read, scaled to `width × height`, quantised and LZW-compressed.
 fn prepare(path: &Path, width: u16, height: u16, delay_cs: u16) -> Result<gif::Frame<'static>> {
     let mut rgba = read_frame(path)?.to_rgba8();
@@ -50,7 +55,10 @@ pub(super) fn write_gif(path: &Path, frames: &[PathBuf], fps: u32, interrupted: 
     // Both at most GIF_LONGEST_SIDE, so they fit a GIF's 16-bit sizes.
     let (gif_width, gif_height) = (gif_width.min(65_535) as u16, gif_height.min(65_535) as u16);
     let delay_cs = (100.0 / f64::from(fps.max(1))).round().clamp(1.0, 65_535.0) as u16;
-    let workers = rayon::current_num_threads().clamp(1, MAX_WORKERS);
+    let per_frame = (u64::from(width) * u64::from(height) * 8).max(1);
+    let workers = rayon::current_num_threads()
+        .clamp(1, MAX_WORKERS)
+        .min((PREPARE_MEMORY / per_frame).max(1) as usize);
     let failed = |e: gif::EncodingError| anyhow!("output {}: GIF encoding failed: {e}", path.display());
     write_atomically_or_abandon(path, |writer| {
         let mut encoder = gif::Encoder::new(writer, gif_width, gif_height, &[]).map_err(failed)?;

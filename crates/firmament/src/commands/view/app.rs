@@ -23,6 +23,9 @@ use super::panel::{self, FrameInfo, PanelState, Request};
 use super::session::Session;
 use crate::output::{write_exr, write_png};
 
+/// Surfaces lost in a row before the viewer gives up.
+const MAX_SURFACES_LOST: u32 = 3;
+
 /// Frame times kept for the summary printed on closing.
 const FRAME_TIMES_KEPT: usize = 10_000;
 
@@ -46,6 +49,8 @@ pub(crate) struct App {
     last_frame: Option<Instant>,
     info: FrameInfo,
     frames: u64,
+    /// Surfaces lost since the last frame shown.
+    surfaces_lost: u32,
     /// Wall time between frames, seconds (the last [`FRAME_TIMES_KEPT`]), for the summary.
     frame_times: std::collections::VecDeque<f64>,
     /// The error that ended the viewer, if one did.
@@ -75,6 +80,7 @@ impl App {
             last_frame: None,
             info: FrameInfo::default(),
             frames: 0,
+            surfaces_lost: 0,
             frame_times: std::collections::VecDeque::new(),
             error: None,
         }
@@ -141,9 +147,24 @@ impl App {
 
         let frame = self.session.frame(self.info.scene_size)?;
         gpu.set_frame_interval((dt > 0.0).then_some(dt));
-        let presented = gpu.draw(&frame, self.info.scene_size, ui)?;
-        if presented == Presented::Shown {
-            self.frames += 1;
+        match gpu.draw(&frame, self.info.scene_size, ui)? {
+            Presented::Shown => {
+                self.frames += 1;
+                self.surfaces_lost = 0;
+            }
+            Presented::Skipped => {}
+            Presented::Lost => {
+                // A new surface, a few times in a row at most: a surface that keeps getting lost
+                // is a driver problem to report, not to spin on.
+                self.surfaces_lost += 1;
+                if self.surfaces_lost > MAX_SURFACES_LOST {
+                    anyhow::bail!(
+                        "the window's surface was lost {MAX_SURFACES_LOST} times in a row; restart the viewer"
+                    );
+                }
+                tracing::warn!("the window's surface was lost; making a new one");
+                gpu.recreate_surface(&self.instance)?;
+            }
         }
         for request in requests {
             self.handle(request);

@@ -20,6 +20,8 @@ pub(crate) enum Presented {
     /// Nothing to draw into now (minimised, occluded, a timeout, a reconfigured surface): try
     /// again next frame.
     Skipped,
+    /// The surface was lost: make a new one ([`Gpu::recreate_surface`]) and try again.
+    Lost,
 }
 
 /// The egui part of a frame: what to draw and at what scale.
@@ -161,6 +163,15 @@ impl Gpu {
         self.surface.configure(&self.ctx.device, &self.config);
     }
 
+    /// Makes a new surface for the window after the old one was lost, configured as before.
+    pub(crate) fn recreate_surface(&mut self, instance: &wgpu::Instance) -> Result<()> {
+        self.surface = instance
+            .create_surface(self.window.clone())
+            .context("the window's surface was lost and a new one could not be made")?;
+        self.surface.configure(&self.ctx.device, &self.config);
+        Ok(())
+    }
+
     /// An error wgpu reported since the last check (a device loss, a validation error).
     pub(crate) fn fault(&self) -> Option<String> {
         self.fault.lock().ok().and_then(|f| f.clone())
@@ -213,9 +224,7 @@ impl Gpu {
                 self.resize(size.width, size.height);
                 return Ok(Presented::Skipped);
             }
-            wgpu::CurrentSurfaceTexture::Lost => {
-                bail!("the window's surface was lost; restart the viewer")
-            }
+            wgpu::CurrentSurfaceTexture::Lost => return Ok(Presented::Lost),
             wgpu::CurrentSurfaceTexture::Validation => {
                 bail!("the window's surface could not give a texture (a validation error)")
             }

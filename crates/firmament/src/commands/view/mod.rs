@@ -6,6 +6,7 @@ mod app;
 mod gpu;
 mod input;
 mod panel;
+mod scene_editor;
 mod session;
 
 use firmament_render::wgpu;
@@ -13,7 +14,6 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use firmament_render::Backend;
-use firmament_scene::{SceneDocument, SceneSource};
 use winit::event_loop::EventLoop;
 
 use crate::cli::ViewArgs;
@@ -46,6 +46,7 @@ pub(crate) struct ViewOptions {
 /// Opens the viewer and runs it until the window closes (or `--frames` are drawn).
 pub(crate) fn run(args: &ViewArgs) -> Result<()> {
     let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
+    crate::limits::check_pixels("the window (--size)", args.size.0, args.size.1)?;
     // Check the outputs before opening anything, so a typo fails at once.
     if let Some(path) = &args.screenshot {
         crate::output::OutputFormat::from_path(path)?;
@@ -54,15 +55,11 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
     if let Some(path) = &args.save_scene {
         crate::output::check_parent_dir(path)?;
     }
-    let overrides = &args.scene_args.overrides;
-    let doc = match &args.scene {
-        Some(path) => SceneDocument::load_file(path, args.scene_args.preset.as_deref(), overrides),
-        None => SceneDocument::load(
-            SceneSource::Preset(args.scene_args.preset.as_deref().unwrap_or("default")),
-            None,
-            overrides,
-        ),
-    }
+    let doc = super::load_document(
+        args.scene.as_deref(),
+        args.scene_args.preset.as_deref(),
+        &args.scene_args.overrides,
+    )
     .with_context(|| format!("cannot build {what}"))?;
     let session = session::Session::new(doc).with_context(|| format!("cannot build {what}"))?;
 

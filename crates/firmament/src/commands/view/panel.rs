@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use firmament_core::flight::FlightMode;
 
+use super::scene_editor::SceneEditor;
 use super::session::Session;
 
 /// What the panel asks the app to do after this frame.
@@ -33,6 +34,8 @@ pub(crate) struct PanelState {
     pub(crate) status: Option<String>,
     /// Share of the window's pixels the scene is drawn at, in (0, 1] (the panel stays sharp).
     pub(crate) render_scale: f32,
+    /// The tree of every scene key.
+    editor: SceneEditor,
 }
 
 impl PanelState {
@@ -44,6 +47,7 @@ impl PanelState {
             save_path,
             status: None,
             render_scale,
+            editor: SceneEditor::default(),
         }
     }
 }
@@ -101,7 +105,7 @@ pub(crate) fn side_panel(
                 camera_section(ui, session, state);
                 info_section(ui, info);
                 file_section(ui, session, state, &mut requests);
-                scene_section(ui, session);
+                state.editor.show(ui, session);
             });
         });
     requests
@@ -232,128 +236,6 @@ fn file_section(ui: &mut egui::Ui, session: &mut Session, state: &mut PanelState
     });
 }
 
-fn scene_section(ui: &mut egui::Ui, session: &mut Session) {
-    egui::CollapsingHeader::new("Scene").default_open(true).show(ui, |ui| {
-        if let Some(error) = &session.edit_error {
-            ui.colored_label(egui::Color32::from_rgb(255, 120, 100), error);
-        }
-        if session.doc.is_modified() {
-            ui.label("modified (save to keep)");
-        }
-        let mut table = session.doc.table().clone();
-        let mut changed = false;
-        for (key, value) in table.iter_mut() {
-            if key == "preset" {
-                continue;
-            }
-            changed |= edit_value(ui, key, key, value);
-        }
-        if changed {
-            *session.doc.table_mut() = table;
-            session.document_changed();
-        }
-    });
-}
-
-/// An editor for one TOML value at `path`; whether it changed.
-fn edit_value(ui: &mut egui::Ui, label: &str, path: &str, value: &mut toml::Value) -> bool {
-    match value {
-        toml::Value::Table(table) => egui::CollapsingHeader::new(label)
-            .id_salt(path)
-            .show(ui, |ui| {
-                let mut changed = false;
-                for (key, child) in table.iter_mut() {
-                    changed |= edit_value(ui, key, &format!("{path}.{key}"), child);
-                }
-                changed
-            })
-            .body_returned
-            .unwrap_or(false),
-        toml::Value::Array(items) if items.iter().all(|v| v.is_table()) => {
-            egui::CollapsingHeader::new(format!("{label} ({})", items.len()))
-                .id_salt(path)
-                .show(ui, |ui| edit_list(ui, path, items))
-                .body_returned
-                .unwrap_or(false)
-        }
-        other => {
-            ui.horizontal(|ui| {
-                ui.label(label);
-                edit_leaf(ui, path, other)
-            })
-            .inner
-        }
-    }
-}
-
-/// A list of tables (suns, lights, keyframes, objects): each one, and add or remove.
-fn edit_list(ui: &mut egui::Ui, path: &str, items: &mut Vec<toml::Value>) -> bool {
-    let mut changed = false;
-    let mut remove = None;
-    for (i, item) in items.iter_mut().enumerate() {
-        changed |= edit_value(ui, &format!("[{i}]"), &format!("{path}.{i}"), item);
-        if ui.small_button(format!("remove [{i}]")).clicked() {
-            remove = Some(i);
-        }
-    }
-    if let Some(i) = remove {
-        items.remove(i);
-        changed = true;
-    }
-    if let Some(last) = items.last().cloned()
-        && ui.small_button("add (a copy of the last)").clicked()
-    {
-        items.push(last);
-        changed = true;
-    }
-    changed
-}
-
-/// An editor for a number, a flag, a text or a list of plain values.
-fn edit_leaf(ui: &mut egui::Ui, path: &str, value: &mut toml::Value) -> bool {
-    match value {
-        toml::Value::Float(x) => {
-            let speed = (x.abs() * 0.01).max(1e-3);
-            ui.add(egui::DragValue::new(x).speed(speed).max_decimals(9)).changed()
-        }
-        toml::Value::Integer(i) => ui.add(egui::DragValue::new(i).speed(1.0)).changed(),
-        toml::Value::Boolean(b) => ui.checkbox(b, "").changed(),
-        toml::Value::String(text) => {
-            let mut changed = false;
-            if let Some(mut rgb) = hex_colour(text) {
-                if ui.color_edit_button_srgb(&mut rgb).changed() {
-                    *text = format!("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
-                    changed = true;
-                }
-            }
-            let response = ui.add(egui::TextEdit::singleline(text).desired_width(140.0).id_salt(path));
-            changed | response.changed()
-        }
-        toml::Value::Array(items) => {
-            let mut changed = false;
-            for (i, item) in items.iter_mut().enumerate() {
-                changed |= edit_leaf(ui, &format!("{path}.{i}"), item);
-            }
-            changed
-        }
-        toml::Value::Datetime(d) => {
-            ui.label(d.to_string());
-            false
-        }
-        toml::Value::Table(_) => false,
-    }
-}
-
-/// The sRGB bytes of a `#rrggbb` colour.
-fn hex_colour(text: &str) -> Option<[u8; 3]> {
-    let hex = text.strip_prefix('#')?;
-    if hex.len() != 6 || !hex.is_ascii() {
-        return None;
-    }
-    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
-    Some([byte(0)?, byte(2)?, byte(4)?])
-}
-
 /// A length for people: metres, kilometres, or astronomical units.
 pub(crate) fn metres(m: f64) -> String {
     const AU: f64 = 1.495_978_707e11;
@@ -370,14 +252,6 @@ pub(crate) fn metres(m: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn hex_colours_parse() {
-        assert_eq!(hex_colour("#ff8000"), Some([255, 128, 0]));
-        assert_eq!(hex_colour("ff8000"), None);
-        assert_eq!(hex_colour("#ff80"), None);
-        assert_eq!(hex_colour("#gg0000"), None);
-    }
 
     #[test]
     fn lengths_read_well() {
