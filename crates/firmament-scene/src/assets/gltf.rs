@@ -25,6 +25,7 @@ use std::collections::{HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
+use super::texture_file::FormatHint;
 use ::gltf::accessor::sparse::IndexType;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::{Mode, Semantic};
@@ -36,7 +37,6 @@ use base64::engine::{DecodePaddingMode, GeneralPurpose, GeneralPurposeConfig};
 use firmament_core::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DQuat, DVec3};
-use image::ImageFormat;
 
 use super::{Budget, LoadedMesh, RawMesh, finish_mesh, texture_file};
 
@@ -277,7 +277,7 @@ pub(super) fn read_uri(
     path: &Path,
     what: &str,
     budget: &mut Budget,
-) -> Result<(Vec<u8>, Option<ImageFormat>), String> {
+) -> Result<(Vec<u8>, Option<FormatHint>), String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let Some((header, payload)) = rest.split_once(',') else {
             return Err(format!("{what}: malformed data URI (no `,`)"));
@@ -291,7 +291,7 @@ pub(super) fn read_uri(
         let bytes = BASE64
             .decode(payload)
             .map_err(|e| format!("{what}: bad base64 in its data URI: {e}"))?;
-        return Ok((bytes, ImageFormat::from_mime_type(media_type)));
+        return Ok((bytes, FormatHint::from_mime_type(media_type)));
     }
     let relative = match uri_scheme(uri) {
         None => true,
@@ -313,7 +313,7 @@ pub(super) fn read_uri(
     };
     super::note_outside(path, &file, what);
     let bytes = budget.read_file(&file, &format!("the file of {what}"))?;
-    Ok((bytes, ImageFormat::from_path(&file).ok()))
+    Ok((bytes, FormatHint::from_path(&file)))
 }
 
 /// A URI's scheme (`http` in `http://…`), if it has one. A single letter is taken for a
@@ -567,16 +567,16 @@ impl Loader<'_> {
             Some(name) => format!("image {} (`{name}`)", image.index()),
             None => format!("image {}", image.index()),
         };
-        let (bytes, hint): (Cow<'_, [u8]>, Option<ImageFormat>) = match image.source() {
+        let (bytes, hint): (Cow<'_, [u8]>, Option<FormatHint>) = match image.source() {
             ::gltf::image::Source::View { view, mime_type } => (
                 Cow::Borrowed(view_bytes(&view, &self.buffers).map_err(|e| format!("{what}: {e}"))?),
-                ImageFormat::from_mime_type(mime_type),
+                FormatHint::from_mime_type(mime_type),
             ),
             ::gltf::image::Source::Uri { uri, mime_type } => {
                 let (bytes, hint) = read_uri(uri, self.path, &what, self.budget)?;
                 (
                     Cow::Owned(bytes),
-                    mime_type.and_then(ImageFormat::from_mime_type).or(hint),
+                    mime_type.and_then(FormatHint::from_mime_type).or(hint),
                 )
             }
         };
@@ -755,7 +755,7 @@ mod tests {
             &mut Budget::new(),
         )
         .expect("valid");
-        assert_eq!((bytes, hint), (vec![0, 1, 2], Some(ImageFormat::Png)));
+        assert_eq!((bytes, hint), (vec![0, 1, 2], Some(FormatHint::Png)));
         // Padding optional.
         let (bytes, _) = read_uri(
             "data:application/octet-stream;base64,AAE",

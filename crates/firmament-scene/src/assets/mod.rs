@@ -202,7 +202,7 @@ pub fn load_texture(key: &str, path: &Path) -> Result<TextureImage, SceneError> 
     guarded(|| {
         let mut budget = Budget::new();
         let bytes = budget.read_file(path, "image file")?;
-        texture_file::decode(&bytes, image::ImageFormat::from_path(path).ok(), &mut budget)
+        texture_file::decode(&bytes, texture_file::FormatHint::from_path(path), &mut budget)
     })
     .map_err(asset_error(key, path))
 }
@@ -216,7 +216,7 @@ pub fn load_texture_bytes(key: &str, path: &Path, bytes: &[u8]) -> Result<Textur
     guarded(|| {
         let mut budget = Budget::new();
         budget.take_bytes(bytes.len() as u64, "the image file")?;
-        texture_file::decode(bytes, image::ImageFormat::from_path(path).ok(), &mut budget)
+        texture_file::decode(bytes, texture_file::FormatHint::from_path(path), &mut budget)
     })
     .map_err(asset_error(key, path))
 }
@@ -265,6 +265,10 @@ struct Budget {
     /// Meshes left of [`MAX_MODEL_MESHES`].
     meshes: usize,
     /// Texels left of [`MAX_MODEL_TEXELS`].
+    #[cfg_attr(
+        not(feature = "image-files"),
+        allow(dead_code, reason = "only the image decoder counts texels")
+    )]
     texels: u64,
 }
 
@@ -344,6 +348,10 @@ impl Budget {
     }
 
     /// Takes the texels of one `width` × `height` image (`what`), before it is decoded.
+    #[cfg_attr(
+        not(feature = "image-files"),
+        allow(dead_code, reason = "only the image decoder counts texels")
+    )]
     fn take_texels(&mut self, width: u32, height: u32, what: &str) -> Result<(), String> {
         let n = u64::from(width) * u64::from(height);
         self.texels = self.texels.checked_sub(n).ok_or_else(|| {

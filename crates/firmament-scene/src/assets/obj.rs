@@ -172,7 +172,7 @@ fn diffuse_map(
     super::note_outside(path, file, "diffuse map");
     let loaded = budget
         .read_file(file, "image file")
-        .and_then(|bytes| texture_file::decode(&bytes, image::ImageFormat::from_path(file).ok(), budget));
+        .and_then(|bytes| texture_file::decode(&bytes, texture_file::FormatHint::from_path(file), budget));
     match loaded {
         Ok(texture) => Some(texture),
         Err(reason) => {

@@ -1,27 +1,107 @@
 //! Image files and embedded images → [`TextureImage`]: decoded with the `image` crate (PNG,
 //! JPEG, OpenEXR), converted to 8-bit RGBA as stored (no sRGB decoding; 16-bit channels scaled,
 //! floats clamped to `[0, 1]` and scaled) and flipped so that row 0 is the bottom of the picture,
-//! `t = 0`, as `glTexImage2D` takes it.
+//! `t = 0`, as `glTexImage2D` takes it. Without the crate's `image-files` feature there is no
+//! decoder: naming an image file is an error that says so.
 
+#[cfg(feature = "image-files")]
 use std::io::Cursor;
+use std::path::Path;
 
-use firmament_core::texture::{MAX_TEXTURE_SIDE, TextureImage};
+#[cfg(feature = "image-files")]
+use firmament_core::texture::MAX_TEXTURE_SIDE;
+use firmament_core::texture::TextureImage;
+#[cfg(feature = "image-files")]
 use image::{ImageFormat, ImageReader, Limits};
 
 use super::Budget;
 
+/// The format a file's name or a media type suggests, for contents that do not say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FormatHint {
+    /// PNG.
+    Png,
+    /// JPEG.
+    Jpeg,
+    /// OpenEXR.
+    Exr,
+}
+
+impl FormatHint {
+    /// From a file name's extension.
+    pub(crate) fn from_path(path: &Path) -> Option<Self> {
+        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+        match extension.as_str() {
+            "png" => Some(Self::Png),
+            "jpg" | "jpeg" => Some(Self::Jpeg),
+            "exr" => Some(Self::Exr),
+            _ => None,
+        }
+    }
+
+    /// From a media type (`image/png`).
+    pub(crate) fn from_mime_type(media_type: &str) -> Option<Self> {
+        match media_type.trim().to_ascii_lowercase().as_str() {
+            "image/png" => Some(Self::Png),
+            "image/jpeg" | "image/jpg" => Some(Self::Jpeg),
+            "image/x-exr" | "image/aces" => Some(Self::Exr),
+            _ => None,
+        }
+    }
+
+    #[cfg(feature = "image-files")]
+    fn image_format(self) -> ImageFormat {
+        match self {
+            Self::Png => ImageFormat::Png,
+            Self::Jpeg => ImageFormat::Jpeg,
+            Self::Exr => ImageFormat::OpenExr,
+        }
+    }
+}
+
+/// Without a decoder: every image is an error naming the feature that brings one.
+#[cfg(not(feature = "image-files"))]
+pub(super) fn decode(_bytes: &[u8], _hint: Option<FormatHint>, _budget: &mut Budget) -> Result<TextureImage, String> {
+    Err(
+        "firmament-scene was built without its `image-files` feature, so it cannot read image files \
+         (enable the feature to read PNG, JPEG and OpenEXR)"
+            .to_owned(),
+    )
+}
+
+/// Without the `image` crate nothing is decoded, so nothing needs resampling; nearest texel.
+#[cfg(not(feature = "image-files"))]
+pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
+    let pick = |i: u32, n: u32| ((u64::from(i) * u64::from(n)) / u64::from(side.max(1))) as u32;
+    let texels = (0..side)
+        .flat_map(|t| (0..side).map(move |s| (s, t)))
+        .map(|(s, t)| {
+            texture
+                .texel(pick(s, texture.width), pick(t, texture.height))
+                .unwrap_or_default()
+        })
+        .collect();
+    TextureImage {
+        width: side,
+        height: side,
+        texels,
+    }
+}
+
 /// The formats the workspace builds the `image` crate with, for messages.
+#[cfg(feature = "image-files")]
 const FORMATS: &str = "PNG, JPEG and OpenEXR";
 
 /// Decodes an encoded image; `hint` is the format to assume when the contents do not tell. The
 /// size from the header is checked against [`MAX_TEXTURE_SIDE`] and taken from `budget`'s texels
 /// before the pixels are decoded.
-pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>, budget: &mut Budget) -> Result<TextureImage, String> {
+#[cfg(feature = "image-files")]
+pub(super) fn decode(bytes: &[u8], hint: Option<FormatHint>, budget: &mut Budget) -> Result<TextureImage, String> {
     let guessed = ImageReader::new(Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| format!("cannot read the image: {e}"))?
         .format();
-    let Some(format) = guessed.or(hint) else {
+    let Some(format) = guessed.or(hint.map(FormatHint::image_format)) else {
         return Err(format!(
             "not an image file of a known format (firmament reads {FORMATS})"
         ));
@@ -61,6 +141,7 @@ pub(super) fn decode(bytes: &[u8], hint: Option<ImageFormat>, budget: &mut Budge
 }
 
 /// `texture` resampled to `side` × `side` texels (Catmull-Rom; rows keep their order).
+#[cfg(feature = "image-files")]
 pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
     if texture.width == side && texture.height == side {
         return texture.clone();
@@ -77,6 +158,7 @@ pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
 }
 
 /// Checks one side of an image against [`MAX_TEXTURE_SIDE`].
+#[cfg(feature = "image-files")]
 fn check_side(name: &str, side: u32) -> Result<(), String> {
     if side == 0 {
         Err(format!("the image {name} is 0 pixels"))
@@ -92,7 +174,7 @@ fn check_side(name: &str, side: u32) -> Result<(), String> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "image-files"))]
 mod tests {
     use image::{Rgba, RgbaImage};
 
@@ -136,7 +218,7 @@ mod tests {
     fn bad_images_are_errors() {
         let error = decode(b"not an image", None, &mut Budget::new()).expect_err("garbage");
         assert!(error.contains("not an image file of a known format"), "{error}");
-        let error = decode(b"not an image", Some(ImageFormat::Png), &mut Budget::new()).expect_err("garbage");
+        let error = decode(b"not an image", Some(FormatHint::Png), &mut Budget::new()).expect_err("garbage");
         assert!(error.contains("cannot decode the Png image"), "{error}");
         let mut truncated = png(&RgbaImage::new(4, 4));
         truncated.truncate(truncated.len() / 2);
