@@ -90,6 +90,11 @@ pub use time::{add_seconds, parse_date_time};
 /// renderer checks that one.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
 
+/// Farthest the camera may be from the world origin, metres (10¹⁵ m, about 6700 AU): far past
+/// the 100 AU firmament is tested to, and short of distances where a planet is a speck below
+/// a pixel and `f64` positions themselves lose the metre.
+pub const MAX_CAMERA_DISTANCE: f64 = 1.0e15;
+
 /// Where a scene comes from before overrides.
 #[derive(Debug, Clone, Copy)]
 pub enum SceneSource<'a> {

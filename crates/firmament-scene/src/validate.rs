@@ -89,6 +89,15 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         format!("[{e}, {n}, {u}]"),
         "every component must be a finite number of metres",
     )?;
+    check(
+        glam::DVec3::from_array(cam.position).length() <= crate::MAX_CAMERA_DISTANCE,
+        "camera.position",
+        format!("[{e:e}, {n:e}, {u:e}]"),
+        &format!(
+            "must be within {:e} m (about 6700 AU) of the origin",
+            crate::MAX_CAMERA_DISTANCE
+        ),
+    )?;
     // Over an atmosphere the ground is curved: the altitude rule below replaces this one.
     check(
         u >= 0.0 || scene.sky.model != SkyModelName::Gradient,
@@ -369,6 +378,19 @@ mod tests {
             let built = mesh.expect("a valid shape").triangle_count() as u64;
             assert_eq!(shape_triangles(&entry), built, "{entry:?}");
         }
+    }
+
+    #[test]
+    fn the_camera_stays_within_the_distance_limit() {
+        let mut scene = crate::Scene::preset("earth-orbit").expect("preset");
+        scene.camera.position = [0.0, 0.0, 1.5e13]; // 100 AU
+        assert!(validate(&scene).is_ok());
+        scene.camera.position = [0.0, 0.0, 1.0e300];
+        let message = validate(&scene).expect_err("too far").to_string();
+        assert!(
+            message.contains("camera.position") && message.contains("6700 AU"),
+            "{message}"
+        );
     }
 
     #[test]

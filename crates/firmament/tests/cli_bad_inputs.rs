@@ -737,6 +737,26 @@ fn corpus() -> Vec<Case> {
         )
         .file("s.toml", "[planet\n"),
         case(
+            "sky-sample: --altitude 1e300",
+            1,
+            &[
+                "sky-sample",
+                "--altitude",
+                "1e300",
+                "--sun-zenith",
+                "30",
+                "--view-zenith",
+                "30",
+            ],
+            &["--altitude = 1e300: must be at most 1e15 metres"],
+        ),
+        case(
+            "render: a camera 1e300 m away",
+            1,
+            &["render", "--set", "camera.position=[0, 0, 1e300]"],
+            &["camera.position = [0e0, 0e0, 1e300]: must be within 1e15 m (about 6700 AU)"],
+        ),
+        case(
             "sky-sample: --paths 0",
             2,
             &[&SKY_SAMPLE[..], &["--paths", "0"]].concat(),

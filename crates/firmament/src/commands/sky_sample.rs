@@ -33,6 +33,13 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             args.altitude
         );
     }
+    if args.altitude > firmament_scene::MAX_CAMERA_DISTANCE {
+        bail!(
+            "--altitude = {:e}: must be at most {:e} metres (about 6700 AU)",
+            args.altitude,
+            firmament_scene::MAX_CAMERA_DISTANCE
+        );
+    }
     for (name, value) in [("--sun-zenith", args.sun_zenith), ("--view-zenith", args.view_zenith)] {
         if !(0.0..=180.0).contains(&value) {
             bail!("{name} = {value}: must lie in [0, 180] degrees");
