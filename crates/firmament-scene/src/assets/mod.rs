@@ -69,7 +69,7 @@ mod texture_file;
 
 use std::io::Read as _;
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 use firmament_core::mesh::Mesh;
@@ -402,25 +402,37 @@ impl Budget {
 /// should hear of what else it reads.
 fn note_outside(model: &Path, file: &Path, what: &str) {
     let folder = model.parent().unwrap_or(Path::new(""));
-    let inside = file.strip_prefix(folder).is_ok_and(|rest| {
-        let mut depth = 0_i64;
-        rest.components().all(|c| {
-            match c {
-                std::path::Component::Normal(_) => depth += 1,
-                std::path::Component::ParentDir => depth -= 1,
-                std::path::Component::CurDir => {}
-                std::path::Component::RootDir | std::path::Component::Prefix(_) => depth = -1,
-            }
-            depth >= 0
-        })
-    });
-    if !inside {
+    if !lexical_absolute(file).starts_with(lexical_absolute(folder)) {
         tracing::warn!(
             "{}: reading its {what} {}, which is outside the model's folder",
             model.display(),
             file.display()
         );
     }
+}
+
+/// `path` made absolute against the working directory (an empty path is the working directory),
+/// with `.` dropped and each `..` taking away the component before it — on the text alone, links
+/// not followed: what "inside a folder" is judged on, for scenes and for models.
+pub(crate) fn lexical_absolute(path: &Path) -> PathBuf {
+    let absolute = if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        std::env::current_dir().map_or_else(|_| path.to_path_buf(), |cwd| cwd.join(path))
+    };
+    let mut out = PathBuf::new();
+    for component in absolute.components() {
+        match component {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// A mesh as a file gives it, before the repairs of [`finish_mesh`].
@@ -662,5 +674,21 @@ mod tests {
         let mut tex = raw(&positions, &[0, 1, 2]);
         tex.tex_coords = Some(vec![[0.0, 0.0]; 2]);
         assert!(error(tex).contains("2 texture coordinates for 3 vertices"));
+    }
+}
+
+#[cfg(test)]
+mod path_tests {
+    use super::*;
+
+    #[test]
+    fn lexical_absolute_climbs_out_with_dot_dot() {
+        assert_eq!(lexical_absolute(Path::new("/a/b/../c/./d")), PathBuf::from("/a/c/d"));
+        assert_eq!(lexical_absolute(Path::new("/a/b/../../../x")), PathBuf::from("/../x"));
+        assert!(!lexical_absolute(Path::new("/s/scenes/../shared/x.obj")).starts_with("/s/scenes"));
+        assert!(lexical_absolute(Path::new("/s/scenes/./sub/../x.obj")).starts_with("/s/scenes"));
+        let cwd = std::env::current_dir().expect("a working directory");
+        assert_eq!(lexical_absolute(Path::new("")), cwd);
+        assert_eq!(lexical_absolute(Path::new("m/../t.png")), cwd.join("t.png"));
     }
 }

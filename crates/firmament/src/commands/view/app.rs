@@ -123,7 +123,6 @@ impl App {
         if let Some(fault) = gpu.fault() {
             anyhow::bail!("{fault}");
         }
-        self.info.adapter = gpu.adapter();
         self.info.pass_ms = gpu.pass_times();
         self.info.scene_size = gpu.scene_size(self.panel.render_scale);
 
@@ -278,7 +277,8 @@ impl App {
             None,
             Some(gpu.max_texture_side()),
         ));
-        tracing::info!("viewer on {}", gpu.adapter());
+        self.info.adapter = gpu.adapter();
+        tracing::info!("viewer on {}", self.info.adapter);
         self.gpu = Some(gpu);
         window.request_redraw();
         Ok(())

@@ -218,7 +218,7 @@ impl Session {
     /// The moment shown now, as the scene file writes it (`HH:MM:SS` or ISO 8601).
     pub(crate) fn describe_moment(&self) -> String {
         match self.current_moment() {
-            Moment::Clock(time) => format_time_of_day(time),
+            Moment::Clock(time) => time.to_string(),
             Moment::Date(date) => date.to_string(),
         }
     }
@@ -259,7 +259,7 @@ impl Session {
         }
         if rounded != 0.0 {
             values.push(match self.current_moment() {
-                Moment::Clock(time) => ("time.time_of_day", toml::Value::String(format_time_of_day(time))),
+                Moment::Clock(time) => ("time.time_of_day", toml::Value::String(time.to_string())),
                 Moment::Date(date) => ("time.date_time", toml::Value::String(date.to_string())),
             });
         }
@@ -292,10 +292,8 @@ impl Session {
 /// The planet and the moment a scene implies.
 fn derived(scene: &Scene) -> Result<(Option<Planet>, Moment)> {
     let planet = scene.planet()?;
-    let moment = match &scene.time.date_time {
-        Some(text) => Moment::Date(
-            firmament_scene::parse_date_time(text).map_err(|rule| anyhow::anyhow!("time.date_time: {rule}"))?,
-        ),
+    let moment = match scene.date_time()? {
+        Some(date) => Moment::Date(date),
         None => Moment::Clock(scene.time_of_day()?),
     };
     Ok((planet, moment))
@@ -312,12 +310,6 @@ fn altitude_at(planet: Option<&Planet>, position: DVec3) -> f64 {
         Some(planet) => planet.altitude(planet.to_planet_frame(position)),
         None => position.z,
     }
-}
-
-/// `HH:MM:SS`, the second rounded.
-fn format_time_of_day(time: TimeOfDay) -> String {
-    let total = (time.seconds().round() as u64) % 86_400;
-    format!("{:02}:{:02}:{:02}", total / 3600, total / 60 % 60, total % 60)
 }
 
 #[cfg(test)]
