@@ -140,39 +140,67 @@ fn transmittance_lut_texels_match_the_reference() {
 /// Monte Carlo paths per reference radiance in the street tests.
 const STREET_PATHS: usize = 8192;
 
-/// Relative errors of the GPU against the reference (`STREET_PATHS` paths) from a street on Bruneton's
-/// sphere, one sun at `sun` (azimuth, elevation), for views at each (azimuth, elevation).
-fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f64> {
+/// One view of a street sky: the GPU's relative error against the reference, and the reference's
+/// own Monte Carlo noise (one standard error) on the same scale.
+struct Comparison {
+    error: f64,
+    noise: f64,
+}
+
+/// The GPU against the reference (`paths` paths) from a street on Bruneton's sphere, one sun at
+/// `sun` (azimuth, elevation), for views at each (azimuth, elevation).
+fn street_comparisons(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)], paths: usize) -> Vec<Comparison> {
     let atmosphere = earth_sphere();
     let sun = presets::earth_sun(direction(sun.0, sun.1));
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![sun],
     };
-    // Enough paths that the reference's Monte Carlo noise (printed) is well inside the budget:
-    // with 1024 a view 50° from a high sun moved by 4 %.
     let settings = ReferenceSettings {
-        paths: STREET_PATHS,
+        paths,
         ..ReferenceSettings::default()
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
+    let conversion = atmosphere.spectral_conversion();
+    let srgb = |spectrum| {
+        let rgb = conversion.linear_srgb(spectrum);
+        DVec3::new(rgb.r, rgb.g, rgb.b)
+    };
     let position = DVec3::new(0.0, 0.0, 1.7);
     views
         .iter()
         .map(|&(azimuth, elevation)| {
             let view = direction(azimuth, elevation);
             let g = gpu_radiance(gpu, &sky, position, view);
-            let r = reference_radiance(&reference, position, view);
-            let e = relative_difference(g, r);
-            println!("azimuth {azimuth:5.1} elevation {elevation:5.1}: gpu {g:.1} reference {r:.1} relative {e:.4}");
-            e
+            let parts = reference.radiance(&Ray {
+                origin: position,
+                direction: view,
+            });
+            let r = srgb(parts.total());
+            let error = relative_difference(g, r);
+            let noise = srgb(parts.multiple.standard_error).abs().max_element() / r.abs().max_element().max(1e-30);
+            println!(
+                "azimuth {azimuth:5.1} elevation {elevation:5.1}: gpu {g:.4} reference {r:.4} relative {error:.4} (reference noise {noise:.4})"
+            );
+            Comparison { error, noise }
         })
         .collect()
 }
 
+/// Relative errors of the GPU against the reference (`STREET_PATHS` paths); see
+/// [`street_comparisons`].
+fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f64> {
+    // Enough paths that the reference's Monte Carlo noise (printed) is well inside the budget:
+    // with 1024 a view 50° from a high sun moved by 4 %.
+    street_comparisons(gpu, sun, views, STREET_PATHS)
+        .into_iter()
+        .map(|c| c.error)
+        .collect()
+}
+
 /// Sky and ground from a street, sun 30° up. The budget for sun zenith angles up to 85°
-/// is 1 % median, 5 % worst; measured 1.1 % and 3.7 % (the GPU runs 1–2 % low, see
-/// docs/ATMOSPHERE.md), so the median is held to 2.5 %.
+/// is 1 % median, 5 % worst; measured 0.71 % and 2.1 % (near the horizon), with the reference's
+/// own noise 0.4–1.2 %.
 #[test]
 fn sky_from_the_ground_matches_the_reference() {
     let views = [
@@ -190,11 +218,11 @@ fn sky_from_the_ground_matches_the_reference() {
     let worst = errors.iter().copied().fold(0.0, f64::max);
     let median = median(errors);
     println!("median {median:.4}, worst {worst:.4}");
-    assert!(median < 0.025 && worst < 0.05, "median {median}, worst {worst}");
+    assert!(median < 0.01 && worst < 0.05, "median {median}, worst {worst}");
 }
 
-/// The same with the sun high (70°: median 1.4 %, worst 3.2 %) and low (10° up, zenith angle
-/// 80°: 2.3 %, 3.3 %).
+/// The same with the sun high (70°: median 0.86 %, worst 2.2 %) and low (10° up, zenith angle
+/// 80°: 1.57 %, 2.0 % — the 1 % median is not met there; the reference's noise is 0.2–1.4 %).
 #[test]
 fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
     let views = [
@@ -210,20 +238,104 @@ fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
         let worst = errors.iter().copied().fold(0.0, f64::max);
         let median = median(errors);
         println!("sun {sun_elevation}° up: median {median:.4}, worst {worst:.4}");
+        let median_budget = if sun_elevation > 45.0 { 0.01 } else { 0.02 };
         assert!(
-            median < 0.025 && worst < 0.05,
+            median < median_budget && worst < 0.05,
             "sun {sun_elevation}°: median {median}, worst {worst}"
         );
     }
 }
 
-/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 3.6 %).
+/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 2.5 %).
 #[test]
 fn sunset_sky_matches_the_reference() {
     let views = [(0.0, 90.0), (250.0, 4.0), (270.0, 20.0), (90.0, 5.0), (180.0, 30.0)];
     let errors = street_errors(&mut gpu(), (270.0, 3.0), &views);
     let worst = errors.iter().copied().fold(0.0, f64::max);
     assert!(worst < 0.10, "worst {worst}");
+}
+
+/// Twilight: the sun 6° below the horizon, where the sky is lit by air high up and by light
+/// scattered more than once (up to 100 % of it opposite the sun). The budget is 10 %; the
+/// reference's own noise, large here even with 131 072 paths (5–10 % of its multiple scattering),
+/// is allowed on top, twice over. Measured (largest channel): 12–15 % opposite the sun, where
+/// the reference's noise is 11–12 %; 1–3 % towards the sun and at the zenith. (Before the
+/// multiple-scattering LUT stored ln Ψ and crowded its directions at the horizon: +17 … +54 %.)
+#[test]
+fn twilight_sky_matches_the_reference() {
+    let views = [
+        (0.0, 10.0),
+        (30.0, 30.0),
+        (0.0, 90.0),
+        (180.0, 10.0),
+        (180.0, 30.0),
+        (90.0, 5.0),
+    ];
+    for c in street_comparisons(&mut gpu(), (0.0, -6.0), &views, 131_072) {
+        assert!(
+            c.error < 0.10 + 2.0 * c.noise,
+            "error {} with noise {}",
+            c.error,
+            c.noise
+        );
+    }
+}
+
+/// Luminance, cd/m², of linear sRGB whose Y is the luminance.
+fn luminance(rgb: DVec3) -> f64 {
+    rgb.dot(DVec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// Deep twilight, the sun 2° to 18° below the horizon in 1° steps: the sky darkens smoothly — no
+/// step from one degree to the next at the zenith or 20° above the sun's azimuth (banding in
+/// time), no kink between the pixels of a column from there to the zenith (banding in space) —
+/// and by 18° (the end of astronomical twilight) the zenith is darker than the natural night sky
+/// (~2·10⁻⁴ cd/m², 22 mag/arcsec²). The reference's noise is too large below −6° to compare
+/// against (docs/ATMOSPHERE.md), so this checks the shape physics demands. Below 20° the sky has
+/// a real kink: the elevation under which view rays meet sunlit air before leaving the 60 km
+/// shell, moving down smoothly as the sun sinks. Measured: second differences of ln L at most
+/// 0.018 down a column and 0.62 per degree; the zenith at −18° 2.7·10⁻⁶ cd/m².
+#[test]
+fn deep_twilight_darkens_smoothly() {
+    let mut gpu = gpu();
+    let rows = 48;
+    // A column towards the sun's azimuth, from 20° above the horizon to the zenith.
+    let view = camera(DVec3::new(0.0, 0.0, 1.7), direction(0.0, 55.0), 70f64.to_radians());
+    let mut zenith = Vec::new();
+    let mut low = Vec::new();
+    let mut worst_in_space: f64 = 0.0;
+    for depression in 2..=18 {
+        let sky = support::street_sky(0.0, -f64::from(depression));
+        let image = render(&mut gpu, &sky, view, 1, rows);
+        let column: Vec<f64> = (0..rows).map(|y| luminance(pixel(&image, 0, y)).ln()).collect();
+        assert!(
+            column.iter().all(|l| l.is_finite()),
+            "sun {depression}° down: {column:?}"
+        );
+        // Second differences of ln L down the column: a band edge is a kink or a step.
+        for w in column.windows(3) {
+            worst_in_space = worst_in_space.max((w[0] - 2.0 * w[1] + w[2]).abs());
+        }
+        zenith.push(column[0]);
+        low.push(column[rows as usize - 1]);
+    }
+    let mut worst_in_time: f64 = 0.0;
+    for series in [&zenith, &low] {
+        for w in series.windows(2) {
+            assert!(w[1] < w[0], "darker each degree: {series:?}");
+        }
+        for w in series.windows(3) {
+            worst_in_time = worst_in_time.max((w[0] - 2.0 * w[1] + w[2]).abs());
+        }
+    }
+    let night_sky = 2e-4;
+    let at_18 = zenith.last().copied().unwrap_or_default().exp();
+    println!(
+        "ln L second differences: worst {worst_in_space:.3} down a column, {worst_in_time:.3} per degree; zenith at −18°: {at_18:.2e} cd/m²"
+    );
+    println!("zenith ln L from −2° to −18°: {zenith:.2?}");
+    assert!(worst_in_space < 0.05 && worst_in_time < 1.0);
+    assert!(at_18 < night_sky, "{at_18} cd/m²");
 }
 
 #[test]
@@ -404,8 +516,9 @@ fn an_oblate_planet_from_space_matches_the_reference() {
     };
     let size = 32;
     let image = render(&mut gpu, &sky, view, size, size);
+    // With 256 paths the reference's own noise at the limb and the terminator reached 15 %.
     let settings = ReferenceSettings {
-        paths: 256,
+        paths: 8192,
         ..ReferenceSettings::default()
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
@@ -430,14 +543,21 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         let expected = DVec3::new(rgb.r, rgb.g, rgb.b);
         let got = pixel(&image, x, y);
         // Dark pixels (space, night) compare in absolute terms against a 1 cd/m² floor.
-        let error = (got - expected).abs().max_element() / expected.max_element().max(1.0);
-        println!("pixel ({x:2}, {y:2}): gpu {got:.1} reference {expected:.1} error {error:.3}");
+        let scale = expected.max_element().max(1.0);
+        let error = (got - expected).abs().max_element() / scale;
+        let noise = atmosphere
+            .spectral_conversion()
+            .linear_srgb(parts.multiple.standard_error);
+        let noise = noise.r.max(noise.g).max(noise.b) / scale;
+        println!(
+            "pixel ({x:2}, {y:2}): gpu {got:.1} reference {expected:.1} error {error:.3} (reference noise {noise:.3})"
+        );
         errors.push(error);
     }
     let worst = errors.iter().copied().fold(0.0, f64::max);
     let median = median(errors);
     println!("median {median:.4}, worst {worst:.4}");
-    // Flattening 0.1 stretches the LUTs' sphere approximation furthest at the limb and the
-    // terminator (measured worst 19 %, median 0.9 %).
-    assert!(median < 0.03 && worst < 0.25, "median {median}, worst {worst}");
+    // Measured: median 0.38 %, worst 4.1 % at the terminator (the sun grazing: the twilight
+    // budget, 10 %, applies), where the reference's own noise is 1.2 %.
+    assert!(median < 0.01 && worst < 0.10, "median {median}, worst {worst}");
 }

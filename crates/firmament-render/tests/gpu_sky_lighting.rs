@@ -144,11 +144,12 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
         100.0 * worst,
         100.0 * worst_channel
     );
-    // Measured 3.5 % and 5.2 % (sun 3° up). Budget: the sky the sky-view LUT draws runs 1-4 %
-    // low (docs/ATMOSPHERE.md), bands 0-2 add 2-9 % (red most: the lit ground's light), the
-    // reference's noise is ±1 %.
-    assert!(worst < 0.05, "worst {:.2} % of the largest channel", 100.0 * worst);
-    assert!(worst_channel < 0.07, "worst {:.2} % per channel", 100.0 * worst_channel);
+    // Measured 5.1 % and 7.6 % (sun 3° up): the sky the sky-view LUT draws is within 1.4 % of
+    // the reference (docs/ATMOSPHERE.md), bands 0-2 add 0.3-9 % (red most: the lit ground's
+    // light leaks into the band-limited cosine lobe), the reference's noise is ±1 %. The budget
+    // was 5 % and 7 % while the sky ran 1-4 % low and cancelled part of the bands' excess.
+    assert!(worst < 0.06, "worst {:.2} % of the largest channel", 100.0 * worst);
+    assert!(worst_channel < 0.08, "worst {:.2} % per channel", 100.0 * worst_channel);
 }
 
 /// (c) Each sun's colour at the camera, `E·T`, against the reference transmittance

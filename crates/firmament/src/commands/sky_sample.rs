@@ -14,6 +14,9 @@ use crate::cli::SkySampleArgs;
 /// Everything sky-sample reports, for one method.
 struct Sample {
     radiance: Spectrum,
+    /// Standard error of `radiance` (the reference's Monte Carlo multiple scattering; zero for
+    /// the GPU, whose error is bias, not noise).
+    radiance_standard_error: Spectrum,
     transmittance: Spectrum,
     sky_irradiance: Spectrum,
     sun_irradiance: Spectrum,
@@ -76,6 +79,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
         let s = sample_sky(&ctx, &sky, eye, view, DVec3::ZERO)?;
         Some(Sample {
             radiance: s.radiance,
+            radiance_standard_error: Spectrum::ZERO,
             transmittance: s.transmittance,
             sky_irradiance: s.sky_irradiance,
             sun_irradiance: s.sun_irradiance,
@@ -88,6 +92,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             let rgb = conversion.linear_srgb(s.radiance);
             serde_json::json!({
                 "radiance": s.radiance.to_array(),
+                "radiance_standard_error": s.radiance_standard_error.to_array(),
                 "luminance": conversion.luminance(s.radiance),
                 "linear_srgb": [rgb.r, rgb.g, rgb.b],
                 "transmittance": s.transmittance.to_array(),
@@ -134,6 +139,14 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
         reference.as_ref().map(luminance),
         gpu.as_ref().map(luminance),
     );
+    // Whether a difference is the reference's noise: more --paths shrink it as 1/√paths.
+    if let Some(r) = &reference {
+        row(
+            "  reference's standard error, cd/m²".to_owned(),
+            Some(conversion.luminance(r.radiance_standard_error)),
+            None,
+        );
+    }
     for (i, channel) in ["r", "g", "b"].iter().enumerate() {
         let srgb = |s: &Sample| conversion.linear_srgb(s.radiance).to_array()[i];
         row(
@@ -172,6 +185,7 @@ fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, paths: usize) 
     let ground = reference.ground_irradiance(DVec3::ZERO);
     Sample {
         radiance: parts.total(),
+        radiance_standard_error: parts.multiple.standard_error,
         transmittance: reference
             .transmittance_to_space(planet.to_planet_frame(eye), planet.direction_to_planet_frame(view)),
         sky_irradiance: ground.sky,

@@ -145,25 +145,42 @@ impl MultiscatteringStages {
 
     /// Encodes every iterate, from zero, into the LUTs (after the transmittance LUT).
     pub(super) fn record(&self, encoder: &mut wgpu::CommandEncoder, luts: &AtmosphereLuts) {
-        // The first iterate (parity 0) reads the scratch set: start it from zero.
+        // The first iterate (parity 0) reads the scratch set: start it from zero, which Ψ and E
+        // (stored as logarithms) hold as LOG_FLOOR and the other moments (over Ψ) as 0.
         let start = Self::iterate_of(luts, &self.scratch, 1);
-        render_targets(encoder, None, &start.moments);
-        render_targets(encoder, None, &[start.irradiance]);
+        let (psi, ratios) = start.moments.split_at(1);
+        render_targets(encoder, None, psi, LOG_ZERO);
+        render_targets(encoder, None, ratios, wgpu::Color::TRANSPARENT);
+        render_targets(encoder, None, &[start.irradiance], LOG_ZERO);
         for iterate in 0..=MULTISCATTERING_ITERATIONS {
             let parity = (iterate % 2) as usize;
             let write = Self::iterate_of(luts, &self.scratch, parity);
             let [moments, irradiance] = &self.stages[parity];
-            render_targets(encoder, Some(moments), &write.moments);
+            render_targets(encoder, Some(moments), &write.moments, wgpu::Color::TRANSPARENT);
             let irradiance_targets: Vec<&wgpu::TextureView> = std::iter::once(write.irradiance)
                 .chain(self.scratch.unused.iter().map(|lut| &lut.view))
                 .collect();
-            render_targets(encoder, Some(irradiance), &irradiance_targets);
+            render_targets(encoder, Some(irradiance), &irradiance_targets, wgpu::Color::TRANSPARENT);
         }
     }
 }
 
-/// Clears `targets` (all of one size) and draws `stage`'s full-screen triangle into them (only clears without one).
-fn render_targets(encoder: &mut wgpu::CommandEncoder, stage: Option<&Stage>, targets: &[&wgpu::TextureView]) {
+/// Zero as Ψ and E are stored: their logarithm's floor (`LOG_FLOOR` in `atmosphere/luts.wgsl`).
+const LOG_ZERO: wgpu::Color = wgpu::Color {
+    r: -69.0,
+    g: -69.0,
+    b: -69.0,
+    a: 1.0,
+};
+
+/// Clears `targets` (all of one size) to `clear` and draws `stage`'s full-screen triangle into
+/// them (only clears without one).
+fn render_targets(
+    encoder: &mut wgpu::CommandEncoder,
+    stage: Option<&Stage>,
+    targets: &[&wgpu::TextureView],
+    clear: wgpu::Color,
+) {
     let attachments: Vec<_> = targets
         .iter()
         .map(|view| {
@@ -172,7 +189,7 @@ fn render_targets(encoder: &mut wgpu::CommandEncoder, stage: Option<&Stage>, tar
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    load: wgpu::LoadOp::Clear(clear),
                     store: wgpu::StoreOp::Store,
                 },
             })

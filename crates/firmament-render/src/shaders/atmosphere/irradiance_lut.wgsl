@@ -9,7 +9,7 @@
 // DIRECTIONS_SQRT² directions of STEPS samples. Light reflected by the ground below is left out
 // (second order in the albedo). rgb = irradiance / sun irradiance, dimensionless; a = 1.
 
-const DIRECTIONS_SQRT: i32 = 8;
+const DIRECTIONS_SQRT: i32 = 16;
 const STEPS: i32 = 16;
 
 @vertex

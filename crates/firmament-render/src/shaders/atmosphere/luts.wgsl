@@ -54,6 +54,11 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 // the sun's azimuth, z = up (y across; the field is mirror-symmetric in y): psi = mean(L) and the
 // second moments mean(L·ωz²), mean(L·ωx²), mean(L·ωx·ωz) and the first moments mean(L·ωx),
 // mean(L·ωz).
+//
+// Stored as ln(psi) and the other moments over psi. Below the horizon psi falls by ~e^70 per unit
+// of mu_s (docs/ATMOSPHERE.md): linear filtering between texels that differ 16-fold overshot the
+// twilight sky by up to 50 %, and half floats lost it altogether from the sun 10° down. ln(psi)
+// is nearly linear there, the ratios are bounded (|x/psi| ≤ 1) and smooth.
 struct Moments {
     psi: vec3<f32>,
     zz: vec3<f32>,
@@ -100,18 +105,35 @@ fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: 
     return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
 }
 
+// The smallest psi (or ground irradiance) the LUTs hold: ln of it is what "none" is stored as.
+const LOG_FLOOR: f32 = -69.0; // ≈ ln(1e-30)
+
+// The stored form of psi or of the ground irradiance row, and back.
+fn encode_log(v: vec3<f32>) -> vec3<f32> {
+    return max(log(max(v, vec3<f32>(1e-30))), vec3<f32>(LOG_FLOOR));
+}
+
+fn decode_log(v: vec3<f32>) -> vec3<f32> {
+    return select(exp(v), vec3<f32>(0.0), v <= vec3<f32>(LOG_FLOOR));
+}
+
+// A moment over psi, as stored (0 where psi is none).
+fn moment_ratio(moment: vec3<f32>, psi: vec3<f32>) -> vec3<f32> {
+    return select(moment / psi, vec3<f32>(0.0), psi <= vec3<f32>(1e-30));
+}
+
 // The moments stored in six LUTs (in `Moments` order) at uv, filtered.
 fn sample_moments(
     psi: texture_2d<f32>, zz: texture_2d<f32>, xx: texture_2d<f32>,
     xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, uv: vec2<f32>,
 ) -> Moments {
     var m: Moments;
-    m.psi = textureSampleLevel(psi, lut_sampler, uv, 0.0).rgb;
-    m.zz = textureSampleLevel(zz, lut_sampler, uv, 0.0).rgb;
-    m.xx = textureSampleLevel(xx, lut_sampler, uv, 0.0).rgb;
-    m.xz = textureSampleLevel(xz, lut_sampler, uv, 0.0).rgb;
-    m.x = textureSampleLevel(x, lut_sampler, uv, 0.0).rgb;
-    m.z = textureSampleLevel(z, lut_sampler, uv, 0.0).rgb;
+    m.psi = decode_log(textureSampleLevel(psi, lut_sampler, uv, 0.0).rgb);
+    m.zz = textureSampleLevel(zz, lut_sampler, uv, 0.0).rgb * m.psi;
+    m.xx = textureSampleLevel(xx, lut_sampler, uv, 0.0).rgb * m.psi;
+    m.xz = textureSampleLevel(xz, lut_sampler, uv, 0.0).rgb * m.psi;
+    m.x = textureSampleLevel(x, lut_sampler, uv, 0.0).rgb * m.psi;
+    m.z = textureSampleLevel(z, lut_sampler, uv, 0.0).rgb * m.psi;
     return m;
 }
 

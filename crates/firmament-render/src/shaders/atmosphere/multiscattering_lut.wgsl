@@ -17,7 +17,9 @@
 //
 // `OUTPUT` picks the targets: 0 = the moments (Ψ, zz, xx, xz, x, z) over MULTISCATTERING_LUT_SIZE;
 // 1 = (E, unused…), E the sky irradiance on the ground per unit sun, one row over mu_s (the same
-// u mapping), needed by the next iterate's ground.
+// u mapping), needed by the next iterate's ground. Ψ and E are stored as their logarithms, the
+// other moments over Ψ (see `Moments` in luts.wgsl); the iteration starts from targets cleared to
+// (LOG_FLOOR, 0, …), i.e. zero.
 
 @group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
 @group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
@@ -38,7 +40,7 @@ struct Targets {
 
 override OUTPUT: u32 = 0u;
 
-const DIRECTIONS_SQRT: i32 = 8;
+const DIRECTIONS_SQRT: i32 = 12;
 const STEPS: i32 = 20;
 
 @vertex
@@ -58,7 +60,7 @@ fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<
 
 fn previous_irradiance(mu_s: f32) -> vec3<f32> {
     let u = unit_to_texel_coord(mu_s_to_unit(mu_s), MULTISCATTERING_LUT_SIZE.x);
-    return textureSampleLevel(previous_ground_irradiance, lut_sampler, vec2<f32>(u, 0.5), 0.0).rgb;
+    return decode_log(textureSampleLevel(previous_ground_irradiance, lut_sampler, vec2<f32>(u, 0.5), 0.0).rgb);
 }
 
 @fragment
@@ -82,9 +84,14 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     var irradiance = vec3<f32>(0.0);
     for (var i = 0; i < DIRECTIONS_SQRT; i++) {
         for (var j = 0; j < DIRECTIONS_SQRT; j++) {
-            // Stratified, uniform over the sphere.
+            // Stratified over the sphere, crowded at the horizon: cos θ = x·|x| for x stratified
+            // in [−1, 1], each direction weighted by dcosθ/dx = 2|x| (its weights average 1). At
+            // twilight a shadowed point's light comes from a thin band of lit air near the
+            // horizon, which uniform strata (cos θ = ±0.125 nearest) stepped over.
             let phi = 2.0 * PI * (f32(i) + 0.5) / f32(DIRECTIONS_SQRT);
-            let cos_theta = 1.0 - 2.0 * (f32(j) + 0.5) / f32(DIRECTIONS_SQRT);
+            let x = 1.0 - 2.0 * (f32(j) + 0.5) / f32(DIRECTIONS_SQRT);
+            let cos_theta = x * abs(x);
+            let weight = 2.0 * abs(x);
             let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
             let dir = vec3<f32>(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
             let mu = cos_theta;
@@ -124,6 +131,7 @@ fn fs_main(in: FullscreenVertex) -> Targets {
                 light += throughput * albedo / PI * (direct + previous_irradiance(mu_ground));
             }
             // The sun is in the x–z plane: x is towards its azimuth.
+            light *= weight;
             moments.psi += light;
             moments.zz += light * dir.z * dir.z;
             moments.xx += light * dir.x * dir.x;
@@ -137,14 +145,15 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     var out: Targets;
     if OUTPUT == 1u {
         // ∫ L cos⁺ dω over the sphere, by uniform sampling: 4π/n per direction.
-        out.psi = vec4<f32>(irradiance * (4.0 * PI / n), 1.0);
+        out.psi = vec4<f32>(encode_log(irradiance * (4.0 * PI / n)), 1.0);
         return out;
     }
-    out.psi = vec4<f32>(moments.psi / n, 1.0);
-    out.zz = vec4<f32>(moments.zz / n, 1.0);
-    out.xx = vec4<f32>(moments.xx / n, 1.0);
-    out.xz = vec4<f32>(moments.xz / n, 1.0);
-    out.x = vec4<f32>(moments.x / n, 1.0);
-    out.z = vec4<f32>(moments.z / n, 1.0);
+    let psi = moments.psi / n;
+    out.psi = vec4<f32>(encode_log(psi), 1.0);
+    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), 1.0);
+    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), 1.0);
+    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), 1.0);
+    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), 1.0);
+    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), 1.0);
     return out;
 }

@@ -5,7 +5,8 @@
 // scattered towards the camera from sun i alone (all orders, and the ground that sun lights),
 // over (azimuth relative to the sun, non-linear zenith angle) — see `sky_view_uv`. Only the
 // first `sun_count` tiles are drawn (the viewport is narrowed on the Rust side). rgb = spectral
-// radiance over `sky_view_scale(sun)` (so dim suns keep their precision); a = 1.
+// radiance over 2^a, a = `sky_view_exponent(sun)` (so dim suns and deep twilight keep their
+// precision).
 
 const STEPS: i32 = 32;
 
@@ -29,5 +30,6 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let t0 = max(top.x, 0.0);
     let t1 = select(max(top.y, 0.0), ground.x, hits_ground);
     let result = march(o, d, t0, max(t1, t0), hits_ground, sun, 1u, STEPS, inside);
-    return vec4<f32>(result.radiance / sky_view_scale(sun), 1.0);
+    let k = sky_view_exponent(sun);
+    return vec4<f32>(result.radiance * exp2(-k), k);
 }

@@ -40,12 +40,19 @@ struct AtmosphereView {
 
 const SKY_VIEW_LUT_SIZE: vec2<f32> = vec2<f32>(192.0, 108.0);
 
-// Sun i's sky-view tile holds its radiance divided by this (its brightest irradiance channel), so
-// a dim light — the Moon, a millionth of the Sun — keeps the half-float LUT's precision instead of
-// falling among its subnormals.
-fn sky_view_scale(i: u32) -> f32 {
+// Sun i's sky-view tile holds its radiance over 2^k, k = this (stored in the tile's alpha, an
+// integer, so filtering keeps it exact): about 1/64 of the sky's mean radiance at the camera,
+// sun i's brightest irradiance channel times the mean Ψ of the multiple-scattering LUT. So neither
+// a dim light (the Moon, a millionth of the Sun) nor a sun far below the horizon (the sky falls
+// ~e^70 per unit of mu_s) lets the half-float LUT's values fall among its subnormals, and the
+// brightest sky (~100 × its mean, towards the sun) stays far below its largest value.
+fn sky_view_exponent(i: u32) -> f32 {
     let e = view.suns[i].irradiance.rgb;
-    return max(max(e.r, max(e.g, e.b)), 1e-30);
+    let mu_s = dot(view.local_up.xyz, view.suns[i].direction.xyz);
+    let uv = mu_s_h_to_uv(mu_s, max(view.camera.w, 0.0), MULTISCATTERING_LUT_SIZE);
+    let psi = decode_log(textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb);
+    let mean = max(max(e.r, max(e.g, e.b)) * max(psi.r, max(psi.g, psi.b)), 1e-30);
+    return round(log2(mean)) - 6.0;
 }
 
 // The sky-view LUT's frame for sun `i` at the camera: up, towards the sun's azimuth, and across.
