@@ -81,6 +81,8 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     moments.xz = vec3<f32>(0.0);
     moments.x = vec3<f32>(0.0);
     moments.z = vec3<f32>(0.0);
+    moments.zzz = vec3<f32>(0.0);
+    moments.zzzz = vec3<f32>(0.0);
     var irradiance = vec3<f32>(0.0);
     for (var i = 0; i < DIRECTIONS_SQRT; i++) {
         for (var j = 0; j < DIRECTIONS_SQRT; j++) {
@@ -138,6 +140,8 @@ fn fs_main(in: FullscreenVertex) -> Targets {
             moments.xz += light * dir.x * dir.z;
             moments.x += light * dir.x;
             moments.z += light * dir.z;
+            moments.zzz += light * dir.z * dir.z * dir.z;
+            moments.zzzz += light * dir.z * dir.z * dir.z * dir.z;
             irradiance += light * max(mu, 0.0);
         }
     }
@@ -149,11 +153,13 @@ fn fs_main(in: FullscreenVertex) -> Targets {
         return out;
     }
     let psi = moments.psi / n;
-    out.psi = vec4<f32>(encode_log(psi), 1.0);
-    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), 1.0);
-    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), 1.0);
-    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), 1.0);
-    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), 1.0);
-    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), 1.0);
+    let zzz = moment_ratio(moments.zzz / n, psi);
+    let zzzz = moment_ratio(moments.zzzz / n, psi);
+    out.psi = vec4<f32>(encode_log(psi), zzzz.b);
+    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), zzz.r);
+    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), zzz.g);
+    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), zzz.b);
+    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), zzzz.r);
+    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), zzzz.g);
     return out;
 }
