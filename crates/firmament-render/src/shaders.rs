@@ -622,6 +622,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 mie_extinction,
                 absorption,
                 ground_albedo,
+                mie_legendre,
+                mie_forward_peak,
                 rayleigh_density,
                 mie_density,
                 absorber_density

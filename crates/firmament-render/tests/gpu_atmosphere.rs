@@ -199,7 +199,7 @@ fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f6
 }
 
 /// Sky and ground from a street, sun 30° up. The budget for sun zenith angles up to 85°
-/// is 1 % median, 5 % worst; measured 0.64 % and 1.8 % (near the horizon), with the reference's
+/// is 1 % median, 5 % worst; measured 0.40 % and 1.3 % (the zenith), with the reference's
 /// own noise 0.4–1.2 %.
 #[test]
 fn sky_from_the_ground_matches_the_reference() {
@@ -221,8 +221,10 @@ fn sky_from_the_ground_matches_the_reference() {
     assert!(median < 0.01 && worst < 0.05, "median {median}, worst {worst}");
 }
 
-/// The same with the sun high (70°: median 0.75 %, worst 2.0 %) and low (10° up, zenith angle
-/// 80°: 1.40 %, 1.7 % — the 1 % median is not met there; the reference's noise is 0.2–1.4 %).
+/// The same with the sun high (70° up) and low (10° and 5° up: zenith angles 80° and 85°, the
+/// end of the 1 % median range). A low sun's sky is mostly light scattered more than
+/// once, where the reference's noise is largest: 8192 paths left it at 1.0–1.4 %, as large as the
+/// errors measured, so the low suns get four times as many (noise 0.5–0.7 %).
 #[test]
 fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
     let views = [
@@ -233,20 +235,22 @@ fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
         (90.0, 1.0),
         (0.0, -30.0),
     ];
-    for sun_elevation in [70.0, 10.0] {
-        let errors = street_errors(&mut gpu(), (90.0, sun_elevation), &views);
+    for (sun_elevation, paths) in [(70.0, STREET_PATHS), (10.0, 4 * STREET_PATHS), (5.0, 4 * STREET_PATHS)] {
+        let errors: Vec<f64> = street_comparisons(&mut gpu(), (90.0, sun_elevation), &views, paths)
+            .into_iter()
+            .map(|c| c.error)
+            .collect();
         let worst = errors.iter().copied().fold(0.0, f64::max);
         let median = median(errors);
         println!("sun {sun_elevation}° up: median {median:.4}, worst {worst:.4}");
-        let median_budget = if sun_elevation > 45.0 { 0.01 } else { 0.02 };
         assert!(
-            median < median_budget && worst < 0.05,
+            median < 0.01 && worst < 0.05,
             "sun {sun_elevation}°: median {median}, worst {worst}"
         );
     }
 }
 
-/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 2.2 %).
+/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 2.3 %).
 #[test]
 fn sunset_sky_matches_the_reference() {
     let views = [(0.0, 90.0), (250.0, 4.0), (270.0, 20.0), (90.0, 5.0), (180.0, 30.0)];

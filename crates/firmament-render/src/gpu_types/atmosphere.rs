@@ -75,6 +75,12 @@ pub struct AtmosphereParamsUniforms {
     pub absorption: [f32; 4],
     /// Ground albedo.
     pub ground_albedo: [f32; 4],
+    /// The Mie phase function's Legendre coefficients a₁…a₄ (`MiePhase::legendre_coefficient`).
+    pub mie_legendre: [f32; 4],
+    /// `x` = the share f of Mie scattering that multiple scattering treats as going straight on
+    /// ([`MIE_FORWARD_PEAK_SHARE`] × a₅, 0 when a₅ < 0; see `Coefficients` in
+    /// `atmosphere/common.wgsl`); `yzw` unused.
+    pub mie_forward_peak: [f32; 4],
     /// Rayleigh density profile.
     pub rayleigh_density: DensityProfileUniform,
     /// Mie density profile.
@@ -82,6 +88,17 @@ pub struct AtmosphereParamsUniforms {
     /// Absorber density profile.
     pub absorber_density: DensityProfileUniform,
 }
+
+/// How much of the delta-M forward peak a₅ (Wiscombe 1977) multiple scattering sends straight on.
+///
+/// Delta-M assumes the light the peak scatters hardly changes over the peak's width (some 20°
+/// for Cornette–Shanks with g = 0.8). That fails where it matters most on Earth: the sky near the
+/// ground is brightest in a band a few degrees high above a dark ground, so a view along the
+/// horizon gets its forward-scattered light from half a lobe of sky and half a lobe of ground.
+/// Measured against the reference (Earth, sun 10° up, views within 1° of the horizon): the whole
+/// peak (1) overshoots by 1.5–2.1 %, none (0: the series cut off after band 4) falls 1.1–1.5 %
+/// short, half stays within 0.5 %.
+pub const MIE_FORWARD_PEAK_SHARE: f64 = 0.5;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
 /// planet's mean radius `(a·b·c)^⅓` (the radius itself for a sphere).
@@ -113,6 +130,13 @@ impl AtmosphereParamsUniforms {
             mie_extinction: spectrum_w(medium.mie.extinction, 0.0),
             absorption: spectrum_w(medium.absorber.absorption, 0.0),
             ground_albedo: spectrum_w(medium.ground_albedo, 0.0),
+            mie_legendre: [1, 2, 3, 4].map(|l| medium.mie.phase.legendre_coefficient(l) as f32),
+            mie_forward_peak: [
+                (MIE_FORWARD_PEAK_SHARE * medium.mie.phase.legendre_coefficient(5)).max(0.0) as f32,
+                0.0,
+                0.0,
+                0.0,
+            ],
             rayleigh_density: DensityProfileUniform::new(&medium.rayleigh.density),
             mie_density: DensityProfileUniform::new(&medium.mie.density),
             absorber_density: DensityProfileUniform::new(&medium.absorber.density),

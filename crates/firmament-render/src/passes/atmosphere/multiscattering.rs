@@ -14,8 +14,8 @@ use crate::passes::PassPipeline;
 use crate::shaders;
 
 /// Iterates after the first (single scattering and the sunlit ground): iterate k holds orders up
-/// to k + 1, so the LUTs hold orders 1 to 10 (the issue asks for at least 10). Odd, so the last
-/// iterate writes the LUTs the other stages read.
+/// to k + 1, so the LUTs hold orders 1 to 10 of the light arriving at a point (the issue asks for
+/// at least 10; a view adds one more scattering).
 pub const MULTISCATTERING_ITERATIONS: u32 = 9;
 
 /// One set of the iteration's textures: the four moments and the ground irradiance row E.
@@ -145,15 +145,15 @@ impl MultiscatteringStages {
 
     /// Encodes every iterate, from zero, into the LUTs (after the transmittance LUT).
     pub(super) fn record(&self, encoder: &mut wgpu::CommandEncoder, luts: &AtmosphereLuts) {
-        // The first iterate (parity 0) reads the scratch set: start it from zero, which Ψ and E
+        // The first iterate reads the set of the other parity: start it from zero, which Ψ and E
         // (stored as logarithms) hold as LOG_FLOOR and the other moments (over Ψ) as 0.
-        let start = Self::iterate_of(luts, &self.scratch, 1);
+        let start = Self::iterate_of(luts, &self.scratch, 1 - parity_of(0));
         let (psi, ratios) = start.moments.split_at(1);
         render_targets(encoder, None, psi, LOG_ZERO);
         render_targets(encoder, None, ratios, wgpu::Color::TRANSPARENT);
         render_targets(encoder, None, &[start.irradiance], LOG_ZERO);
         for iterate in 0..=MULTISCATTERING_ITERATIONS {
-            let parity = (iterate % 2) as usize;
+            let parity = parity_of(iterate);
             let write = Self::iterate_of(luts, &self.scratch, parity);
             let [moments, irradiance] = &self.stages[parity];
             render_targets(encoder, Some(moments), &write.moments, wgpu::Color::TRANSPARENT);
@@ -204,5 +204,25 @@ fn render_targets(
         pass.set_pipeline(&stage.pipeline);
         pass.set_bind_group(0, &stage.bind_group, &[]);
         pass.draw(0..3, 0..1);
+    }
+}
+
+/// The parity of `iterate` (which set it writes, see [`MultiscatteringStages`]): alternating so
+/// that the last iterate has parity 0 and writes the LUTs the other stages read. (Counting from
+/// the first instead once left the last iterate in the scratch set, one order short.)
+fn parity_of(iterate: u32) -> usize {
+    ((MULTISCATTERING_ITERATIONS - iterate) % 2) as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_iterate_writes_the_luts_and_each_reads_the_one_before() {
+        assert_eq!(parity_of(MULTISCATTERING_ITERATIONS), 0);
+        for iterate in 1..=MULTISCATTERING_ITERATIONS {
+            assert_ne!(parity_of(iterate), parity_of(iterate - 1));
+        }
     }
 }

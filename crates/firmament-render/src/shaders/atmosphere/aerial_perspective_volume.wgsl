@@ -25,6 +25,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let air = span.y - span.x;
     var radiance = vec3<f32>(0.0);
     var transmittance = vec3<f32>(1.0);
+    var diffuse_transmittance = vec3<f32>(1.0); // what scattered light meets (view.wgsl's march)
     var previous = 0.0;
     let slices = AERIAL_PERSPECTIVE_SIZE.z;
     for (var k = 0u; k < slices; k++) {
@@ -36,9 +37,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             let dt = b - a;
             if dt > 0.0 {
                 let here = medium_sample(ray.origin + ray.direction * (span.x + 0.5 * (a + b)), ray.direction, 0u, view.sun_count.x);
-                let step_transmittance = exp(-here.extinction * dt);
-                radiance += transmittance * integrate_step(here.source, here.extinction, step_transmittance, dt);
-                transmittance *= step_transmittance;
+                let diffuse_step = exp(-here.diffuse_extinction * dt);
+                radiance += diffuse_transmittance * integrate_step(here.source, here.diffuse_extinction, diffuse_step, dt);
+                diffuse_transmittance *= diffuse_step;
+                transmittance *= exp(-here.extinction * dt);
             }
         }
         previous = distance;

@@ -30,6 +30,8 @@ struct AtmosphereParams {
     mie_extinction: vec4<f32>,
     absorption: vec4<f32>,
     ground_albedo: vec4<f32>,       // rgb, dimensionless
+    mie_legendre: vec4<f32>,        // the Mie phase's Legendre coefficients a_1 … a_4 (a_0 = 1)
+    mie_forward_peak: vec4<f32>,    // x = f, the delta-M forward peak (see Coefficients); yzw unused
     rayleigh_density: DensityProfile,
     mie_density: DensityProfile,
     absorber_density: DensityProfile,
@@ -45,11 +47,25 @@ fn profile_density(profile: DensityProfile, h: f32) -> f32 {
     return select(layer_density(profile.layer1, h), layer_density(profile.layer0, h), h < profile.width.x);
 }
 
-// The local coefficients at altitude h: rayleigh scattering, mie scattering, extinction.
+// The local coefficients at altitude h: rayleigh scattering, mie scattering, extinction, and the
+// extinction that light already scattered once meets, `diffuse_extinction`.
+//
+// That is the delta-M method (Wiscombe 1977, "The Delta-M Method: Rapid Yet Accurate Radiative
+// Flux Calculations for Strongly Asymmetric Phase Functions", J. Atmos. Sci. 34): multiple
+// scattering sees the Mie phase function only through bands 0–4 (`scatter_moments` in luts.wgsl),
+// and Mie's forward peak reaches far beyond them (a_5 = 0.37 for Cornette–Shanks with g = 0.8).
+// So a share f of it is split off as light that goes straight on — it lowers the extinction
+// scattered light meets by f·σ_M — and the rest, with coefficients a_l − f, is left to bands 0–4.
+// Delta-M takes f = a_5; firmament takes half of that (MIE_FORWARD_PEAK_SHARE in
+// gpu_types/atmosphere.rs: the horizon's light is a band narrower than the peak). Cutting the
+// series off after band 4 instead left the sky 1–1.5 % dark near the horizon (docs/ATMOSPHERE.md).
+// Sunlight itself keeps the full extinction and the exact phase function: single scattering, the
+// sun's disc and whatever stands behind the air (whose transmittance is `extinction`'s) are exact.
 struct Coefficients {
     rayleigh: vec3<f32>,
     mie: vec3<f32>,
     extinction: vec3<f32>,
+    diffuse_extinction: vec3<f32>,
 }
 
 fn coefficients_at(h: f32) -> Coefficients {
@@ -60,6 +76,7 @@ fn coefficients_at(h: f32) -> Coefficients {
     c.mie = atmosphere.mie_scattering.rgb * mie_density;
     c.extinction = rayleigh + atmosphere.mie_extinction.rgb * mie_density
         + atmosphere.absorption.rgb * profile_density(atmosphere.absorber_density, h);
+    c.diffuse_extinction = c.extinction - atmosphere.mie_forward_peak.x * c.mie;
     return c;
 }
 

@@ -56,8 +56,9 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
                 let mu_s_t = dot(p, sun) / r_t;
                 let direct = transmittance_to_sun(h_t, mu_s_t, 0.0) * scattering_phase(c, nu);
                 let source = direct + multiple_scattering(c, h_t, p / r_t, sun, dir);
-                let step_transmittance = exp(-c.extinction * dt);
-                radiance += throughput * integrate_step(source, c.extinction, step_transmittance, dt);
+                // Sky light meets the diffuse extinction (delta-M, common.wgsl).
+                let step_transmittance = exp(-c.diffuse_extinction * dt);
+                radiance += throughput * integrate_step(source, c.diffuse_extinction, step_transmittance, dt);
                 throughput *= step_transmittance;
             }
             irradiance += radiance;

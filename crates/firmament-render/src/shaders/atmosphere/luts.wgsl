@@ -77,43 +77,24 @@ struct Moments {
 // second-moment matrix. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10 and nothing else, so
 // its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 2 plus the zonal (m = 0)
 // parts of bands 3 and 4, (2l + 1)·mean(L·P_l(ωz))·P_l(up), with the medium's own a_l
-// (`mie_legendre`). Isotropic light (m = 0, Q = psi/3 on the diagonal) gives (σ_R + σ_M)·psi.
+// (`atmosphere.mie_legendre`, from firmament_core's MiePhase::legendre_coefficient) less its
+// forward peak f (delta-M, see `Coefficients` in common.wgsl: the peak's light goes straight on,
+// which the marches account for by `diffuse_extinction`). Isotropic light (m = 0, Q = psi/3 on
+// the diagonal) gives (σ_R + (1 − f)·σ_M)·psi.
 fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f32> {
     let yy = m.psi - m.xx - m.zz;
     let across2 = max(1.0 - up * up - toward * toward, 0.0);
     let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
-    let a = mie_legendre();
+    let f = atmosphere.mie_forward_peak.x;
+    let a = atmosphere.mie_legendre - f;
     let band1 = 3.0 * (m.x * toward + m.z * up);
     let band2 = 5.0 * (1.5 * second - 0.5 * m.psi);
     let p3 = 0.5 * up * (5.0 * up * up - 3.0);
     let p4 = (35.0 * up * up * up * up - 30.0 * up * up + 3.0) / 8.0;
     let band3 = 7.0 * 0.5 * (5.0 * m.zzz - 3.0 * m.z) * p3;
     let band4 = 9.0 * (35.0 * m.zzzz - 30.0 * m.zz + 3.0 * m.psi) / 8.0 * p4;
-    let mie = max(m.psi + a.x * band1 + a.y * band2 + a.z * band3 + a.w * band4, vec3<f32>(0.0));
+    let mie = max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + a.z * band3 + a.w * band4, vec3<f32>(0.0));
     return c.rayleigh * 0.75 * (m.psi + second) + c.mie * mie;
-}
-
-// The Legendre coefficients a_1 … a_4 of the medium's Mie phase function (a_0 = 1; the phase is
-// Σ (2l + 1)/(4π) a_l P_l). Henyey–Greenstein's are g^l. Cornette–Shanks is Henyey–Greenstein
-// times 3(1 + μ²)/(2(2 + g²)); with μ²P_l = α_l P_{l+2} + β_l P_l + γ_l P_{l−2} its a_l are
-// 3/(2(2 + g²)) · (g^l + α_l g^{l+2} + β_l g^l + γ_l g^{l−2}), α_l = (l+1)(l+2)/((2l+1)(2l+3)),
-// β_l = (2l² + 2l − 1)/((2l−1)(2l+3)), γ_l = l(l−1)/((2l−1)(2l+1)). For g = 0.8 that is
-// 0.844, 0.710, 0.577, 0.465 against g^l's 0.8, 0.64, 0.512, 0.410 (checked by quadrature):
-// taking g^l for Cornette–Shanks left forward multiple scattering low.
-fn mie_legendre() -> vec4<f32> {
-    let g = atmosphere.lut.z;
-    let g2 = g * g;
-    let hg = vec4<f32>(g, g2, g2 * g, g2 * g2);
-    if atmosphere.lut.w > 0.5 {
-        return hg;
-    }
-    let mu2 = vec4<f32>(
-        0.4 * hg.z + 0.6 * g,
-        12.0 / 35.0 * hg.w + 11.0 / 21.0 * g2 + 2.0 / 15.0,
-        20.0 / 63.0 * hg.w * g + 23.0 / 45.0 * hg.z + 6.0 / 35.0 * g,
-        30.0 / 99.0 * hg.w * g2 + 39.0 / 77.0 * hg.w + 12.0 / 63.0 * g2,
-    );
-    return 3.0 / (2.0 * (2.0 + g2)) * (hg + mu2);
 }
 
 // The cosine between d and the horizontal direction towards the sun s at a point of up `up` (0

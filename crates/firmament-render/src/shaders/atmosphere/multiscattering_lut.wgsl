@@ -119,11 +119,12 @@ fn fs_main(in: FullscreenVertex) -> Targets {
                 let h_t = r_t - atmosphere.lut.x;
                 let mu_s_t = dot(p, sun) / r_t;
                 let c = coefficients_at(h_t);
-                let step_transmittance = exp(-c.extinction * dt);
+                // Scattered light meets the diffuse extinction (delta-M, common.wgsl).
+                let step_transmittance = exp(-c.diffuse_extinction * dt);
                 let sun_transmittance = transmittance_to_sun(h_t, mu_s_t, 0.0);
                 let again = previous_multiple_scattering(c, h_t, p / r_t, sun, dir);
                 let source = scattering_phase(c, nu) * sun_transmittance + again;
-                light += throughput * integrate_step(source, c.extinction, step_transmittance, dt);
+                light += throughput * integrate_step(source, c.diffuse_extinction, step_transmittance, dt);
                 throughput *= step_transmittance;
             }
             if ground {

@@ -138,10 +138,12 @@ fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
     return atmosphere.ground_albedo.rgb / PI * irradiance;
 }
 
-// The medium at one point of a view ray along d: its extinction and the light it scatters
-// towards −d per unit length (all orders) from suns [first, first + count).
+// The medium at one point of a view ray along d: its extinction, the extinction scattered light
+// meets (delta-M, see `Coefficients` in common.wgsl) and the light it scatters towards −d per unit
+// length (all orders) from suns [first, first + count).
 struct MediumSample {
     extinction: vec3<f32>,
+    diffuse_extinction: vec3<f32>,
     source: vec3<f32>,
 }
 
@@ -150,6 +152,7 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
     let c = coefficients_at(here.h);
     var out: MediumSample;
     out.extinction = c.extinction;
+    out.diffuse_extinction = c.diffuse_extinction;
     out.source = vec3<f32>(0.0);
     for (var i = first; i < first + count; i++) {
         let sun = view.suns[i];
@@ -161,6 +164,8 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
     return out;
 }
 
+// `radiance`: the scattered light (and lit ground) reaching the start of a march; `transmittance`:
+// the air's over the march, for what lies behind it (the sun's disc, space, the user's geometry).
 struct MarchResult {
     radiance: vec3<f32>,
     transmittance: vec3<f32>,
@@ -168,11 +173,12 @@ struct MarchResult {
 
 // Light scattered towards the start of o + t·d over t in [t0, t1] from suns [first, first + count),
 // with `steps` midpoint samples (spread quadratically, denser at t0, when `dense_near`), plus the
-// lit ground at t1 when `ground`.
+// lit ground at t1 when `ground`. Scattered light and the ground's meet the diffuse extinction.
 fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32, count: u32, steps: i32, dense_near: bool) -> MarchResult {
     var result: MarchResult;
     result.radiance = vec3<f32>(0.0);
     result.transmittance = vec3<f32>(1.0);
+    var diffuse_transmittance = vec3<f32>(1.0);
     let span = max(t1 - t0, 0.0);
     for (var k = 0; k < steps; k++) {
         var a = f32(k) / f32(steps);
@@ -184,13 +190,14 @@ fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32,
         let dt = (b - a) * span;
         let t = t0 + (a + b) * 0.5 * span;
         let here = medium_sample(o + d * t, d, first, count);
-        let step_transmittance = exp(-here.extinction * dt);
-        result.radiance += result.transmittance * integrate_step(here.source, here.extinction, step_transmittance, dt);
-        result.transmittance *= step_transmittance;
+        let diffuse_step = exp(-here.diffuse_extinction * dt);
+        result.radiance += diffuse_transmittance * integrate_step(here.source, here.diffuse_extinction, diffuse_step, dt);
+        diffuse_transmittance *= diffuse_step;
+        result.transmittance *= exp(-here.extinction * dt);
     }
     if ground {
         let here = altitude_up(o + d * t1);
-        result.radiance += result.transmittance * ground_radiance(max(here.h, 0.0), here.up, first, count);
+        result.radiance += diffuse_transmittance * ground_radiance(max(here.h, 0.0), here.up, first, count);
     }
     return result;
 }
