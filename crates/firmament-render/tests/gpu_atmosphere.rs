@@ -150,8 +150,19 @@ struct Comparison {
 /// The GPU against the reference (`paths` paths) from a street on Bruneton's sphere, one sun at
 /// `sun` (azimuth, elevation), for views at each (azimuth, elevation).
 fn street_comparisons(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)], paths: usize) -> Vec<Comparison> {
-    let atmosphere = earth_sphere();
     let sun = presets::earth_sun(direction(sun.0, sun.1));
+    sky_comparisons(gpu, earth_sphere(), sun, views, paths)
+}
+
+/// The GPU against the reference (`paths` paths) 1.7 m above the ground of `atmosphere` (a
+/// sphere posed as ENU), lit by `sun`, for views at each (azimuth, elevation).
+fn sky_comparisons(
+    gpu: &mut Gpu,
+    atmosphere: Atmosphere,
+    sun: Sun,
+    views: &[(f64, f64)],
+    paths: usize,
+) -> Vec<Comparison> {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![sun],
@@ -187,6 +198,13 @@ fn street_comparisons(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)], path
         .collect()
 }
 
+/// The median and the worst error of `comparisons`.
+fn median_and_worst(comparisons: Vec<Comparison>) -> (f64, f64) {
+    let errors: Vec<f64> = comparisons.into_iter().map(|c| c.error).collect();
+    let worst = errors.iter().copied().fold(0.0, f64::max);
+    (median(errors), worst)
+}
+
 /// Relative errors of the GPU against the reference (`STREET_PATHS` paths); see
 /// [`street_comparisons`].
 fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f64> {
@@ -199,7 +217,7 @@ fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f6
 }
 
 /// Sky and ground from a street, sun 30° up. The budget for sun zenith angles up to 85°
-/// is 1 % median, 5 % worst; measured 0.40 % and 1.3 % (the zenith), with the reference's
+/// is 1 % median, 5 % worst; measured 0.40 % and 1.4 % (the zenith), with the reference's
 /// own noise 0.4–1.2 %.
 #[test]
 fn sky_from_the_ground_matches_the_reference() {
@@ -236,12 +254,7 @@ fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
         (0.0, -30.0),
     ];
     for (sun_elevation, paths) in [(70.0, STREET_PATHS), (10.0, 4 * STREET_PATHS), (5.0, 4 * STREET_PATHS)] {
-        let errors: Vec<f64> = street_comparisons(&mut gpu(), (90.0, sun_elevation), &views, paths)
-            .into_iter()
-            .map(|c| c.error)
-            .collect();
-        let worst = errors.iter().copied().fold(0.0, f64::max);
-        let median = median(errors);
+        let (median, worst) = median_and_worst(street_comparisons(&mut gpu(), (90.0, sun_elevation), &views, paths));
         println!("sun {sun_elevation}° up: median {median:.4}, worst {worst:.4}");
         assert!(
             median < 0.01 && worst < 0.05,
@@ -250,7 +263,31 @@ fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
     }
 }
 
-/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 2.3 %).
+/// Mars's dusty sky (optical depth 0.5, Henyey–Greenstein g 0.63), sun 20° up: almost all of it
+/// light scattered more than once, which the dust scatters around the sun — what the bands about
+/// the sun's axis are for (without them views away from the sun were 20 % off). Measured: median
+/// 1.8 %, worst 4.4 % (away from the sun, 45° up), the reference's noise 0.6–2.1 %.
+#[test]
+fn mars_sky_matches_the_reference() {
+    let mut atmosphere = presets::mars();
+    atmosphere.planet = Planet::sphere(3_389_500.0, 80_000.0).posed_at(0.0, 0.0);
+    let sun = presets::mars_sun(direction(90.0, 20.0));
+    let views = [
+        (0.0, 90.0),
+        (180.0, 5.0),
+        (270.0, 45.0),
+        (90.0, 1.0),
+        (270.0, 1.0),
+        (270.0, 20.0),
+        (0.0, 1.0),
+        (0.0, -30.0),
+    ];
+    let (median, worst) = median_and_worst(sky_comparisons(&mut gpu(), atmosphere, sun, &views, 2 * STREET_PATHS));
+    println!("median {median:.4}, worst {worst:.4}");
+    assert!(median < 0.02 && worst < 0.05, "median {median}, worst {worst}");
+}
+
+/// The sun 3° above the horizon: the sunset budget is 10 % (measured worst 2.5 %).
 #[test]
 fn sunset_sky_matches_the_reference() {
     let views = [(0.0, 90.0), (250.0, 4.0), (270.0, 20.0), (90.0, 5.0), (180.0, 30.0)];

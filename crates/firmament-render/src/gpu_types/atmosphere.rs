@@ -97,7 +97,7 @@ pub struct AtmosphereParamsUniforms {
 /// horizon gets its forward-scattered light from half a lobe of sky and half a lobe of ground.
 /// Measured against the reference (Earth, sun 10° up, views within 1° of the horizon): the whole
 /// peak (1) overshoots by 1.5–2.1 %, none (0: the series cut off after band 4) falls 1.1–1.5 %
-/// short, half stays within 0.5 %.
+/// short, half stays within 0.6 %.
 pub const MIE_FORWARD_PEAK_SHARE: f64 = 0.5;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the

@@ -3,7 +3,7 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; the alphas hold zzz and zzzz over Ψ) | 32 × 32, six | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
+//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; the alphas of zz, xx, xz, x hold the bands 3 and 4 about the up axis and about the sun, over Ψ summed over wavelengths) | 32 × 32, six | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
 //! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |

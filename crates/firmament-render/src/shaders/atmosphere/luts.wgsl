@@ -53,9 +53,10 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 // A radiance field at a point known by its moments over directions ω, in the frame x = towards
 // the sun's azimuth, z = up (y across; the field is mirror-symmetric in y): psi = mean(L) and the
 // second moments mean(L·ωz²), mean(L·ωx²), mean(L·ωx·ωz), the first moments mean(L·ωx),
-// mean(L·ωz), and the zonal moments mean(L·ωz³), mean(L·ωz⁴) (bands 3 and 4 about the up axis).
+// mean(L·ωz), and bands 3 and 4 about the up axis and about the sun (`zonal`).
 //
-// Stored as ln(psi) and the other moments over psi. Below the horizon psi falls by ~e^70 per unit
+// Stored as ln(psi) and the other moments over psi (`zonal` over psi summed over wavelengths:
+// one shape for all three, in the alphas of four textures). Below the horizon psi falls by ~e^70 per unit
 // of mu_s (docs/ATMOSPHERE.md): linear filtering between texels that differ 16-fold overshot the
 // twilight sky by up to 50 %, and half floats lost it altogether from the sun 10° down. ln(psi)
 // is nearly linear there, the ratios are bounded (|x/psi| ≤ 1) and smooth.
@@ -66,22 +67,25 @@ struct Moments {
     xz: vec3<f32>,
     x: vec3<f32>,
     z: vec3<f32>,
-    zzz: vec3<f32>,  // mean(L·ωz³)
-    zzzz: vec3<f32>, // mean(L·ωz⁴)
+    // Bands 3 and 4 about the up axis u and about the sun s, summed over wavelengths and over
+    // the summed psi: (mean(L·P_3(ω·u)), mean(L·P_4(ω·u)), mean(L·P_3(ω·s)), mean(L·P_4(ω·s))).
+    zonal: vec4<f32>,
 }
 
 // The light such a field scatters per unit length towards a direction ω with components
-// (`toward`, ·, `up`) in that frame. A phase function with Legendre coefficients a_l scatters
-// Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; the moments hold bands 0 to 2:
-// L_0 = psi, L_1(ω) = 3 ω·m (m the first moments) and L_2(ω) = 5·(3/2 ωᵀQω − psi/2), Q the
-// second-moment matrix. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10 and nothing else, so
-// its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 2 plus the zonal (m = 0)
-// parts of bands 3 and 4, (2l + 1)·mean(L·P_l(ωz))·P_l(up), with the medium's own a_l
-// (`atmosphere.mie_legendre`, from firmament_core's MiePhase::legendre_coefficient) less its
-// forward peak f (delta-M, see `Coefficients` in common.wgsl: the peak's light goes straight on,
-// which the marches account for by `diffuse_extinction`). Isotropic light (m = 0, Q = psi/3 on
+// (`toward`, ·, `up`) in that frame, the sun at mu_s. A phase function with Legendre coefficients
+// a_l scatters Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; the moments hold
+// bands 0 to 2: L_0 = psi, L_1(ω) = 3 ω·m (m the first moments) and L_2(ω) = 5·(3/2 ωᵀQω −
+// psi/2), Q the second-moment matrix. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10 and
+// nothing else, so its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 4, with the
+// medium's own a_l (`atmosphere.mie_legendre`, from firmament_core's
+// MiePhase::legendre_coefficient) less its forward peak f (delta-M, see `Coefficients` in
+// common.wgsl: the peak's light goes straight on, which the marches account for by
+// `diffuse_extinction`). Bands 3 and 4 are known only along two axes — the up axis, for the
+// bright band of sky at the horizon, and the sun's, for the aureole a dusty sky (Mars) scatters
+// around it — and are taken in their span (`zonal_band`). Isotropic light (m = 0, Q = psi/3 on
 // the diagonal) gives (σ_R + (1 − f)·σ_M)·psi.
-fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f32> {
+fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32, mu_s: f32) -> vec3<f32> {
     let yy = m.psi - m.xx - m.zz;
     let across2 = max(1.0 - up * up - toward * toward, 0.0);
     let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
@@ -89,12 +93,34 @@ fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f3
     let a = atmosphere.mie_legendre - f;
     let band1 = 3.0 * (m.x * toward + m.z * up);
     let band2 = 5.0 * (1.5 * second - 0.5 * m.psi);
-    let p3 = 0.5 * up * (5.0 * up * up - 3.0);
-    let p4 = (35.0 * up * up * up * up - 30.0 * up * up + 3.0) / 8.0;
-    let band3 = 7.0 * 0.5 * (5.0 * m.zzz - 3.0 * m.z) * p3;
-    let band4 = 9.0 * (35.0 * m.zzzz - 30.0 * m.zz + 3.0 * m.psi) / 8.0 * p4;
-    let mie = max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + a.z * band3 + a.w * band4, vec3<f32>(0.0));
+    let d_sun = toward * safe_sqrt(1.0 - mu_s * mu_s) + up * mu_s;
+    let band3 = 7.0 * zonal_band(m.zonal.x, m.zonal.z, legendre_3(mu_s), legendre_3(up), legendre_3(d_sun));
+    let band4 = 9.0 * zonal_band(m.zonal.y, m.zonal.w, legendre_4(mu_s), legendre_4(up), legendre_4(d_sun));
+    let higher = (a.z * band3 + a.w * band4) * m.psi;
+    let mie = max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + higher, vec3<f32>(0.0));
     return c.rayleigh * 0.75 * (m.psi + second) + c.mie * mie;
+}
+
+fn legendre_3(x: f32) -> f32 {
+    return 0.5 * x * (5.0 * x * x - 3.0);
+}
+
+fn legendre_4(x: f32) -> f32 {
+    let x2 = x * x;
+    return (35.0 * x2 * x2 - 30.0 * x2 + 3.0) / 8.0;
+}
+
+// A band l along ω, over psi and over 2l + 1, from the field's projections b_u = mean(L·P_l(ω·u))
+// and b_s = mean(L·P_l(ω·s)) (over psi) onto the zonal harmonics about u and s, whose overlap is
+// P_l(u·s): the band taken in their span, c_u·P_l(ω·u) + c_s·P_l(ω·s) with c solving the Gram
+// system. Ridge-regularised by 2 %, so the sun at the zenith (u = s) splits the band evenly
+// instead of dividing by zero.
+fn zonal_band(b_u: f32, b_s: f32, overlap: f32, p_u: f32, p_s: f32) -> f32 {
+    let diagonal = 1.02;
+    let determinant = diagonal * diagonal - overlap * overlap;
+    let c_u = (diagonal * b_u - overlap * b_s) / determinant;
+    let c_s = (diagonal * b_s - overlap * b_u) / determinant;
+    return c_u * p_u + c_s * p_s;
 }
 
 // The cosine between d and the horizontal direction towards the sun s at a point of up `up` (0
@@ -113,7 +139,7 @@ fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: 
         multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut,
         mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s), dot(up, s));
 }
 
 // The smallest psi (or ground irradiance) the LUTs hold: ln of it is what "none" is stored as.
@@ -133,8 +159,8 @@ fn moment_ratio(moment: vec3<f32>, psi: vec3<f32>) -> vec3<f32> {
     return select(moment / psi, vec3<f32>(0.0), psi <= vec3<f32>(1e-30));
 }
 
-// The moments stored in six LUTs (in `Moments` order; zzz and zzzz in their alphas) at uv,
-// filtered.
+// The moments stored in six LUTs (in `Moments` order; the zonal ones in the alphas of the
+// first four after psi) at uv, filtered.
 fn sample_moments(
     psi: texture_2d<f32>, zz: texture_2d<f32>, xx: texture_2d<f32>,
     xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, uv: vec2<f32>,
@@ -152,9 +178,7 @@ fn sample_moments(
     m.xz = t_xz.rgb * m.psi;
     m.x = t_x.rgb * m.psi;
     m.z = t_z.rgb * m.psi;
-    // The alpha channels: zzz over psi in (zz, xx, xz).a, zzzz over psi in (x, z, psi).a.
-    m.zzz = vec3<f32>(t_zz.a, t_xx.a, t_xz.a) * m.psi;
-    m.zzzz = vec3<f32>(t_x.a, t_z.a, t_psi.a) * m.psi;
+    m.zonal = vec4<f32>(t_zz.a, t_xx.a, t_xz.a, t_x.a);
     return m;
 }
 

@@ -55,7 +55,7 @@ fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<
         previous_multiscattering_xz, previous_multiscattering_x, previous_multiscattering_z,
         mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s), dot(up, s));
 }
 
 fn previous_irradiance(mu_s: f32) -> vec3<f32> {
@@ -81,8 +81,7 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     moments.xz = vec3<f32>(0.0);
     moments.x = vec3<f32>(0.0);
     moments.z = vec3<f32>(0.0);
-    moments.zzz = vec3<f32>(0.0);
-    moments.zzzz = vec3<f32>(0.0);
+    moments.zonal = vec4<f32>(0.0);
     var irradiance = vec3<f32>(0.0);
     for (var i = 0; i < DIRECTIONS_SQRT; i++) {
         for (var j = 0; j < DIRECTIONS_SQRT; j++) {
@@ -141,8 +140,9 @@ fn fs_main(in: FullscreenVertex) -> Targets {
             moments.xz += light * dir.x * dir.z;
             moments.x += light * dir.x;
             moments.z += light * dir.z;
-            moments.zzz += light * dir.z * dir.z * dir.z;
-            moments.zzzz += light * dir.z * dir.z * dir.z * dir.z;
+            let d_sun = dot(dir, sun);
+            let zonal = vec4<f32>(legendre_3(dir.z), legendre_4(dir.z), legendre_3(d_sun), legendre_4(d_sun));
+            moments.zonal += (light.r + light.g + light.b) * zonal;
             irradiance += light * max(mu, 0.0);
         }
     }
@@ -154,13 +154,13 @@ fn fs_main(in: FullscreenVertex) -> Targets {
         return out;
     }
     let psi = moments.psi / n;
-    let zzz = moment_ratio(moments.zzz / n, psi);
-    let zzzz = moment_ratio(moments.zzzz / n, psi);
-    out.psi = vec4<f32>(encode_log(psi), zzzz.b);
-    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), zzz.r);
-    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), zzz.g);
-    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), zzz.b);
-    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), zzzz.r);
-    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), zzzz.g);
+    let psi_sum = psi.r + psi.g + psi.b;
+    let zonal = select(moments.zonal / n / psi_sum, vec4<f32>(0.0), psi_sum <= 1e-30);
+    out.psi = vec4<f32>(encode_log(psi), 0.0);
+    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), zonal.x);
+    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), zonal.y);
+    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), zonal.z);
+    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), zonal.w);
+    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), 0.0);
     return out;
 }
