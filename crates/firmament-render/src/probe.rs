@@ -14,7 +14,7 @@ use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::gpu_types::atmosphere::lut_bottom_radius;
 use crate::passes::AtmospherePass;
-use crate::passes::atmosphere::luts::{IRRADIANCE_SIZE, TRANSMITTANCE_SIZE};
+use crate::passes::atmosphere::luts::{IRRADIANCE_SIZE, LOG_FLOOR, TRANSMITTANCE_SIZE};
 use crate::readback::{decode_f16, read_texture};
 use crate::targets::FrameTargets;
 
@@ -158,7 +158,10 @@ pub fn sample_sky(
         let mu_s = planet.direction_to_planet_frame(sun.direction).normalize().dot(up);
         // The shaders' `mu_s_to_unit`.
         let u = unit_to_texel(0.5 + 0.5 * mu_s.signum() * mu_s.abs().sqrt(), IRRADIANCE_SIZE.0);
-        sky_irradiance += sun.irradiance * irradiance_lut.sample(u, unit_to_texel(0.0, IRRADIANCE_SIZE.1));
+        // Stored as its logarithm (`decode_log` in the shaders).
+        let stored = irradiance_lut.sample(u, unit_to_texel(0.0, IRRADIANCE_SIZE.1));
+        let decoded = Spectrum::from(stored.to_array().map(|v| if v <= LOG_FLOOR { 0.0 } else { v.exp() }));
+        sky_irradiance += sun.irradiance * decoded;
         sun_irradiance += sun.irradiance * transmittance_to_top(0.0, mu_s) * mu_s.max(0.0);
     }
     Ok(GpuSkySample {

@@ -4,7 +4,7 @@
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
 //! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; the alphas of zz, xx, xz, x hold the bands 3 and 4 about the up axis and about the sun, over Ψ summed over wavelengths) | 32 × 32, six | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
-//! | sky irradiance | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
+//! | sky irradiance (stored as its logarithm, as Ψ) | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
 //!
@@ -37,6 +37,9 @@ pub(super) fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::Tex
 pub const MULTISCATTERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Sky irradiance LUT size (texels): mu_s × h.
 pub const IRRADIANCE_SIZE: (u32, u32) = (64, 16);
+/// What the multiple-scattering Ψ and the sky irradiance LUT store for "none": the logarithm's
+/// floor (mirrors `LOG_FLOOR` in `atmosphere/luts.wgsl`; both tables store logarithms).
+pub const LOG_FLOOR: f64 = -69.0;
 /// Sky irradiance LUT format.
 pub const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// One sun's sky-view tile (texels): azimuth × zenith.
@@ -97,7 +100,7 @@ pub struct AtmosphereLuts {
     /// mean Ψ, then the means of radiance × ωz², × ωx², × ωx·ωz, × ωx, × ωz (x towards the sun's
     /// azimuth, z up).
     pub multiscattering: [Lut; MULTISCATTERING_MOMENTS],
-    /// Sky irradiance on a horizontal surface per unit sun irradiance.
+    /// Sky irradiance on a horizontal surface per unit sun irradiance (its logarithm).
     pub irradiance: Lut,
     /// Sky-view radiance, one tile per sun.
     pub sky_view: Lut,

@@ -4,8 +4,8 @@
 //! [`AtmosphereLuts::multiscattering`].
 
 use super::luts::{
-    AtmosphereLuts, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE,
-    moment_views,
+    AtmosphereLuts, LOG_FLOOR, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS,
+    MULTISCATTERING_SIZE, moment_views,
 };
 use super::stages::{
     Stage, bind_group, binding, moment_entries, moment_resources, sampler_entry, texture_entry, uniform_entry,
@@ -167,9 +167,9 @@ impl MultiscatteringStages {
 
 /// Zero as Ψ and E are stored: their logarithm's floor (`LOG_FLOOR` in `atmosphere/luts.wgsl`).
 const LOG_ZERO: wgpu::Color = wgpu::Color {
-    r: -69.0,
-    g: -69.0,
-    b: -69.0,
+    r: LOG_FLOOR,
+    g: LOG_FLOOR,
+    b: LOG_FLOOR,
     a: 1.0,
 };
 

@@ -187,5 +187,5 @@ const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);
 // Sky irradiance on a horizontal surface at altitude h for a unit sun at mu_s (W·m⁻²·nm⁻¹ per
 // W·m⁻²·nm⁻¹ of sun).
 fn sky_irradiance(h: f32, mu_s: f32) -> vec3<f32> {
-    return textureSampleLevel(irradiance_lut, lut_sampler, mu_s_h_to_uv(mu_s, h, IRRADIANCE_LUT_SIZE), 0.0).rgb;
+    return decode_log(textureSampleLevel(irradiance_lut, lut_sampler, mu_s_h_to_uv(mu_s, h, IRRADIANCE_LUT_SIZE), 0.0).rgb);
 }
