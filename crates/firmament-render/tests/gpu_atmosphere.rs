@@ -217,7 +217,7 @@ fn street_errors(gpu: &mut Gpu, sun: (f64, f64), views: &[(f64, f64)]) -> Vec<f6
 }
 
 /// Sky and ground from a street, sun 30° up. The budget for sun zenith angles up to 85°
-/// is 1 % median, 5 % worst; measured 0.40 % and 1.4 % (the zenith), with the reference's
+/// is 1 % median, 5 % worst; measured 0.32 % and 1.4 % (the zenith), with the reference's
 /// own noise 0.4–1.2 %.
 #[test]
 fn sky_from_the_ground_matches_the_reference() {
