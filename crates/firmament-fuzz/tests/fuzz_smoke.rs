@@ -6,12 +6,15 @@
 //! `$CARGO_TARGET_TMPDIR/fuzz-smoke/` for `fuzz/` or a regression file.
 //!
 //! `FIRMAMENT_FUZZ_SMOKE_SCALE=N` runs N times as many mutations (a longer run by hand).
+//! `FIRMAMENT_FUZZ_SMOKE_SECONDS=N` instead mutates each target for N seconds (CI runs 30 s a
+//! target: `.ci/run`): the same seeded sequence of inputs, only as far into it as the time allows;
+//! each target prints how many mutations it ran (`-- --nocapture` shows it).
 
 use std::cell::RefCell;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::Once;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use firmament_fuzz::{TARGETS, Target, target};
 use rand::{Rng, SeedableRng};
@@ -210,14 +213,47 @@ fn run_one(target: &Target, input: &[u8], what: &str) {
     );
 }
 
-/// The smoke run of one target: every corpus input, then `mutations` mutated ones.
+/// How long the mutations of one smoke run go on.
+#[derive(Debug, Clone, Copy)]
+enum Budget {
+    /// This many mutated inputs.
+    Count(usize),
+    /// As many as fit in this time.
+    Time(Duration),
+}
+
+impl Budget {
+    /// `FIRMAMENT_FUZZ_SMOKE_SECONDS` when set, else `mutations` times
+    /// `FIRMAMENT_FUZZ_SMOKE_SCALE` (1 when unset).
+    fn from_env(mutations: usize) -> Self {
+        let var = |name: &str| {
+            std::env::var(name).ok().map(|text| {
+                text.trim()
+                    .parse::<u64>()
+                    .unwrap_or_else(|_| panic!("{name}={text:?}: must be a whole number"))
+            })
+        };
+        match (var("FIRMAMENT_FUZZ_SMOKE_SECONDS"), var("FIRMAMENT_FUZZ_SMOKE_SCALE")) {
+            (Some(seconds), _) => Self::Time(Duration::from_secs(seconds)),
+            (None, scale) => Self::Count(mutations.saturating_mul(scale.unwrap_or(1) as usize)),
+        }
+    }
+
+    /// Whether mutation number `done` (0-based) is still within the budget, `since` the first.
+    fn allows(self, done: usize, since: Instant) -> bool {
+        match self {
+            Self::Count(n) => done < n,
+            Self::Time(t) => since.elapsed() < t,
+        }
+    }
+}
+
+/// The smoke run of one target: every corpus input, then `mutations` mutated ones (or as many
+/// as `FIRMAMENT_FUZZ_SMOKE_SECONDS` allows, see [`Budget`]).
 fn smoke(name: &str, mutations: usize) {
     install_panic_hook();
     let target = target(name).expect("a target of that name");
-    let scale: usize = std::env::var("FIRMAMENT_FUZZ_SMOKE_SCALE")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1);
+    let budget = Budget::from_env(mutations);
     let started = Instant::now();
     let regressions = files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions").join(name));
     for (path, input) in &regressions {
@@ -238,7 +274,11 @@ fn smoke(name: &str, mutations: usize) {
         name.bytes()
             .fold(0xcafe_f00d_u64, |h, b| h.rotate_left(5) ^ u64::from(b)),
     );
-    for i in 0..mutations * scale {
+    let mutating = Instant::now();
+    let mut done = 0;
+    while budget.allows(done, mutating) {
+        let i = done;
+        done += 1;
         let mut input = corpus[rng.random_range(0..corpus.len())].clone();
         for _ in 0..rng.random_range(1..=4) {
             mutate(&mut rng, &mut input, &corpus);
@@ -246,11 +286,14 @@ fn smoke(name: &str, mutations: usize) {
         run_one(target, &input, &format!("mutation {i}"));
     }
     eprintln!(
-        "{name}: {} regressions, {} seeds, {} mutations in {:.2?}",
+        "{name}: {} regressions, {} seeds, {done} mutations in {:.2?} ({})",
         files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions").join(name)).len(),
         seeds(target).len(),
-        mutations * scale,
-        started.elapsed()
+        started.elapsed(),
+        match budget {
+            Budget::Count(_) => "a fixed count".to_owned(),
+            Budget::Time(t) => format!("a budget of {} s", t.as_secs()),
+        }
     );
 }
 
