@@ -266,7 +266,9 @@ fn sky_for_a_high_and_a_low_sun_matches_the_reference() {
 /// Mars's dusty sky (optical depth 0.5, Henyey–Greenstein g 0.63), sun 20° up: almost all of it
 /// light scattered more than once, which the dust scatters around the sun — what the bands about
 /// the sun's axis are for (without them views away from the sun were 20 % off). Measured: median
-/// 1.8 %, worst 4.4 % (away from the sun, 45° up), the reference's noise 0.6–2.1 %.
+/// 1.8 %, worst 4.4 % (away from the sun, 45° up), the reference's noise 0.6–2.1 %; against
+/// 131 072 paths (noise 0.2–0.7 %) median 2.0 %, worst 5.4 % — beyond Earth's 1 % / 5 % budget
+/// (docs/ATMOSPHERE.md, "Not yet done"), so this test holds Mars to 2 % / 5 % at 16 384 paths.
 #[test]
 fn mars_sky_matches_the_reference() {
     let mut atmosphere = presets::mars();
