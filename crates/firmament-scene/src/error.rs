@@ -1,7 +1,8 @@
 //! The scene crate's one error type. Every message names the key path, the value and the rule.
 
-/// Why a scene could not be built.
+/// Why a scene could not be built. More variants may come, hence `#[non_exhaustive]`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneError {
     /// The scene file could not be read.
     #[error("cannot read scene file {path}: {reason}")]

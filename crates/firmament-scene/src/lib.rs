@@ -28,18 +28,29 @@
 //! scene file; [`load`] and [`load_file`] build their scene through one.
 //!
 //! **Scenes in code**: a [`Scene`] is plain data — the TOML format is a serde layer over these
-//! structs, and every field documents its unit and rule. Start from a preset, change fields, check
-//! the rules, and draw; a change shows in the next frame built, and the renderer rebuilds the
-//! atmosphere's medium LUTs only when the medium itself changed (moving a sun or the camera
-//! re-renders only the per-frame sky-view LUT).
+//! structs, and every field documents its unit and rule. [`SceneBuilder`] (`Scene::builder()`)
+//! sets them with typed, unit-named setters (`fov_y_deg`, `camera_position_m`,
+//! `rayleigh_per_m`, …) over the `default` preset every scene file starts from, and `build`
+//! checks the result with [`Scene::validate`] — the same model and the same rules as a file, so a
+//! builder and a file saying the same things give equal scenes, and a bad value the same message.
+//! Or start from a preset, change fields, check the rules, and draw. A change shows in the next
+//! frame built, and the renderer rebuilds the atmosphere's medium LUTs only when the medium
+//! itself changed (moving a sun or the camera re-renders only the per-frame sky-view LUT).
 //!
 //! ```
-//! use firmament_scene::Scene;
+//! use firmament_scene::{Body, Scene};
+//!
+//! let scene = Scene::builder()
+//!     .atmosphere(Body::Earth)
+//!     .sun_at_deg(262.0, 6.0) // azimuth, elevation
+//!     .fov_y_deg(40.0)
+//!     .build()?; // the rules a scene file is checked against
+//! assert_eq!(scene.frame_at(None)?.camera.fov_y, 40f64.to_radians());
 //!
 //! let mut scene = Scene::preset("earth-sunset")?;
 //! scene.camera.fov_y = 40.0; // degrees
 //! scene.suns[0].elevation = Some(1.5); // degrees above the horizon
-//! scene.validate()?; // the rules a scene file is checked against
+//! scene.validate()?;
 //! let frame = scene.frame_at(None)?; // what firmament_render draws
 //! assert_eq!(frame.camera.fov_y, 40f64.to_radians());
 //!
@@ -53,6 +64,7 @@
 
 pub mod assets;
 mod atmosphere;
+mod builder;
 mod color;
 mod document;
 mod error;
@@ -68,6 +80,7 @@ mod to_frame;
 mod validate;
 
 pub use atmosphere::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
+pub use builder::SceneBuilder;
 pub use color::SceneColor;
 pub use document::{SceneDocument, SceneOrigin};
 pub use error::SceneError;
