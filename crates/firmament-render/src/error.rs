@@ -63,6 +63,11 @@ pub enum RenderError {
     /// format, sample count, usages or depth buffer (the message names what is needed).
     #[error("unsupported embedding target: {0}")]
     InvalidTarget(String),
+    /// The output format given to [`Renderer::new`](crate::Renderer::new) cannot be drawn into
+    /// (each [`Renderer::prepare`](crate::Renderer::prepare) refuses it; the message names what
+    /// is needed).
+    #[error("unsupported output format: {0}")]
+    OutputFormat(String),
     /// A value given to the renderer broke its rule.
     #[error("{0}")]
     Invalid(#[from] firmament_core::CoreError),

@@ -150,18 +150,28 @@ pub struct Renderer {
     embedded_size: (u32, u32),
     /// Per-pass GPU timing, when on ([`Renderer::enable_pass_timing`]).
     pass_timer: Option<PassTimer>,
+    /// Why `new`'s output format cannot be drawn into, if it cannot (`prepare` refuses it).
+    output_format_error: Option<String>,
 }
 
 impl Renderer {
-    /// Builds every pipeline once, for output views of `output_format`.
+    /// Builds every pipeline once, for output views of `output_format`. A format the output pass
+    /// cannot draw into ([`check_output_format`](crate::targets::check_output_format)) is
+    /// refused by every [`prepare`](Self::prepare) with [`RenderError::OutputFormat`].
     pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
+        let output_format_error = crate::targets::check_output_format(&ctx.device, output_format).err();
+        // A pipeline for an unusable format would be a wgpu validation panic: build a valid one.
+        let tonemap_format = match output_format_error {
+            None => output_format,
+            Some(_) => crate::targets::HDR_FORMAT,
+        };
         Self {
             own: SkyPasses::new(ctx, SkyTarget::OWN, None),
             embedded: HashMap::new(),
             active: None,
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
-            tonemap: TonemapPass::new(&ctx.device, output_format),
+            tonemap: TonemapPass::new(&ctx.device, tonemap_format),
             embedded_tonemaps: HashMap::new(),
             embedded_output: None,
             lighting_recorded: std::cell::Cell::new(false),
@@ -170,6 +180,7 @@ impl Renderer {
             flare_interval: None,
             embedded_size: (0, 0),
             pass_timer: None,
+            output_format_error,
         }
     }
 
@@ -181,6 +192,9 @@ impl Renderer {
     /// Uploads everything `frame` needs and (re)creates the HDR targets at `width` × `height`.
     /// The camera's aspect ratio is taken from the size.
     pub fn prepare(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
+        if let Some(reason) = &self.output_format_error {
+            return Err(RenderError::OutputFormat(reason.clone()));
+        }
         ctx.check_image_size(width, height)?;
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
             let targets = FrameTargets::new(&ctx.device, width, height);

@@ -96,19 +96,24 @@ pub const EMBED_DEPTH_FORMATS: [wgpu::TextureFormat; 3] = [
 ///
 /// Rules (each broken one is a [`RenderError::InvalidTarget`] naming what is needed, never a wgpu
 /// validation panic):
-/// - `color`: a view of a whole single-sampled 2D texture of one of [`EMBED_COLOR_FORMATS`]
-///   (linear radiance, to composite before your tone mapping) with `RENDER_ATTACHMENT` usage.
-///   Multisampled targets are rejected: resolve yours into a single-sampled one first.
-/// - `depth`: a view of a single-sampled texture of the colour target's size, of one of
-///   [`EMBED_DEPTH_FORMATS`], with `RENDER_ATTACHMENT | TEXTURE_BINDING` usage, holding your
-///   geometry's depth in `convention` (the sky is tested against its far plane, aerial
-///   perspective and flare occlusion read it; it is never written).
+/// - Every view is of a whole texture: a 2D texture with one layer and one mip level, viewed in
+///   its own format. wgpu's `TextureView` does not say which layer, mip level or format it shows,
+///   so firmament checks the texture behind it — a texture with mips or layers is refused even
+///   when the view shows one whole image (render into a plain texture and copy), and a view in
+///   another of the texture's `view_formats` is not detected (don't pass one).
+/// - `color`: single-sampled, of one of [`EMBED_COLOR_FORMATS`] (linear radiance, to composite
+///   before your tone mapping; `Rgba32Float` needs `FLOAT32_BLENDABLE`) with `RENDER_ATTACHMENT`
+///   usage. Multisampled targets are rejected: resolve yours into a single-sampled one first.
+/// - `depth`: the colour target's size and sample count (1), of one of [`EMBED_DEPTH_FORMATS`],
+///   with `RENDER_ATTACHMENT | TEXTURE_BINDING` usage, holding your geometry's depth in
+///   `convention` (the sky is tested against its far plane, aerial perspective and flare
+///   occlusion read it; it is never written).
 /// - `output` (optional, [`with_output`](Self::with_output)): a displayable view — your window's
 ///   surface, an 8-bit texture — that firmament's output pass fills from `color` after
 ///   compositing, with the frame's exposure, tone curve and encoding (exactly as
-///   [`Renderer::record`](crate::Renderer::record) finishes its own frames): a view of a whole
-///   single-sampled 2D texture of the colour target's size with `RENDER_ATTACHMENT` usage, in a
-///   colour-renderable format; `color` then also needs `TEXTURE_BINDING`. Without it, `color`
+///   [`Renderer::record`](crate::Renderer::record) finishes its own frames): single-sampled, the
+///   colour target's size, with `RENDER_ATTACHMENT` usage, in a colour-renderable float format
+///   ([`check_output_format`]); `color` then also needs `TEXTURE_BINDING`. Without it, `color`
 ///   holds linear radiance for your own tone mapping.
 #[derive(Debug, Clone, Copy)]
 #[non_exhaustive]
@@ -180,15 +185,23 @@ impl<'a> EmbedTarget<'a> {
         let color = self.color.texture();
         let depth = self.depth.texture();
         let format = color.format();
-        if color.sample_count() > 1 || depth.sample_count() > 1 {
+        let samples = (color.sample_count(), depth.sample_count());
+        if samples.0 != samples.1 {
             return invalid(format!(
-                "the colour target has {} samples and the depth buffer {}: firmament draws into \
-                 single-sampled targets only; resolve your MSAA colour (and depth) into single-sampled \
-                 textures first and pass those",
-                color.sample_count(),
-                depth.sample_count()
+                "the colour target has {} samples but the depth buffer {}: their sample counts must match, \
+                 and be 1 (firmament draws into single-sampled targets only)",
+                samples.0, samples.1
             ));
         }
+        if samples.0 > 1 {
+            return invalid(format!(
+                "the colour target and depth buffer have {} samples: firmament draws into single-sampled \
+                 targets only; resolve your MSAA colour (and depth) into single-sampled textures first and \
+                 pass those",
+                samples.0
+            ));
+        }
+        whole_2d("colour target", color)?;
         if !EMBED_COLOR_FORMATS.contains(&format) {
             return invalid(format!(
                 "colour format {format:?} is not supported; firmament draws linear radiance into \
@@ -205,9 +218,6 @@ impl<'a> EmbedTarget<'a> {
                     .into(),
             );
         }
-        if color.dimension() != wgpu::TextureDimension::D2 || color.depth_or_array_layers() != 1 {
-            return invalid("the colour target must be a 2D texture with one layer".into());
-        }
         if !color.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
             return invalid(format!(
                 "the colour target's usages {:?} lack RENDER_ATTACHMENT",
@@ -221,6 +231,7 @@ impl<'a> EmbedTarget<'a> {
                  {EMBED_DEPTH_FORMATS:?} (a depth-stencil format cannot be sampled as one texture)"
             ));
         }
+        whole_2d("depth buffer", depth)?;
         let needed = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         if !depth.usage().contains(needed) {
             return invalid(format!(
@@ -230,10 +241,9 @@ impl<'a> EmbedTarget<'a> {
             ));
         }
         let size = (color.width(), color.height());
-        if (depth.width(), depth.height()) != size || depth.depth_or_array_layers() != 1 {
+        if (depth.width(), depth.height()) != size {
             return invalid(format!(
-                "the depth buffer is {}x{} but the colour target {}x{}: they must be the same size, \
-                 one layer",
+                "the depth buffer is {}x{} but the colour target {}x{}: they must be the same size",
                 depth.width(),
                 depth.height(),
                 size.0,
@@ -241,15 +251,56 @@ impl<'a> EmbedTarget<'a> {
             ));
         }
         if let Some(output) = self.output {
-            check_output(color, output.texture())?;
+            check_output(ctx, color, output.texture())?;
         }
         ctx.check_image_size(size.0, size.1)?;
         Ok(size)
     }
 }
 
+/// The rule every texture behind a view of an [`EmbedTarget`] follows: one whole 2D image. wgpu's
+/// `TextureView` does not tell which mip level, layer or format it shows, so a view of part of a
+/// texture could not be told from the whole; the texture itself must be that one image.
+fn whole_2d(what: &str, texture: &wgpu::Texture) -> Result<(), RenderError> {
+    let (dimension, layers, mips) = (
+        texture.dimension(),
+        texture.depth_or_array_layers(),
+        texture.mip_level_count(),
+    );
+    if dimension != wgpu::TextureDimension::D2 || layers != 1 || mips != 1 {
+        return Err(RenderError::InvalidTarget(format!(
+            "the {what} is a {dimension:?} texture of {layers} layer(s) and {mips} mip level(s): firmament \
+             needs a view of a whole 2D texture with one layer and one mip level (wgpu's TextureView \
+             does not say which layer or mip a view shows; render into such a texture and copy it \
+             into yours)"
+        )));
+    }
+    Ok(())
+}
+
+/// Whether `format` can be a colour output of firmament's output pass on `device`, which writes
+/// a float colour without blending: a colour-renderable, non-integer format. `Err` names why not.
+pub fn check_output_format(device: &wgpu::Device, format: wgpu::TextureFormat) -> Result<(), String> {
+    let renderable = format
+        .guaranteed_format_features(device.features())
+        .allowed_usages
+        .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
+    let float = matches!(
+        format.sample_type(None, Some(device.features())),
+        Some(wgpu::TextureSampleType::Float { .. })
+    );
+    if !renderable || !float || format.is_depth_stencil_format() || format.is_compressed() {
+        return Err(format!(
+            "{format:?} is not a colour-renderable float format on this device (firmament's output \
+             pass writes a float colour: use e.g. Rgba8UnormSrgb, Bgra8UnormSrgb, Rgba8Unorm or \
+             Rgba16Float)"
+        ));
+    }
+    Ok(())
+}
+
 /// The rules for [`EmbedTarget::output`] against the colour target `color`.
-fn check_output(color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), RenderError> {
+fn check_output(ctx: &GpuContext, color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), RenderError> {
     let invalid = |m: String| Err(RenderError::InvalidTarget(m));
     if !color.usage().contains(wgpu::TextureUsages::TEXTURE_BINDING) {
         return invalid(format!(
@@ -264,29 +315,18 @@ fn check_output(color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), Ren
             output.sample_count()
         ));
     }
-    let format = output.format();
-    let renderable = format
-        .guaranteed_format_features(wgpu::Features::empty())
-        .allowed_usages
-        .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
-    if !renderable || format.is_depth_stencil_format() || format.is_compressed() {
-        return invalid(format!(
-            "the output's format {format:?} is not a colour-renderable format"
-        ));
-    }
+    whole_2d("output", output)?;
+    check_output_format(&ctx.device, output.format())
+        .or_else(|reason| invalid(format!("the output's format {reason}")))?;
     if !output.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
         return invalid(format!(
             "the output's usages {:?} lack RENDER_ATTACHMENT",
             output.usage()
         ));
     }
-    if (output.width(), output.height()) != (color.width(), color.height())
-        || output.dimension() != wgpu::TextureDimension::D2
-        || output.depth_or_array_layers() != 1
-    {
+    if (output.width(), output.height()) != (color.width(), color.height()) {
         return invalid(format!(
-            "the output is {}x{} but the colour target {}x{}: it must be a 2D texture of the same \
-             size, one layer",
+            "the output is {}x{} but the colour target {}x{}: it must be the same size",
             output.width(),
             output.height(),
             color.width(),

@@ -3,7 +3,11 @@
 //! its own pipeline, in both depth conventions, the sky pixels are the renderer's own HDR
 //! pixels for the same frame, the sky lies behind the face, and the face is fogged as the f64
 //! reference integrator predicts (`Reference::radiance_before`, as in `gpu_aerial_perspective.rs`).
-//! Bad targets give `RenderError::InvalidTarget` naming what is needed.
+//! A scene with a cube, read as `firmament render` reads it, gives the same 8-bit pixels — every
+//! one, the cube's included — through the embedding path (the user's own pipeline drawing the
+//! cube, standard and reversed Z, finite and infinite far plane, firmament's output pass into the
+//! user's view) as through `HeadlessRenderer::render_ldr`, and the cube is fogged as the
+//! reference predicts. Bad targets and output formats give an error naming what is needed.
 
 mod support;
 
@@ -365,13 +369,44 @@ fn target_error(ctx: &GpuContext, renderer: &mut Renderer, color: &wgpu::Texture
         color.create_view(&Default::default()),
         depth.create_view(&Default::default()),
     );
-    let target = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Standard);
+    view_error(
+        ctx,
+        renderer,
+        EmbedTarget::new(&color_view, &depth_view, DepthConvention::Standard),
+    )
+}
+
+/// The error of `prepare_into` for `target`, which must be `InvalidTarget`.
+fn view_error(ctx: &GpuContext, renderer: &mut Renderer, target: EmbedTarget<'_>) -> String {
     let frame = frame(direction(0.0, 5.0), None);
     let error = renderer
         .prepare_into(ctx, &frame, &target)
         .expect_err("an invalid target");
     assert!(matches!(error, RenderError::InvalidTarget(_)), "{error:?}");
     error.to_string()
+}
+
+/// A texture of `format`, `usage`, `layers` deep in `dimension` with `mips` mip levels.
+fn texture_of(
+    ctx: &GpuContext,
+    (dimension, layers, mips): (wgpu::TextureDimension, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("odd texture"),
+        size: wgpu::Extent3d {
+            width: WIDTH,
+            height: HEIGHT,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: mips,
+        sample_count: 1,
+        dimension,
+        format,
+        usage,
+        view_formats: &[],
+    })
 }
 
 #[test]
@@ -424,11 +459,89 @@ fn bad_targets_are_refused_with_what_is_needed() {
             "TEXTURE_BINDING",
         ),
     ];
-    for (what, color, depth, needed) in &cases {
+    let odd = |shape, format, usage| texture_of(&ctx, shape, format, usage);
+    let d2 = wgpu::TextureDimension::D2;
+    let cases2: Vec<(&str, wgpu::Texture, wgpu::Texture, &str)> = vec![
+        (
+            "colour not a render attachment",
+            texture(&ctx, "colour", size, F::Rgba16Float, U::TEXTURE_BINDING),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "lack RENDER_ATTACHMENT",
+        ),
+        (
+            "3D colour",
+            odd((wgpu::TextureDimension::D3, 2, 1), F::Rgba16Float, U::TEXTURE_BINDING),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "one layer and one mip level",
+        ),
+        (
+            "array colour",
+            odd((d2, 2, 1), F::Rgba16Float, rt),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "one layer and one mip level",
+        ),
+        (
+            "colour with mips",
+            odd((d2, 1, 2), F::Rgba16Float, rt),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "one layer and one mip level",
+        ),
+        (
+            "depth with mips",
+            texture(&ctx, "colour", size, F::Rgba16Float, rt),
+            odd((d2, 1, 2), F::Depth32Float, depth_usage),
+            "one layer and one mip level",
+        ),
+        (
+            "single-sampled colour, MSAA depth",
+            texture(&ctx, "colour", size, F::Rgba16Float, rt),
+            texture(&ctx, "msaa depth", (WIDTH, HEIGHT, 4), F::Depth32Float, rt),
+            "sample counts must match",
+        ),
+        (
+            "MSAA colour, single-sampled depth",
+            texture(&ctx, "msaa colour", (WIDTH, HEIGHT, 4), F::Rgba16Float, rt),
+            texture(&ctx, "depth", size, F::Depth32Float, depth_usage),
+            "sample counts must match",
+        ),
+    ];
+    for (what, color, depth, needed) in cases.iter().chain(&cases2) {
         let message = target_error(&ctx, &mut renderer, color, depth);
         println!("{what}: {message}");
         assert!(message.contains(needed), "{what}: `{message}` does not name `{needed}`");
     }
+    // A view of mip 1 of a texture with two: the view's own size is half, and the texture's rule
+    // refuses it before its size could mislead.
+    let mipped = odd((d2, 1, 2), F::Rgba16Float, rt);
+    let mip1 = mipped.create_view(&wgpu::TextureViewDescriptor {
+        base_mip_level: 1,
+        mip_level_count: Some(1),
+        ..Default::default()
+    });
+    let half_depth = texture(
+        &ctx,
+        "half depth",
+        (WIDTH / 2, HEIGHT / 2, 1),
+        F::Depth32Float,
+        depth_usage,
+    );
+    let half_depth_view = half_depth.create_view(&Default::default());
+    let message = view_error(
+        &ctx,
+        &mut renderer,
+        EmbedTarget::new(&mip1, &half_depth_view, DepthConvention::Reversed),
+    );
+    println!("view of mip 1: {message}");
+    assert!(message.contains("one mip level"), "{message}");
+    // Rgba32Float needs FLOAT32_BLENDABLE, which this device (firmament's required features
+    // only) was not given.
+    assert!(!ctx.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE));
+    // (Without RENDER_ATTACHMENT: GL's downlevel limits refuse it on Rgba32Float, and the
+    // feature is checked first.)
+    let wide = texture(&ctx, "rgba32 colour", size, F::Rgba32Float, U::TEXTURE_BINDING);
+    let message = target_error(&ctx, &mut renderer, &wide, &depth);
+    println!("Rgba32Float without the feature: {message}");
+    assert!(message.contains("FLOAT32_BLENDABLE"), "{message}");
     // Recording into a target nothing was prepared for is refused too, and encodes nothing.
     let (color_view, depth_view) = (
         color.create_view(&Default::default()),
@@ -546,9 +659,45 @@ fn an_output_view_gets_the_pixels_firmament_render_writes() {
     );
     let good = texture(&ctx, "output", size, F::Rgba8UnormSrgb, U::RENDER_ATTACHMENT);
     let depth_view = depth.create_view(&Default::default());
+    let msaa = texture(
+        &ctx,
+        "msaa output",
+        (WIDTH, HEIGHT, 4),
+        F::Rgba8UnormSrgb,
+        U::RENDER_ATTACHMENT,
+    );
+    let snorm = texture(&ctx, "snorm output", size, F::Rgba8Snorm, U::TEXTURE_BINDING);
+    let integer = texture(&ctx, "integer output", size, F::Rgba8Uint, U::RENDER_ATTACHMENT);
+    let unrenderable = texture(&ctx, "output", size, F::Rgba8UnormSrgb, U::TEXTURE_BINDING);
+    let array = texture_of(
+        &ctx,
+        (wgpu::TextureDimension::D2, 2, 1),
+        F::Rgba8UnormSrgb,
+        U::RENDER_ATTACHMENT,
+    );
     for (what, color, output, needed) in [
         ("small output", &color, &small, "same size"),
         ("unreadable colour", &unreadable, &good, "TEXTURE_BINDING"),
+        ("MSAA output", &color, &msaa, "single-sampled"),
+        (
+            "non-renderable output format",
+            &color,
+            &snorm,
+            "colour-renderable float format",
+        ),
+        (
+            "integer output format",
+            &color,
+            &integer,
+            "colour-renderable float format",
+        ),
+        (
+            "output not a render attachment",
+            &color,
+            &unrenderable,
+            "lack RENDER_ATTACHMENT",
+        ),
+        ("array output", &color, &array, "one layer and one mip level"),
     ] {
         let (color_view, output_view) = (
             color.create_view(&Default::default()),
@@ -556,6 +705,328 @@ fn an_output_view_gets_the_pixels_firmament_render_writes() {
         );
         let target = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Reversed).with_output(&output_view);
         let error = renderer.prepare_into(&ctx, &frame, &target).expect_err(what);
+        println!("{what}: {error}");
         assert!(error.to_string().contains(needed), "{what}: {error}");
+    }
+    // An output format the renderer's own output pass cannot draw into: refused by `prepare`,
+    // never a wgpu validation panic.
+    for format in [F::Depth32Float, F::Rgba8Uint, F::Rgba8Snorm] {
+        let mut bad = Renderer::new(&ctx, format);
+        let error = bad
+            .prepare(&ctx, &frame, WIDTH, HEIGHT)
+            .expect_err("an unusable output format");
+        println!("Renderer::new({format:?}): {error}");
+        assert!(matches!(error, RenderError::OutputFormat(_)), "{error:?}");
+        assert!(error.to_string().contains("colour-renderable float format"), "{error}");
+    }
+}
+
+/// A scene as `firmament render` reads it: Earth at 45° N, the Sun 25° up behind a camera 300 m up
+/// looking north, and an unlit cube 200 m on a side whose near face is 2 km away, straight ahead.
+/// (300 m, not street level: there the volume's froxel row just below the horizon meets the
+/// ground a few hundred metres out, and a face at the horizon 2 km away, filtered between that
+/// row and the one above, gets half the reference's air light — a limit of the 32 × 32 volume,
+/// not of the embedding.)
+const CUBE_SCENE: &str = r#"
+preset = "earth-noon"
+
+[camera]
+position = [0.0, 0.0, 300.0]
+heading = 0.0
+pitch = 0.0
+fov_y = 20.0
+
+[display]
+ev100 = 14.0
+
+[[suns]]
+name = "Sun"
+azimuth = 180.0
+elevation = 25.0
+
+[lighting]
+model = "unlit"
+
+
+[[objects]]
+name = "cube"
+mesh = { kind = "cube", size = 1.0 }
+transform = [{ translate = [0.0, 2100.0, 300.0] }, { scale = [200.0, 200.0, 200.0] }]
+material = { diffuse = [0.9, 0.6, 0.3] }
+"#;
+/// Distance from the camera to the cube's near face along the view axis, metres.
+const CUBE_DISTANCE: f64 = 2000.0;
+/// The cube test's image size (small: a software rasterizer draws it).
+const CUBE_SIZE: (u32, u32) = (64, 48);
+
+/// The user's cube pipeline: the same triangles as firmament's object pass, projected the same
+/// way (`projection · (model_view · position)`, so `x`, `y` and `w` are the same floats and the
+/// same pixels are covered) and the colour firmament gives an unlit object.
+const USER_CUBE_SHADER: &str = r"
+struct User {
+    projection: mat4x4<f32>,
+    model_view: mat4x4<f32>,
+    color: vec4<f32>,
+}
+@group(0) @binding(0) var<uniform> user: User;
+
+@vertex
+fn vs_main(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {
+    let eye = user.model_view * vec4<f32>(position, 1.0);
+    return user.projection * eye;
+}
+
+@fragment
+fn fs_main() -> @location(0) vec4<f32> {
+    return clamp(user.color, vec4<f32>(0.0), vec4<f32>(1.0));
+}
+";
+
+/// Clears the user's targets (black; the convention's far depth) and draws `object` (the scene's
+/// cube) with the user's own pipeline, seen by `camera` in `convention`.
+fn draw_user_cube(
+    ctx: &GpuContext,
+    encoder: &mut wgpu::CommandEncoder,
+    (color, depth): (&wgpu::TextureView, &wgpu::TextureView),
+    camera: &Camera,
+    convention: DepthConvention,
+    object: &firmament_core::classic::scene::SceneObject,
+) {
+    use wgpu::util::DeviceExt;
+    let device = &ctx.device;
+    let mut uniforms = Vec::new();
+    uniforms.extend(camera.projection_matrix_for(convention).as_mat4().to_cols_array());
+    uniforms.extend((camera.view_matrix() * object.model).as_mat4().to_cols_array());
+    uniforms.extend(object.front.diffuse.as_vec4().to_array());
+    let buffer = |label, contents: &[u8], usage| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let uniforms = buffer(
+        "user cube uniforms",
+        bytemuck::cast_slice(&uniforms),
+        wgpu::BufferUsages::UNIFORM,
+    );
+    let positions = buffer(
+        "user cube positions",
+        bytemuck::cast_slice(&object.mesh.positions),
+        wgpu::BufferUsages::VERTEX,
+    );
+    let indices = buffer(
+        "user cube indices",
+        bytemuck::cast_slice(&object.mesh.indices),
+        wgpu::BufferUsages::INDEX,
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("user cube shader"),
+        source: wgpu::ShaderSource::Wgsl(USER_CUBE_SHADER.into()),
+    });
+    let compare = match convention {
+        DepthConvention::Standard => wgpu::CompareFunction::Less,
+        _ => wgpu::CompareFunction::Greater,
+    };
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("user cube pipeline"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: 12,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+            })],
+        },
+        primitive: Default::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::TextureFormat::Rgba16Float.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("user cube bind group"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: uniforms.as_entire_binding(),
+        }],
+    });
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("user cube pass"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: color,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(convention.far_depth() as f32),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    });
+    pass.set_pipeline(&pipeline);
+    pass.set_bind_group(0, &bind_group, &[]);
+    pass.set_vertex_buffer(0, positions.slice(..));
+    pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+    pass.draw_indexed(0..object.mesh.indices.len() as u32, 0, 0..1);
+}
+
+/// The embedding path for `frame`: the user's cube, then firmament into the user's frame with an
+/// 8-bit sRGB output view. The output's pixels and the composited HDR colour (RGBA f32).
+fn embedded_cube(
+    ctx: &GpuContext,
+    renderer: &mut Renderer,
+    frame: &Frame,
+    convention: DepthConvention,
+) -> (Vec<u8>, Vec<f32>) {
+    use wgpu::TextureFormat as F;
+    use wgpu::TextureUsages as U;
+    let size = (CUBE_SIZE.0, CUBE_SIZE.1, 1);
+    let color = texture(
+        ctx,
+        "colour",
+        size,
+        F::Rgba16Float,
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+    );
+    let depth = texture(
+        ctx,
+        "depth",
+        size,
+        F::Depth32Float,
+        U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+    );
+    let output = texture(
+        ctx,
+        "output",
+        size,
+        F::Rgba8UnormSrgb,
+        U::RENDER_ATTACHMENT | U::COPY_SRC,
+    );
+    let (color_view, depth_view, output_view) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+        output.create_view(&Default::default()),
+    );
+    let target = EmbedTarget::new(&color_view, &depth_view, convention).with_output(&output_view);
+    renderer.prepare_into(ctx, frame, &target).expect("a valid target");
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("user cube frame"),
+    });
+    let camera = Camera {
+        aspect: f64::from(CUBE_SIZE.0) / f64::from(CUBE_SIZE.1),
+        ..frame.camera
+    };
+    let cube = &frame.objects.objects[0];
+    draw_user_cube(ctx, &mut encoder, (&color_view, &depth_view), &camera, convention, cube);
+    renderer.record_into(&mut encoder, &target).expect("prepared");
+    ctx.queue.submit([encoder.finish()]);
+    let ldr = read_texture(ctx, &output).expect("readback");
+    let hdr = decode_f16(&read_texture(ctx, &color).expect("readback"));
+    (ldr, hdr)
+}
+
+#[test]
+fn the_users_cube_matches_firmament_render_and_is_fogged_as_the_reference_predicts() {
+    let _turn = turn();
+    let ctx = support::user_context("gpu_embed_target user device");
+    let (width, height) = CUBE_SIZE;
+    let scene = firmament_scene::load(
+        firmament_scene::SceneSource::Text {
+            text: CUBE_SCENE,
+            origin: "cube scene",
+        },
+        None,
+        &[],
+    )
+    .expect("the cube scene");
+
+    let mut frame = scene.frame_at(None).expect("a frame");
+    assert_eq!(frame.objects.objects.len(), 1, "one cube");
+
+    // The cube's colour · T + S along the view axis to its face, from the f64 reference.
+    let Sky::Atmosphere(sky) = frame.sky.clone() else {
+        unreachable!("an atmosphere scene")
+    };
+    let reference = Reference::new(
+        sky.atmosphere,
+        &sky.suns,
+        ReferenceSettings {
+            paths: 4096,
+            ..Default::default()
+        },
+    );
+    let axis = Ray {
+        origin: frame.camera.position,
+        direction: frame.camera.forward(),
+    };
+    let want = reference.radiance_before(&axis, CUBE_DISTANCE);
+    let s = sky.atmosphere.spectral_conversion().linear_srgb(want.scattered());
+    let c = frame.objects.objects[0].front.diffuse.truncate();
+    let t = DVec3::new(want.transmittance.x, want.transmittance.y, want.transmittance.z);
+    let want_face = c * t + DVec3::new(s.r, s.g, s.b);
+
+    let mut renderer = Renderer::new(&ctx, wgpu::TextureFormat::Rgba8UnormSrgb);
+    let mut own = HeadlessRenderer::new(&ctx);
+    for far in [None, Some(20_000.0)] {
+        frame.camera.far = far;
+        // What `firmament render` writes to a PNG for this scene.
+        let png = own.render_ldr(&ctx, &frame, width, height).expect("own LDR render");
+        for convention in [DepthConvention::Reversed, DepthConvention::Standard] {
+            let (ldr, hdr) = embedded_cube(&ctx, &mut renderer, &frame, convention);
+            let worst = ldr
+                .iter()
+                .zip(&png.pixels)
+                .map(|(a, b)| a.abs_diff(*b))
+                .max()
+                .expect("pixels");
+            // The four pixels about the centre look at the face (within 0.3° of the axis).
+            let mut face = DVec3::ZERO;
+            for (x, y) in [(width / 2 - 1, height / 2 - 1), (width / 2, height / 2)] {
+                for (x, y) in [(x, y), (width - 1 - x, y)] {
+                    let i = ((y * width + x) * 4) as usize;
+                    face += DVec3::new(f64::from(hdr[i]), f64::from(hdr[i + 1]), f64::from(hdr[i + 2])) / 4.0;
+                }
+            }
+            let face_error = (face - want_face).abs().max_element() / want_face.max_element();
+            println!(
+                "{convention:?}, far {far:?}: every pixel vs firmament render's PNG, worst {worst}/255; the \
+                 face {face:.1} vs the reference's colour·T + S {want_face:.1} ({:.2} %)",
+                100.0 * face_error
+            );
+            assert!(
+                worst <= 1,
+                "{convention:?}, far {far:?}: differs from render's PNG by {worst}/255"
+            );
+            assert!(
+                face_error < 0.06,
+                "{convention:?}, far {far:?}: the face's fog is off the reference by {:.1} %",
+                100.0 * face_error
+            );
+        }
     }
 }
