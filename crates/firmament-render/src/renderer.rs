@@ -387,6 +387,20 @@ impl Renderer {
         self.lighting_recorded.set(true);
     }
 
+    /// Spreads rebuilds of the atmosphere's medium LUTs (after a change of planet or medium) over
+    /// successive frames of the renderer's own targets, the sky drawing from the previous medium
+    /// meanwhile (a viewer's panel stays responsive); off by default — stills build in the frame
+    /// of the change. See [`AtmospherePass::set_incremental_rebuild`].
+    pub fn set_incremental_lut_rebuild(&mut self, incremental: bool) {
+        self.own.atmosphere.set_incremental_rebuild(incremental);
+    }
+
+    /// The complete builds of the atmosphere's medium LUTs the renderer's own targets encoded
+    /// ([`AtmospherePass::medium_builds`]), and whether one is under way.
+    pub fn medium_lut_builds(&self) -> (u64, bool) {
+        (self.own.atmosphere.medium_builds(), self.own.atmosphere.rebuilding())
+    }
+
     /// Sets the time between frames for the lens flares' fade-in and fade-out rates (a viewer's
     /// frame interval, seconds); `None` (the default) takes each frame's visibility at once, as
     /// stills and time-lapses should.

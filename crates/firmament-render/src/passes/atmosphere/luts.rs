@@ -64,7 +64,8 @@ pub struct Lut {
 }
 
 impl Lut {
-    /// A 2D LUT of `format`, sampled and copyable, written as `written_by` says.
+    /// A 2D LUT of `format`, sampled and copyable both ways (a finished build is copied into the
+    /// live set), written as `written_by` says.
     pub(super) fn new(
         device: &wgpu::Device,
         name: &str,
@@ -83,7 +84,10 @@ impl Lut {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
-            usage: written_by | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            usage: written_by
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());

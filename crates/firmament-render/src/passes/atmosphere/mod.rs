@@ -5,7 +5,10 @@
 //! Per frame, [`AtmospherePass::record_luts`] renders
 //! 1. the transmittance LUT (Bruneton 2017's parameterisation; a compute pass) and
 //! 2. the multiple-scattering LUT and
-//! 3. the ground's sky-irradiance LUT — these three only when the medium changed —, then
+//! 3. the ground's sky-irradiance LUT — these three only when the medium changed, into a set of
+//!    their own copied into the one the sky reads when complete: in the same frame, or with
+//!    [`AtmospherePass::set_incremental_rebuild`] one step per frame ([`MEDIUM_BUILD_STEPS`]) while
+//!    the sky keeps the last complete set and its medium —, then
 //! 4. the sky-view LUT, one tile per sun, at the camera, and
 //! 5. the light the sky and the suns give at the camera, for users' own materials (each sun's
 //!    direction and colour after the atmosphere, the sky's irradiance as spherical harmonics:
@@ -29,10 +32,9 @@
 mod aerial_perspective;
 pub mod luts;
 mod multiscattering;
+mod rebuild;
 mod sky_lighting;
 mod stages;
-
-use std::cell::Cell;
 
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
@@ -48,6 +50,8 @@ pub use luts::AtmosphereLuts;
 use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
 pub use multiscattering::MULTISCATTERING_ITERATIONS;
 use multiscattering::MultiscatteringStages;
+pub use rebuild::MEDIUM_BUILD_STEPS;
+use rebuild::{BuildStep, MediumLuts, Rebuild};
 pub use sky_lighting::sky_lighting_layout_entry;
 use sky_lighting::{SkyLightingResources, SkyLightingStage};
 use stages::{
@@ -87,7 +91,10 @@ impl SkyMode {
 #[derive(Debug)]
 pub struct AtmospherePass {
     luts: AtmosphereLuts,
+    /// The medium the live LUTs hold (what every stage but the builds reads).
     params: wgpu::Buffer,
+    /// The set the medium's LUTs are built into, and the medium being built.
+    build: MediumLuts,
     view: wgpu::Buffer,
     transmittance: ComputeStage,
     multiscattering: MultiscatteringStages,
@@ -100,10 +107,10 @@ pub struct AtmospherePass {
     sky: [Stage; 3],
     /// Which sky pipeline this frame uses.
     sky_mode: SkyMode,
-    /// The medium the LUTs hold, to rebuild them only when it changes.
+    /// The medium last uploaded for building, to rebuild the LUTs only when it changes.
     uploaded: Option<AtmosphereParamsUniforms>,
-    /// Set by `prepare` when the medium changed; cleared once `record_luts` encoded the rebuild.
-    medium_changed: Cell<bool>,
+    /// The medium LUTs' build: in progress, planned, counted.
+    rebuild: Rebuild,
     sun_count: u32,
     method: SkyMethod,
     /// The depth buffer's convention the pipelines were built for.
@@ -126,6 +133,7 @@ impl AtmospherePass {
             convention,
         } = target;
         let luts = AtmosphereLuts::new(device);
+        let build = MediumLuts::new(device);
         let params = uniform_buffer::<AtmosphereParamsUniforms>(device, "firmament AtmospherePass params");
         let view = uniform_buffer::<AtmosphereViewUniforms>(device, "firmament AtmospherePass view");
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -155,14 +163,14 @@ impl AtmospherePass {
                 storage_entry(binding::TRANSMITTANCE_OUT, TRANSMITTANCE_FORMAT),
             ],
             &[
-                (binding::PARAMS, params.as_entire_binding()),
+                (binding::PARAMS, build.params.as_entire_binding()),
                 (
                     binding::TRANSMITTANCE_OUT,
-                    wgpu::BindingResource::TextureView(&luts.transmittance.view),
+                    wgpu::BindingResource::TextureView(&build.transmittance.view),
                 ),
             ],
         );
-        let multiscattering = MultiscatteringStages::new(device, &params, &luts, &sampler);
+        let multiscattering = MultiscatteringStages::new(device, &build, &sampler);
         let mut irradiance_entries = vec![
             uniform_entry(binding::PARAMS),
             texture_entry(binding::TRANSMITTANCE, false),
@@ -220,6 +228,18 @@ impl AtmospherePass {
             ),
             &resources_for(&sky_view_entries),
         );
+        let mut irradiance_resources = vec![
+            (binding::PARAMS, build.params.as_entire_binding()),
+            (
+                binding::TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&build.transmittance.view),
+            ),
+            (binding::SAMPLER, wgpu::BindingResource::Sampler(&sampler)),
+        ];
+        irradiance_resources.extend(moment_resources(
+            binding::MULTISCATTERING_MOMENTS,
+            build.multiscattering_views(),
+        ));
         let irradiance = Stage::new(
             device,
             lut_pipeline(
@@ -228,7 +248,7 @@ impl AtmospherePass {
                 &irradiance_entries,
                 IRRADIANCE_FORMAT,
             ),
-            &resources_for(&irradiance_entries),
+            &irradiance_resources,
         );
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
         // rasterizers run both sides of a branch they cannot prove uniform).
@@ -274,6 +294,7 @@ impl AtmospherePass {
             sampler,
             luts,
             params,
+            build,
             view,
             transmittance,
             multiscattering,
@@ -281,7 +302,7 @@ impl AtmospherePass {
             sky_view,
             sky,
             uploaded: None,
-            medium_changed: Cell::new(false),
+            rebuild: Rebuild::default(),
             sun_count: 0,
             method: SkyMethod::Lut,
             sky_mode: SkyMode::Lut,
@@ -289,14 +310,30 @@ impl AtmospherePass {
         }
     }
 
-    /// Uploads the medium (when it changed) and this frame's view of `sky` by `camera`.
+    /// Uploads the medium (when it changed, starting a build of its LUTs) and this frame's view
+    /// of `sky` by `camera` — of the last complete medium's while an incremental build is under
+    /// way (with `sky`'s suns and the planet's pose), so the sky stays whole.
     pub fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky, camera: &Camera) {
         let params = AtmosphereParamsUniforms::new(&sky.atmosphere);
         if self.uploaded != Some(params) {
-            queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+            queue.write_buffer(&self.build.params, 0, bytemuck::bytes_of(&params));
             self.uploaded = Some(params);
-            self.medium_changed.set(true);
+            self.rebuild.start(sky.atmosphere);
         }
+        let live_sky;
+        let sky = match self.rebuild.plan() {
+            Some(live) => {
+                let mut atmosphere = *live;
+                atmosphere.planet.center = sky.atmosphere.planet.center;
+                atmosphere.planet.orientation = sky.atmosphere.planet.orientation;
+                live_sky = AtmosphereSky {
+                    atmosphere,
+                    suns: sky.suns.clone(),
+                };
+                &live_sky
+            }
+            None => sky,
+        };
         let mut view = AtmosphereViewUniforms::new(sky, camera).for_depth_convention(camera, self.convention);
         if self.method == SkyMethod::March {
             view.local_up[3] = 1.0;
@@ -311,6 +348,25 @@ impl AtmospherePass {
         self.lighting.prepare(queue, sky, camera);
     }
 
+    /// Builds the medium's LUTs over successive frames, one of [`MEDIUM_BUILD_STEPS`] steps per
+    /// `record_luts`, drawing meanwhile from the last complete set (for interactive callers,
+    /// whose frames would otherwise stall for the whole build); off by default: each build in
+    /// the frame of the change. The first build is always whole.
+    pub fn set_incremental_rebuild(&mut self, incremental: bool) {
+        self.rebuild.incremental = incremental;
+    }
+
+    /// How many complete builds of the medium's LUTs were encoded: one per medium change (or
+    /// per [`record_medium_luts`](Self::record_medium_luts)), none for a new sun, camera or time.
+    pub fn medium_builds(&self) -> u64 {
+        self.rebuild.builds.get()
+    }
+
+    /// Whether a build of the medium's LUTs is under way (the sky draws from the previous set).
+    pub fn rebuilding(&self) -> bool {
+        self.rebuild.in_progress()
+    }
+
     /// Chooses how the sky is computed from the next `prepare` on.
     pub fn set_method(&mut self, method: SkyMethod) {
         self.method = method;
@@ -321,8 +377,10 @@ impl AtmospherePass {
     /// ([`sky_lighting_buffer`](Self::sky_lighting_buffer); with [`SkyMethod::March`] too, though
     /// the sky pass then does not read the tiles).
     pub fn record_luts(&self, encoder: &mut wgpu::CommandEncoder) {
-        if self.medium_changed.replace(false) {
-            self.record_medium_luts(encoder);
+        if let Some(steps) = self.rebuild.take_planned() {
+            for step in steps {
+                self.record_build_step(encoder, BuildStep::of(step));
+            }
         }
         self.record_sky_view_lut(encoder);
         self.record_sky_lighting(encoder);
@@ -405,18 +463,35 @@ impl AtmospherePass {
         self.aerial.record_apply(encoder, color);
     }
 
-    /// Encodes the transmittance, multiple-scattering and sky-irradiance LUTs unconditionally.
+    /// Encodes the transmittance, multiple-scattering and sky-irradiance LUTs of the medium last
+    /// prepared unconditionally, whole (for benchmarks and tools).
     pub fn record_medium_luts(&self, encoder: &mut wgpu::CommandEncoder) {
-        let (width, height) = luts::TRANSMITTANCE_SIZE;
-        self.transmittance
-            .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
-        self.multiscattering.record(encoder, &self.luts);
-        self.irradiance.render(
-            encoder,
-            "firmament AtmospherePass sky irradiance LUT",
-            &self.luts.irradiance.view,
-            None,
-        );
+        for step in 0..MEDIUM_BUILD_STEPS {
+            self.record_build_step(encoder, BuildStep::of(step));
+        }
+    }
+
+    /// Encodes one step of a build of the medium's LUTs.
+    fn record_build_step(&self, encoder: &mut wgpu::CommandEncoder, step: BuildStep) {
+        match step {
+            BuildStep::Transmittance => {
+                let (width, height) = luts::TRANSMITTANCE_SIZE;
+                self.transmittance
+                    .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
+                self.multiscattering.record_start(encoder, &self.build);
+            }
+            BuildStep::Iterate(iterate) => self.multiscattering.record_iterate(encoder, &self.build, iterate),
+            BuildStep::IrradianceAndSwap => {
+                self.irradiance.render(
+                    encoder,
+                    "firmament AtmospherePass sky irradiance LUT",
+                    &self.build.irradiance.view,
+                    None,
+                );
+                self.build.copy_into(encoder, &self.luts, &self.params);
+                self.rebuild.builds.set(self.rebuild.builds.get() + 1);
+            }
+        }
     }
 
     /// Encodes the sky-view LUT tiles of this frame's suns.

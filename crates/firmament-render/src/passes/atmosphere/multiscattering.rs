@@ -1,12 +1,13 @@
 //! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`):
 //! each iterate reads the previous moments (Ψ, zz, xx, xz) and ground sky irradiance E and writes
-//! the next, ping-ponging between two sets of textures so that the last iterate lands in
-//! [`AtmosphereLuts::multiscattering`].
+//! the next, ping-ponging between two sets of textures so that the last iterate lands in the
+//! build set's moments ([`MediumLuts`], copied into
+//! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done).
 
 use super::luts::{
-    AtmosphereLuts, LOG_FLOOR, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS,
-    MULTISCATTERING_SIZE, moment_views,
+    LOG_FLOOR, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE, moment_views,
 };
+use super::rebuild::MediumLuts;
 use super::stages::{
     Stage, bind_group, binding, moment_entries, moment_resources, sampler_entry, texture_entry, uniform_entry,
 };
@@ -43,12 +44,7 @@ pub(super) struct MultiscatteringStages {
 }
 
 impl MultiscatteringStages {
-    pub(super) fn new(
-        device: &wgpu::Device,
-        params: &wgpu::Buffer,
-        luts: &AtmosphereLuts,
-        sampler: &wgpu::Sampler,
-    ) -> Self {
+    pub(super) fn new(device: &wgpu::Device, luts: &MediumLuts, sampler: &wgpu::Sampler) -> Self {
         let (width, height) = MULTISCATTERING_SIZE;
         let scratch_lut = |name: &str, size| {
             Lut::new(
@@ -102,7 +98,7 @@ impl MultiscatteringStages {
         let stages = [0, 1].map(|parity| {
             let read = Self::iterate_of(luts, &scratch, 1 - parity);
             let mut resources = vec![
-                (binding::PARAMS, params.as_entire_binding()),
+                (binding::PARAMS, luts.params.as_entire_binding()),
                 (
                     binding::TRANSMITTANCE,
                     wgpu::BindingResource::TextureView(&luts.transmittance.view),
@@ -129,7 +125,7 @@ impl MultiscatteringStages {
     }
 
     /// The set iterates of `parity` write: 0 the LUTs (and E row A), 1 the scratch set (E row B).
-    fn iterate_of<'a>(luts: &'a AtmosphereLuts, scratch: &'a Scratch, parity: usize) -> Iterate<'a> {
+    fn iterate_of<'a>(luts: &'a MediumLuts, scratch: &'a Scratch, parity: usize) -> Iterate<'a> {
         if parity == 0 {
             Iterate {
                 moments: luts.multiscattering_views(),
@@ -143,25 +139,28 @@ impl MultiscatteringStages {
         }
     }
 
-    /// Encodes every iterate, from zero, into the LUTs (after the transmittance LUT).
-    pub(super) fn record(&self, encoder: &mut wgpu::CommandEncoder, luts: &AtmosphereLuts) {
-        // The first iterate reads the set of the other parity: start it from zero, which Ψ and E
-        // (stored as logarithms) hold as LOG_FLOOR and the other moments (over Ψ) as 0.
+    /// Encodes the iteration's start: the set the first iterate reads, cleared to zero (after the
+    /// transmittance LUT).
+    pub(super) fn record_start(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts) {
+        // Ψ and E (stored as logarithms) hold zero as LOG_FLOOR, the other moments (over Ψ) as 0.
         let start = Self::iterate_of(luts, &self.scratch, 1 - parity_of(0));
         let (psi, ratios) = start.moments.split_at(1);
         render_targets(encoder, None, psi, LOG_ZERO);
         render_targets(encoder, None, ratios, wgpu::Color::TRANSPARENT);
         render_targets(encoder, None, &[start.irradiance], LOG_ZERO);
-        for iterate in 0..=MULTISCATTERING_ITERATIONS {
-            let parity = parity_of(iterate);
-            let write = Self::iterate_of(luts, &self.scratch, parity);
-            let [moments, irradiance] = &self.stages[parity];
-            render_targets(encoder, Some(moments), &write.moments, wgpu::Color::TRANSPARENT);
-            let irradiance_targets: Vec<&wgpu::TextureView> = std::iter::once(write.irradiance)
-                .chain(self.scratch.unused.iter().map(|lut| &lut.view))
-                .collect();
-            render_targets(encoder, Some(irradiance), &irradiance_targets, wgpu::Color::TRANSPARENT);
-        }
+    }
+
+    /// Encodes iterate `iterate` (0 to [`MULTISCATTERING_ITERATIONS`], in order after
+    /// [`record_start`](Self::record_start)); the last one writes `luts`' moments.
+    pub(super) fn record_iterate(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, iterate: u32) {
+        let parity = parity_of(iterate);
+        let write = Self::iterate_of(luts, &self.scratch, parity);
+        let [moments, irradiance] = &self.stages[parity];
+        render_targets(encoder, Some(moments), &write.moments, wgpu::Color::TRANSPARENT);
+        let irradiance_targets: Vec<&wgpu::TextureView> = std::iter::once(write.irradiance)
+            .chain(self.scratch.unused.iter().map(|lut| &lut.view))
+            .collect();
+        render_targets(encoder, Some(irradiance), &irradiance_targets, wgpu::Color::TRANSPARENT);
     }
 }
 

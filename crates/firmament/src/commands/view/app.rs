@@ -124,6 +124,7 @@ impl App {
             anyhow::bail!("{fault}");
         }
         self.info.pass_ms = gpu.pass_times();
+        self.info.luts_rebuilding = gpu.luts_rebuilding();
         self.info.scene_size = gpu.scene_size(self.panel.render_scale);
 
         let raw = egui_state.take_egui_input(&gpu.window);
@@ -257,6 +258,10 @@ impl App {
             }
             Command::TogglePanel => self.panel.visible = !self.panel.visible,
             Command::ShowInfo(show) => self.panel.show_info = show,
+            Command::NeHeVelocity(velocity) => {
+                let speed = self.session.flight.speed(self.session.altitude());
+                self.session.flight.nehe.speed = velocity.speed(speed);
+            }
             Command::Screenshot { exr } => self.handle(Request::Screenshot { exr }),
             Command::Quit => event_loop.exit(),
         }
@@ -323,7 +328,7 @@ impl ApplicationHandler for App {
                         let typing = self.egui_ctx.egui_wants_keyboard_input();
                         if !event.repeat
                             && !typing
-                            && let Some(command) = input::command(code, self.shift)
+                            && let Some(command) = input::command(code, self.shift, self.session.flight.mode)
                         {
                             self.command(event_loop, command);
                         }

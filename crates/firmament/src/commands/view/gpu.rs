@@ -124,6 +124,9 @@ impl Gpu {
         surface.configure(&ctx.device, &config);
 
         let mut renderer = Renderer::new(&ctx, LDR_FORMAT);
+        // A change of planet or medium rebuilds its LUTs over a dozen frames, not in one that
+        // would freeze the window for seconds on a software adapter.
+        renderer.set_incremental_lut_rebuild(true);
         let timing = renderer.enable_pass_timing(&ctx);
         let blitter = wgpu::util::TextureBlitter::new(&ctx.device, view_format);
         let egui = egui_wgpu::Renderer::new(&ctx.device, egui_format, egui_wgpu::RendererOptions::default());
@@ -182,6 +185,11 @@ impl Gpu {
         let scale = f64::from(scale.clamp(0.05, 1.0));
         let side = |s: u32| ((f64::from(s) * scale).round() as u32).max(1);
         (side(self.config.width), side(self.config.height))
+    }
+
+    /// Whether the atmosphere's medium LUTs are being rebuilt over the coming frames.
+    pub(crate) fn luts_rebuilding(&self) -> bool {
+        self.renderer.medium_lut_builds().1
     }
 
     /// Sets the flares' fade rate for frames `interval` seconds apart.

@@ -3,10 +3,12 @@
 //!
 //! Free flight: W/S forward and back, A/D left and right, E/Q up and down, Shift ×10, Ctrl ÷10,
 //! the mouse (either button held) looks around, the wheel sets the speed. NeHe lesson 44's keys
-//! (N switches): W/S pitch, A/D heading, Z/C speed up and down, X stops. In both: Space pauses
-//! the clock, `.`/`,` run it faster or slower, Backspace returns to the scene's own time,
-//! G goes to the ground, O to orbit, F1 shows or hides the panel, 1/2 hide or show the info
-//! text (as in the lesson), F12 saves a PNG screenshot (Shift+F12 an EXR), Escape quits.
+//! (N switches), as the lesson lists them: W/S pitch, A/D heading, Z gives the camera a constant
+//! forward speed, C a constant backward speed, X stops it (the constant: the altitude's flying
+//! speed when pressed). In both: Space pauses the clock, `.`/`,` run it faster or slower,
+//! Backspace returns to the scene's own time, G goes to the ground, O to orbit, F1 shows or hides
+//! the panel, 1 shows and 2 hides the info text (the lesson's "toggle the info on and off"), F12
+//! saves a PNG screenshot (Shift+F12 an EXR), Escape quits.
 
 use firmament_core::controller::ControllerKey;
 use firmament_core::flight::{FlightAction, FlightMode};
@@ -33,6 +35,8 @@ pub(crate) enum Command {
     TogglePanel,
     /// Show (`true`) or hide the info text.
     ShowInfo(bool),
+    /// NeHe mode's Z, C, X: fly on at a constant speed, forward or back, or stop.
+    NeHeVelocity(NeHeVelocity),
     /// Save a screenshot: EXR (linear radiance) when `true`, else PNG.
     Screenshot {
         /// EXR instead of PNG.
@@ -40,6 +44,28 @@ pub(crate) enum Command {
     },
     /// Close the viewer.
     Quit,
+}
+
+/// The forward speeds NeHe lesson 44's Z, C and X keys set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum NeHeVelocity {
+    /// Z: a constant forward speed.
+    Forward,
+    /// C: a constant backward speed.
+    Backward,
+    /// X: stopped.
+    Stop,
+}
+
+impl NeHeVelocity {
+    /// The forward speed, m/s, for a flying speed of `speed` m/s.
+    pub(crate) fn speed(self, speed: f64) -> f64 {
+        match self {
+            Self::Forward => speed,
+            Self::Backward => -speed,
+            Self::Stop => 0.0,
+        }
+    }
 }
 
 /// The flight action a held key drives in `mode`, if any.
@@ -64,16 +90,24 @@ pub(crate) fn held_action(code: KeyCode, mode: FlightMode) -> Option<FlightActio
             KeyCode::KeyS => Some(FlightAction::NeHe(ControllerKey::PitchDown)),
             KeyCode::KeyA => Some(FlightAction::NeHe(ControllerKey::TurnLeft)),
             KeyCode::KeyD => Some(FlightAction::NeHe(ControllerKey::TurnRight)),
-            KeyCode::KeyZ => Some(FlightAction::NeHe(ControllerKey::SpeedUp)),
-            KeyCode::KeyC => Some(FlightAction::NeHe(ControllerKey::SlowDown)),
-            KeyCode::KeyX => Some(FlightAction::NeHe(ControllerKey::Stop)),
             _ => None,
         },
     })
 }
 
-/// The command a key press gives, if any (`shift`: a Shift key is down).
-pub(crate) fn command(code: KeyCode, shift: bool) -> Option<Command> {
+/// The command a key press gives in `mode`, if any (`shift`: a Shift key is down).
+pub(crate) fn command(code: KeyCode, shift: bool, mode: FlightMode) -> Option<Command> {
+    if mode == FlightMode::NeHe {
+        let velocity = match code {
+            KeyCode::KeyZ => Some(NeHeVelocity::Forward),
+            KeyCode::KeyC => Some(NeHeVelocity::Backward),
+            KeyCode::KeyX => Some(NeHeVelocity::Stop),
+            _ => None,
+        };
+        if let Some(velocity) = velocity {
+            return Some(Command::NeHeVelocity(velocity));
+        }
+    }
     Some(match code {
         KeyCode::Space => Command::TogglePause,
         KeyCode::Period | KeyCode::NumpadAdd => Command::Faster,
@@ -83,8 +117,8 @@ pub(crate) fn command(code: KeyCode, shift: bool) -> Option<Command> {
         KeyCode::KeyG => Command::GoToGround,
         KeyCode::KeyO => Command::GoToOrbit,
         KeyCode::F1 => Command::TogglePanel,
-        KeyCode::Digit1 => Command::ShowInfo(false),
-        KeyCode::Digit2 => Command::ShowInfo(true),
+        KeyCode::Digit1 => Command::ShowInfo(true),
+        KeyCode::Digit2 => Command::ShowInfo(false),
         KeyCode::F12 => Command::Screenshot { exr: shift },
         KeyCode::Escape => Command::Quit,
         _ => return None,
@@ -123,12 +157,11 @@ mod tests {
             held_action(KeyCode::KeyD, FlightMode::NeHe),
             Some(FlightAction::NeHe(ControllerKey::TurnRight))
         );
-        assert_eq!(
-            held_action(KeyCode::KeyX, FlightMode::NeHe),
-            Some(FlightAction::NeHe(ControllerKey::Stop))
-        );
-        // Z/C/X mean nothing to free flight; Q/E nothing to NeHe's camera.
-        assert_eq!(held_action(KeyCode::KeyZ, FlightMode::Free), None);
+        // Z/C/X are presses in NeHe mode (commands), nothing held; Q/E nothing to NeHe's camera.
+        for key in [KeyCode::KeyZ, KeyCode::KeyC, KeyCode::KeyX] {
+            assert_eq!(held_action(key, FlightMode::NeHe), None);
+            assert_eq!(held_action(key, FlightMode::Free), None);
+        }
         assert_eq!(held_action(KeyCode::KeyQ, FlightMode::NeHe), None);
         assert_eq!(
             held_action(KeyCode::ShiftLeft, FlightMode::NeHe),
@@ -138,12 +171,37 @@ mod tests {
 
     #[test]
     fn commands_follow_the_key_list() {
-        assert_eq!(command(KeyCode::Space, false), Some(Command::TogglePause));
-        assert_eq!(command(KeyCode::F12, false), Some(Command::Screenshot { exr: false }));
-        assert_eq!(command(KeyCode::F12, true), Some(Command::Screenshot { exr: true }));
-        assert_eq!(command(KeyCode::Digit1, false), Some(Command::ShowInfo(false)));
-        assert_eq!(command(KeyCode::Digit2, false), Some(Command::ShowInfo(true)));
-        assert_eq!(command(KeyCode::KeyW, false), None);
+        for mode in [FlightMode::Free, FlightMode::NeHe] {
+            assert_eq!(command(KeyCode::Space, false, mode), Some(Command::TogglePause));
+            assert_eq!(
+                command(KeyCode::F12, false, mode),
+                Some(Command::Screenshot { exr: false })
+            );
+            assert_eq!(
+                command(KeyCode::F12, true, mode),
+                Some(Command::Screenshot { exr: true })
+            );
+            // NeHe lesson 44: "The '1' and '2' keys toggle the info on and off."
+            assert_eq!(command(KeyCode::Digit1, false, mode), Some(Command::ShowInfo(true)));
+            assert_eq!(command(KeyCode::Digit2, false, mode), Some(Command::ShowInfo(false)));
+            assert_eq!(command(KeyCode::KeyW, false, mode), None);
+        }
+    }
+
+    #[test]
+    fn nehe_z_c_x_set_a_constant_speed_forward_back_or_none() {
+        // "'Z' gives the camera a constant forward velocity, 'C' a constant backward velocity
+        // and 'X' will stop the camera."
+        let velocity = |key| match command(key, false, FlightMode::NeHe) {
+            Some(Command::NeHeVelocity(v)) => v,
+            other => panic!("{key:?} gave {other:?}"),
+        };
+        assert_eq!(velocity(KeyCode::KeyZ).speed(30.0), 30.0);
+        assert_eq!(velocity(KeyCode::KeyC).speed(30.0), -30.0);
+        assert_eq!(velocity(KeyCode::KeyX).speed(30.0), 0.0);
+        for key in [KeyCode::KeyZ, KeyCode::KeyC, KeyCode::KeyX] {
+            assert_eq!(command(key, false, FlightMode::Free), None, "{key:?} in free flight");
+        }
     }
 
     #[test]

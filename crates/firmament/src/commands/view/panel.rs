@@ -63,6 +63,8 @@ pub(crate) struct FrameInfo {
     pub(crate) adapter: String,
     /// Size the scene is drawn at, pixels.
     pub(crate) scene_size: (u32, u32),
+    /// The atmosphere's medium LUTs are being rebuilt (the sky shows the previous medium).
+    pub(crate) luts_rebuilding: bool,
 }
 
 /// Draws the info text over the scene (top left), NeHe-style.
@@ -205,6 +207,9 @@ fn info_section(ui: &mut egui::Ui, info: &FrameInfo) {
             None => {
                 ui.label("per-pass GPU times: this adapter has no timestamp queries");
             }
+        }
+        if info.luts_rebuilding {
+            ui.label("rebuilding the atmosphere's LUTs (showing the previous medium)…");
         }
         ui.label(&info.adapter);
     });

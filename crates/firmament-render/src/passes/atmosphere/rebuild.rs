@@ -1,0 +1,185 @@
+//! Rebuilding the medium's LUTs (transmittance, multiple scattering, sky irradiance) when the
+//! medium changes, either within one frame or — for interactive callers — one step per frame
+//! while the sky keeps drawing from the last complete set.
+//!
+//! The build stages write a set of their own (with a uniform buffer of their own holding the new
+//! medium); its last step copies the set and the medium into the textures and the buffer every
+//! other stage reads. Copies are bitwise, so a build in one frame gives the pixels a direct build
+//! gave.
+
+use std::cell::Cell;
+use std::ops::Range;
+
+use firmament_core::atmosphere::Atmosphere;
+
+use super::luts::{
+    AtmosphereLuts, IRRADIANCE_FORMAT, IRRADIANCE_SIZE, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT,
+    MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE, TRANSMITTANCE_FORMAT, TRANSMITTANCE_SIZE, moment_views,
+};
+use super::multiscattering::MULTISCATTERING_ITERATIONS;
+use crate::gpu_types::AtmosphereParamsUniforms;
+
+/// Steps of one build: the transmittance LUT (and the iteration's zero), each multiple-scattering
+/// iterate, the sky irradiance LUT (and the copy into the live set).
+pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ITERATIONS + 3;
+
+/// What a build step encodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum BuildStep {
+    /// The transmittance LUT, then the multiple-scattering iteration's starting zero.
+    Transmittance,
+    /// Multiple-scattering iterate `k` (0 to [`MULTISCATTERING_ITERATIONS`]).
+    Iterate(u32),
+    /// The sky irradiance LUT, then the copy of the set and the medium into the live ones.
+    IrradianceAndSwap,
+}
+
+impl BuildStep {
+    pub(super) fn of(step: u32) -> Self {
+        match step {
+            0 => Self::Transmittance,
+            s if s <= MULTISCATTERING_ITERATIONS + 1 => Self::Iterate(s - 1),
+            _ => Self::IrradianceAndSwap,
+        }
+    }
+}
+
+/// The textures and the medium uniform the build stages write and read.
+#[derive(Debug)]
+pub(super) struct MediumLuts {
+    pub(super) transmittance: Lut,
+    pub(super) multiscattering: [Lut; MULTISCATTERING_MOMENTS],
+    pub(super) irradiance: Lut,
+    /// The medium being built (an `AtmosphereParamsUniforms`).
+    pub(super) params: wgpu::Buffer,
+}
+
+impl MediumLuts {
+    pub(super) fn new(device: &wgpu::Device) -> Self {
+        let building = |name: &str, size, format, written_by| {
+            Lut::new(device, &format!("{name} (building)"), size, format, written_by)
+        };
+        Self {
+            transmittance: building(
+                "transmittance",
+                TRANSMITTANCE_SIZE,
+                TRANSMITTANCE_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING,
+            ),
+            multiscattering: MOMENT_NAMES.map(|moment| {
+                building(
+                    &format!("multiple-scattering {moment} moment"),
+                    MULTISCATTERING_SIZE,
+                    MULTISCATTERING_FORMAT,
+                    wgpu::TextureUsages::RENDER_ATTACHMENT,
+                )
+            }),
+            irradiance: building(
+                "sky irradiance",
+                IRRADIANCE_SIZE,
+                IRRADIANCE_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            ),
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("firmament AtmospherePass params (building)"),
+                size: std::mem::size_of::<AtmosphereParamsUniforms>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+
+    /// The views of the multiple-scattering moments, in binding order.
+    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
+        moment_views(&self.multiscattering)
+    }
+
+    /// Encodes the copy of the finished set into `live` and of the medium into `live_params`.
+    pub(super) fn copy_into(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        live: &AtmosphereLuts,
+        live_params: &wgpu::Buffer,
+    ) {
+        let pairs = std::iter::once((&self.transmittance, &live.transmittance))
+            .chain(self.multiscattering.iter().zip(&live.multiscattering))
+            .chain(std::iter::once((&self.irradiance, &live.irradiance)));
+        for (from, to) in pairs {
+            encoder.copy_texture_to_texture(
+                from.texture.as_image_copy(),
+                to.texture.as_image_copy(),
+                from.texture.size(),
+            );
+        }
+        encoder.copy_buffer_to_buffer(&self.params, 0, live_params, 0, self.params.size());
+    }
+}
+
+/// Where the rebuild stands. `prepare` (with `&mut`) starts builds, promotes finished ones and
+/// plans the frame's steps; `record_luts` (with `&`) encodes the plan and advances.
+#[derive(Debug, Default)]
+pub(super) struct Rebuild {
+    /// Spread builds over frames (when a complete set exists to draw from meanwhile).
+    pub(super) incremental: bool,
+    /// The medium the live LUTs hold; `None` before the first build finished.
+    live: Option<Atmosphere>,
+    /// The medium being built.
+    pending: Option<Atmosphere>,
+    /// The next step of the build in progress.
+    next: Cell<Option<u32>>,
+    /// The steps the next `record_luts` encodes.
+    planned: Cell<Option<(u32, u32)>>,
+    /// Complete builds encoded.
+    pub(super) builds: Cell<u64>,
+}
+
+impl Rebuild {
+    /// Starts building `medium` (from the first step, also when a build was under way).
+    pub(super) fn start(&mut self, medium: Atmosphere) {
+        self.promote_finished();
+        self.pending = Some(medium);
+        self.next.set(Some(0));
+    }
+
+    /// Makes a finished build's medium the live one.
+    fn promote_finished(&mut self) {
+        if self.next.get().is_none()
+            && let Some(done) = self.pending.take()
+        {
+            self.live = Some(done);
+        }
+    }
+
+    /// Plans this frame's steps; the medium whose LUTs this frame's sky reads: `None` for the
+    /// newest (no build under way, or this frame finishes it), else the last complete one.
+    pub(super) fn plan(&mut self) -> Option<&Atmosphere> {
+        self.promote_finished();
+        let Some(next) = self.next.get() else {
+            self.planned.set(None);
+            return None;
+        };
+        let end = if self.incremental && self.live.is_some() {
+            next + 1
+        } else {
+            MEDIUM_BUILD_STEPS
+        };
+        self.planned.set(Some((next, end)));
+        if end == MEDIUM_BUILD_STEPS {
+            None
+        } else {
+            self.live.as_ref()
+        }
+    }
+
+    /// Whether a build is under way.
+    pub(super) fn in_progress(&self) -> bool {
+        self.next.get().is_some()
+    }
+
+    /// Takes the steps planned for this frame and marks them done (each plan is encoded once).
+    pub(super) fn take_planned(&self) -> Option<Range<u32>> {
+        let (start, end) = self.planned.take()?;
+        self.next.set((end < MEDIUM_BUILD_STEPS).then_some(end));
+        Some(start..end)
+    }
+}
