@@ -264,6 +264,229 @@ impl SceneDocument {
         temp.persist(path).map_err(|e| error(e.error.to_string()))?;
         Ok(())
     }
+
+    /// The keys the scene format accepts in the table at `path` (`""`: the top level; `planet`,
+    /// `atmosphere`, `suns.0`, `flare.elements.0`), in the format's order: its own answer to a
+    /// key it does not know (serde's "unknown field, expected one of"). `None` when the path is no
+    /// table of fixed keys, or when another error in the document comes first.
+    pub fn known_keys(&self, path: &str) -> Option<Vec<String>> {
+        let mut probe = self.table.clone();
+        layers::set_path(&mut probe, &join(path, PROBE_KEY), toml::Value::Boolean(true)).ok()?;
+        let error = serde_path_to_error::deserialize::<_, Scene>(toml::Value::Table(probe)).err()?;
+        let message = error.inner().message();
+        let expected = message.strip_prefix(&format!("unknown field `{PROBE_KEY}`"))?;
+        Some(expected.split('`').skip(1).step_by(2).map(str::to_owned).collect())
+    }
+
+    /// The keys [`known_keys`](Self::known_keys) names that the table at `path` leaves out
+    /// (taking their defaults): what an editor can add there.
+    pub fn missing_keys(&self, path: &str) -> Vec<String> {
+        let present = match path {
+            "" => Some(&self.table),
+            _ => self.get(path).and_then(toml::Value::as_table),
+        };
+        self.known_keys(path)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|key| present.is_none_or(|table| !table.contains_key(key)))
+            .collect()
+    }
+
+    /// Adds the missing key `path` (e.g. `atmosphere.rayleigh_scattering`) with the value it
+    /// takes now where the scene gives it (the body's radii and coefficients for `planet.*` and
+    /// `atmosphere.*`), else a value of the type the key wants (the first name of a key with a
+    /// fixed set, 0, false, an empty list…), which validation may then ask to change. Returns
+    /// the value set.
+    ///
+    /// # Errors
+    /// [`SceneError::BadOverride`] as [`set`](Self::set) has it.
+    pub fn add_key(&mut self, path: &str) -> Result<toml::Value, SceneError> {
+        let value = self
+            .scene()
+            .ok()
+            .and_then(|scene| effective_value(&scene, path))
+            .or_else(|| self.value_of_the_right_type(path))
+            .unwrap_or(toml::Value::Float(0.0));
+        self.set(path, value.clone())?;
+        self.fill_required(path)?;
+        Ok(self.get(path).cloned().unwrap_or(value))
+    }
+
+    /// Adds the keys serde says a table under `path` requires (a mesh's `type`, …), each as
+    /// [`add_key`](Self::add_key) fills it.
+    fn fill_required(&mut self, path: &str) -> Result<(), SceneError> {
+        for _ in 0..MAX_REQUIRED_KEYS {
+            match self.first_missing_key() {
+                Some(key) if key.starts_with(path) => {
+                    let value = self.value_of_the_right_type(&key).unwrap_or(toml::Value::Float(0.0));
+                    self.set(&key, value)?;
+                }
+                _ => break,
+            }
+        }
+        Ok(())
+    }
+
+    /// Appends an entry to the list of tables at `path` (`suns`, `lights`, `objects`,
+    /// `flare.elements`, `sky.gradient.keyframes`): a copy of the last, or for an empty list a
+    /// table of the keys an entry requires (each as [`add_key`](Self::add_key) fills it).
+    ///
+    /// # Errors
+    /// [`SceneError::BadOverride`] when `path` is no list of tables.
+    pub fn add_entry(&mut self, path: &str) -> Result<(), SceneError> {
+        let bad = |rule: &str| SceneError::BadOverride {
+            item: format!("{path}=[…]"),
+            rule: rule.to_owned(),
+        };
+        let items = match self.value_mut(path) {
+            Some(toml::Value::Array(items)) if items.iter().all(toml::Value::is_table) => items,
+            _ => return Err(bad("the key is no list of tables")),
+        };
+        let entry = match items.last() {
+            Some(last) => last.clone(),
+            None => ENTRY_TEMPLATES
+                .iter()
+                .find(|(list, _)| *list == path)
+                .and_then(|(_, text)| text.parse::<toml::Table>().ok())
+                .map_or_else(|| toml::Value::Table(toml::Table::new()), toml::Value::Table),
+        };
+        items.push(entry);
+        let index = items.len() - 1;
+        self.fill_required(&format!("{path}.{index}"))
+    }
+
+    /// The value at a dotted key path, as [`get`](Self::get) finds it, to change in place.
+    fn value_mut(&mut self, path: &str) -> Option<&mut toml::Value> {
+        let mut keys = path.split('.');
+        let mut node = self.table.get_mut(keys.next()?)?;
+        for key in keys {
+            node = match node {
+                toml::Value::Table(t) => t.get_mut(key)?,
+                toml::Value::Array(items) => items.get_mut(key.parse::<usize>().ok()?)?,
+                _ => return None,
+            };
+        }
+        Some(node)
+    }
+
+    /// The key path of the first required key the table lacks, as serde reports it.
+    fn first_missing_key(&self) -> Option<String> {
+        let error = serde_path_to_error::deserialize::<_, Scene>(toml::Value::Table(self.table.clone())).err()?;
+        let field = error
+            .inner()
+            .message()
+            .strip_prefix("missing field `")?
+            .split('`')
+            .next()?;
+        Some(join(&dotted(&error.path().to_string()), field))
+    }
+
+    /// The names the string key at `path` accepts, when it has a fixed set (models, tone
+    /// curves, fog modes…): the scene format's own answer to a name it does not know ("unknown
+    /// variant `…`, expected one of `a`, `b`"). `None` for free text.
+    pub fn accepted_names(&self, path: &str) -> Option<Vec<String>> {
+        let mut probe = self.clone();
+        probe.set(path, toml::Value::String("\u{1}".to_owned())).ok()?;
+        let message = probe.scene().err()?.to_string();
+        let (_, rest) = message.split_once("unknown variant")?;
+        let (_, expected) = rest.split_once("expected ")?;
+        let names: Vec<String> = expected.split('`').skip(1).step_by(2).map(str::to_owned).collect();
+        (!names.is_empty()).then_some(names)
+    }
+
+    /// A value of the type the key at `path` wants: the first that parses there.
+    fn value_of_the_right_type(&self, path: &str) -> Option<toml::Value> {
+        let names = self.accepted_names(path).and_then(|names| names.into_iter().next());
+        let zeros = toml::Value::Array(vec![toml::Value::Float(0.0); 3]);
+        let candidates = names.map(toml::Value::String).into_iter().chain([
+            toml::Value::Float(0.0),
+            toml::Value::Integer(0),
+            toml::Value::Boolean(false),
+            toml::Value::Table(toml::Table::new()),
+            zeros,
+            toml::Value::Array(Vec::new()),
+            toml::Value::String(String::new()),
+        ]);
+        candidates.into_iter().find(|candidate| {
+            let mut probe = self.table.clone();
+            layers::set_path(&mut probe, path, candidate.clone()).is_ok()
+                && match serde_path_to_error::deserialize::<_, Scene>(toml::Value::Table(probe)) {
+                    Ok(_) => true,
+                    // A table missing keys is of the right type: they are filled next.
+                    Err(error) => {
+                        let at = dotted(&error.path().to_string());
+                        let missing = error.inner().message().starts_with("missing field");
+                        if at == path || at.starts_with(&format!("{path}.")) {
+                            candidate.is_table() && missing
+                        } else if path.starts_with(&format!("{at}.")) {
+                            // Inside a tagged enum serde only names the enum: the value parsed
+                            // if what is left is a key not yet given.
+                            missing
+                        } else {
+                            true
+                        }
+                    }
+                }
+        })
+    }
+}
+
+/// The key [`SceneDocument::known_keys`] asks the format about (no scene has it).
+const PROBE_KEY: &str = "\u{1}probe";
+
+/// What the first entry of an empty list starts from where the keys serde requires do not make
+/// a valid one (a sun needs a direction); other lists start from those keys alone.
+const ENTRY_TEMPLATES: &[(&str, &str)] = &[
+    ("suns", "name = \"Sun\"\nazimuth = 180.0\nelevation = 30.0"),
+    ("flare.elements", "kind = \"glow\"\nsize = 0.2"),
+];
+
+/// Required keys [`SceneDocument::add_entry`] fills at most (more would be a loop).
+const MAX_REQUIRED_KEYS: usize = 16;
+
+/// `path.key`, or `key` at the top level.
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_owned()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+/// A serde path (`suns[0].azimuth`; `.` for the top) as a document key path (`suns.0.azimuth`).
+fn dotted(serde_path: &str) -> String {
+    if serde_path == "." {
+        return String::new();
+    }
+    serde_path.replace('[', ".").replace(']', "")
+}
+
+/// The value the missing key `path` takes in `scene` now, for the keys whose value the scene
+/// derives from the body: the planet's shape and the atmosphere's medium.
+fn effective_value(scene: &Scene, path: &str) -> Option<toml::Value> {
+    let float = toml::Value::Float;
+    let triple = |v: firmament_core::atmosphere::Spectrum| toml::Value::Array(v.to_array().map(float).to_vec());
+    let scale_height = |profile: &firmament_core::atmosphere::DensityProfile| {
+        let rate = profile.layers[1].exp_scale;
+        (rate < 0.0).then(|| float(-1.0 / rate))
+    };
+    let atmosphere = scene.atmosphere_sky().ok()?.atmosphere;
+    let (planet, medium) = (&atmosphere.planet, &atmosphere.medium);
+    Some(match path {
+        "planet.equatorial_radius" | "planet.radius" => float(planet.radii.x),
+        "planet.polar_radius" => float(planet.radii.z),
+        "planet.atmosphere_height" => float(planet.atmosphere_height),
+        "atmosphere.rayleigh_scattering" => triple(medium.rayleigh.scattering),
+        "atmosphere.rayleigh_scale_height" => scale_height(&medium.rayleigh.density)?,
+        "atmosphere.mie_scattering" => triple(medium.mie.scattering),
+        "atmosphere.mie_extinction" => triple(medium.mie.extinction),
+        "atmosphere.mie_scale_height" => scale_height(&medium.mie.density)?,
+        "atmosphere.mie_g" => float(medium.mie.phase.g()),
+        "atmosphere.ozone_absorption" => triple(medium.absorber.absorption),
+        "atmosphere.ground_albedo" => triple(medium.ground_albedo),
+        "atmosphere.wavelengths" => toml::Value::Array(atmosphere.wavelengths.0.map(float).to_vec()),
+        _ => return None,
+    })
 }
 
 /// The folder of a scene file, as [`Scene::base_dir`] has it (empty when the path has none).

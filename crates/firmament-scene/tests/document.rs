@@ -385,3 +385,91 @@ fn absolute_asset_paths_are_kept() {
     let scene = load_file(&moved, None, &[]).expect("valid");
     assert_eq!(resolved(&scene), resolved(&doc.scene().expect("valid")));
 }
+
+#[test]
+fn known_keys_are_the_formats_own_and_missing_ones_can_be_added_with_their_values() {
+    let mut doc = preset("earth-sunset");
+    let atmosphere = doc.known_keys("atmosphere").expect("atmosphere keys");
+    for key in ["rayleigh_scattering", "mie_g", "ozone_absorption", "wavelengths"] {
+        assert!(atmosphere.contains(&key.to_owned()), "{key} in {atmosphere:?}");
+    }
+    let planet_missing = doc.missing_keys("planet");
+    for key in ["equatorial_radius", "polar_radius", "atmosphere_height"] {
+        assert!(planet_missing.contains(&key.to_owned()), "{key} in {planet_missing:?}");
+    }
+    assert!(!planet_missing.contains(&"latitude".to_owned()), "{planet_missing:?}");
+    assert!(
+        doc.known_keys("")
+            .expect("top-level keys")
+            .contains(&"flare".to_owned())
+    );
+    assert!(
+        doc.known_keys("suns.0")
+            .expect("a sun's keys")
+            .contains(&"temperature".to_owned())
+    );
+    assert_eq!(doc.known_keys("camera.fov_y"), None, "a number has no keys");
+
+    // Added keys take the values the scene had without them: the scene is unchanged.
+    let before = doc.scene().expect("scene");
+    for key in [
+        "planet.equatorial_radius",
+        "planet.atmosphere_height",
+        "atmosphere.rayleigh_scattering",
+        "atmosphere.mie_g",
+    ] {
+        let value = doc.add_key(key).unwrap_or_else(|e| panic!("{key}: {e}"));
+        assert_eq!(doc.get(key), Some(&value));
+    }
+    assert_eq!(
+        doc.get("planet.equatorial_radius").and_then(Value::as_float),
+        Some(6_378_137.0),
+        "WGS84's equatorial radius"
+    );
+    let after = doc.scene().expect("scene with the keys added");
+    assert_eq!(
+        after.atmosphere_sky().expect("sky"),
+        before.atmosphere_sky().expect("sky"),
+        "adding a key with its effective value changed the sky"
+    );
+    assert!(!doc.missing_keys("planet").contains(&"equatorial_radius".to_owned()));
+
+    // Keys without such a value get one of their type (a key with a fixed set of names its
+    // first name): the scene still parses, whatever rule validation then applies.
+    let mut doc = preset("default");
+    doc.table_mut().remove("fog");
+    let fog = doc.missing_keys("fog");
+    assert!(fog.contains(&"mode".to_owned()), "{fog:?}");
+    for key in &fog {
+        doc.add_key(&format!("fog.{key}"))
+            .unwrap_or_else(|e| panic!("fog.{key}: {e}"));
+    }
+    assert!(doc.get("fog.mode").is_some_and(Value::is_str));
+    match doc.scene() {
+        Ok(_) | Err(SceneError::Invalid { .. }) => {}
+        Err(other) => panic!("the added fog keys do not parse: {other}"),
+    }
+}
+
+#[test]
+fn empty_lists_grow_by_an_entry_that_parses() {
+    for (preset_name, list) in [("default", "objects"), ("default", "lights"), ("earth-sunset", "suns")] {
+        let mut doc = preset(preset_name);
+        doc.set(list, Value::Array(Vec::new())).expect("empty the list");
+        doc.add_entry(list).unwrap_or_else(|e| panic!("{list}: {e}"));
+        assert!(
+            doc.get(&format!("{list}.0")).is_some_and(Value::is_table),
+            "{list}: no entry"
+        );
+        doc.scene()
+            .unwrap_or_else(|e| panic!("{preset_name} with one new {list} entry: {e}"));
+        doc.add_entry(list).expect("a second entry");
+        assert_eq!(doc.get(list).and_then(Value::as_array).map(Vec::len), Some(2));
+    }
+    let mut doc = preset("nehe-flare");
+    doc.set("flare.elements", Value::Array(Vec::new()))
+        .expect("no elements");
+    doc.add_entry("flare.elements").expect("an element");
+    doc.scene().expect("a flare with one new element");
+    assert!(doc.add_entry("camera").is_err(), "the camera is no list");
+}

@@ -1,7 +1,9 @@
 //! The panel's tree of every key of the scene document: numbers drag, flags tick, `#rrggbb`
 //! colours open a colour picker, keys with a fixed set of names (models, tone curves, fog modes…)
-//! offer those names, lists of tables grow and shrink. Edits go to the document, whose
-//! validation says what a bad value breaks.
+//! offer those names, lists of tables grow (empty ones too, from a template) and shrink, and
+//! every table offers the keys the scene format knows there that it leaves out (coefficients,
+//! radii, fog, material keys…), added with the value they take now where the scene has it. Edits
+//! go to the document, whose validation says what a bad value breaks.
 
 use std::collections::HashMap;
 
@@ -14,6 +16,17 @@ use super::session::Session;
 pub(crate) struct SceneEditor {
     /// The names a string key accepts, by key path (`None`: free text), found once per path.
     variants: HashMap<String, Option<Vec<String>>>,
+    /// The keys the format knows in the table at each path, found once per document change.
+    known: HashMap<String, Vec<String>>,
+}
+
+/// A change to the document's shape, made after the walk.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Grow {
+    /// Add the missing key at this path, with its current value.
+    Key(String),
+    /// Append an entry to the list of tables at this path.
+    Entry(String),
 }
 
 impl SceneEditor {
@@ -31,6 +44,8 @@ impl SceneEditor {
             let mut tree = Tree {
                 doc: &session.doc,
                 variants: &mut self.variants,
+                known: &mut self.known,
+                grow: None,
             };
             for (key, value) in table.iter_mut() {
                 if key == "preset" {
@@ -38,8 +53,23 @@ impl SceneEditor {
                 }
                 changed |= tree.value(ui, key, key, value);
             }
+            tree.add_key_menu(ui, "", &table);
+            let grow = tree.grow.take();
             if changed {
                 *session.doc.table_mut() = table;
+            }
+            if let Some(grow) = grow {
+                let done = match &grow {
+                    Grow::Key(path) => session.doc.add_key(path).map(drop),
+                    Grow::Entry(path) => session.doc.add_entry(path),
+                };
+                match done {
+                    Ok(()) => changed = true,
+                    Err(error) => session.edit_error = Some(error.to_string()),
+                }
+            }
+            if changed {
+                self.known.clear();
                 session.document_changed();
             }
         });
@@ -50,6 +80,9 @@ impl SceneEditor {
 struct Tree<'a> {
     doc: &'a SceneDocument,
     variants: &'a mut HashMap<String, Option<Vec<String>>>,
+    known: &'a mut HashMap<String, Vec<String>>,
+    /// The key or entry asked for this frame.
+    grow: Option<Grow>,
 }
 
 impl Tree<'_> {
@@ -63,6 +96,7 @@ impl Tree<'_> {
                     for (key, child) in table.iter_mut() {
                         changed |= self.value(ui, key, &format!("{path}.{key}"), child);
                     }
+                    self.add_key_menu(ui, path, table);
                     changed
                 })
                 .body_returned
@@ -98,13 +132,38 @@ impl Tree<'_> {
             items.remove(i);
             changed = true;
         }
-        if let Some(last) = items.last().cloned()
-            && ui.small_button("add (a copy of the last)").clicked()
-        {
-            items.push(last);
-            changed = true;
+        let add = if items.is_empty() {
+            "add an entry"
+        } else {
+            "add (a copy of the last)"
+        };
+        if ui.small_button(add).clicked() {
+            self.grow = Some(Grow::Entry(path.to_owned()));
         }
         changed
+    }
+
+    /// A menu of the keys the format knows in the table at `path` (`""`: the top) that `table`
+    /// leaves out.
+    fn add_key_menu(&mut self, ui: &mut egui::Ui, path: &str, table: &toml::Table) {
+        let doc = self.doc;
+        let known = self
+            .known
+            .entry(path.to_owned())
+            .or_insert_with(|| doc.known_keys(path).unwrap_or_default());
+        let missing: Vec<&String> = known.iter().filter(|key| !table.contains_key(*key)).collect();
+        if missing.is_empty() {
+            return;
+        }
+        egui::ComboBox::from_id_salt(("add key", path))
+            .selected_text("add key…")
+            .show_ui(ui, |ui| {
+                for key in missing {
+                    if ui.selectable_label(false, key.as_str()).clicked() {
+                        self.grow = Some(Grow::Key(join(path, key)));
+                    }
+                }
+            });
     }
 
     /// An editor for a number, a flag, a text or a list of plain values.
@@ -137,7 +196,7 @@ impl Tree<'_> {
         let names = self
             .variants
             .entry(path.to_owned())
-            .or_insert_with(|| accepted_names(self.doc, path));
+            .or_insert_with(|| self.doc.accepted_names(path));
         if let Some(names) = names {
             let before = text.clone();
             egui::ComboBox::from_id_salt(path)
@@ -161,16 +220,13 @@ impl Tree<'_> {
     }
 }
 
-/// The names the string key at `path` accepts, when it has a fixed set: the scene format's own
-/// answer to a name it does not know ("unknown variant `…`, expected one of `a`, `b`").
-fn accepted_names(doc: &SceneDocument, path: &str) -> Option<Vec<String>> {
-    let mut probe = doc.clone();
-    probe.set(path, toml::Value::String("\u{1}".to_owned())).ok()?;
-    let message = probe.scene().err()?.to_string();
-    let (_, rest) = message.split_once("unknown variant")?;
-    let (_, expected) = rest.split_once("expected ")?;
-    let names: Vec<String> = expected.split('`').skip(1).step_by(2).map(str::to_owned).collect();
-    (!names.is_empty()).then_some(names)
+/// `path.key`, or `key` at the top level.
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_owned()
+    } else {
+        format!("{path}.{key}")
+    }
 }
 
 /// The sRGB bytes of a `#rrggbb` colour.
@@ -201,12 +257,18 @@ mod tests {
     fn keys_with_fixed_names_offer_them_and_free_text_does_not() {
         let doc = SceneDocument::load(SceneSource::Preset("default"), None, &[]).expect("preset");
         assert_eq!(
-            accepted_names(&doc, "sky.model"),
+            doc.accepted_names("sky.model"),
             Some(vec!["gradient".to_owned(), "atmosphere".to_owned(), "clear".to_owned()])
         );
-        let curves = accepted_names(&doc, "display.tone_curve").expect("tone curves");
+        let curves = doc.accepted_names("display.tone_curve").expect("tone curves");
         assert!(curves.contains(&"aces_fitted".to_owned()), "{curves:?}");
-        assert_eq!(accepted_names(&doc, "time.time_of_day"), None);
-        assert_eq!(accepted_names(&doc, "sky.gradient.keyframes.0.zenith"), None);
+        assert_eq!(doc.accepted_names("time.time_of_day"), None);
+        assert_eq!(doc.accepted_names("sky.gradient.keyframes.0.zenith"), None);
+    }
+
+    #[test]
+    fn paths_join_under_the_top_level() {
+        assert_eq!(join("", "flare"), "flare");
+        assert_eq!(join("suns.0", "temperature"), "suns.0.temperature");
     }
 }
