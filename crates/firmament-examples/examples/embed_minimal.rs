@@ -1,7 +1,9 @@
 //! firmament inside your own winit + wgpu app: your pipeline draws a cube into your HDR target
 //! and depth buffer, lit by firmament's sun and sky; firmament adds the sky behind it, the air in
 //! front of it (aerial perspective from your depth buffer), the sun's lens flare, and writes the
-//! finished image to your window. The firmament part is the lines marked `firmament` (15).
+//! finished image to your window. The firmament part is 17 lines of Rust, each ending in a
+//! `// firmament` comment (the cube's WGSL reads firmament's light in 3 more, and its camera is
+//! the firmament frame's).
 //!
 //! ```sh
 //! cargo run -p firmament-examples --example embed_minimal -- [PRESET] [FRAMES]
@@ -13,7 +15,7 @@ use std::error::Error;
 use std::sync::Arc;
 
 use firmament_render::wgpu::util::DeviceExt;
-use firmament_render::{DepthConvention, EmbedTarget, GpuContext, Renderer, wgpu};
+use firmament_render::{DepthConvention, EmbedTarget, GpuContext, Renderer, wgpu}; // firmament
 use glam::{DVec3, Mat4, Vec3Swizzles};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
@@ -58,7 +60,7 @@ struct State {
     window: Arc<Window>,
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
-    ctx: GpuContext,
+    ctx: GpuContext, // firmament: your device, wrapped
     pipeline: wgpu::RenderPipeline,
     camera_buffer: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
@@ -66,8 +68,8 @@ struct State {
     bind_group: Option<wgpu::BindGroup>,
     cube: (wgpu::Buffer, u32),
     targets: (wgpu::TextureView, wgpu::TextureView),
-    frame: firmament_core::Frame,
-    sky: Renderer,
+    frame: firmament_core::Frame, // firmament: the scene's frame
+    sky: Renderer,                // firmament: its renderer
 }
 
 /// Your HDR colour target and depth buffer at the window's size (`TEXTURE_BINDING` on both:
@@ -160,7 +162,7 @@ impl State {
             label: Some("my cube"),
             // firmament: its lighting include (group 0, binding 1) before your shader.
             source: wgpu::ShaderSource::Wgsl(
-                format!("{}\n{CUBE_WGSL}", firmament_render::firmament_lighting_wgsl(0, 1)).into(),
+                format!("{}\n{CUBE_WGSL}", firmament_render::firmament_lighting_wgsl(0, 1)).into(), // firmament
             ),
         });
         let camera_entry = wgpu::BindGroupLayoutEntry {

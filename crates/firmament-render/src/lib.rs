@@ -64,9 +64,8 @@
 //!   by the hardware into `*Srgb` views, by the shader into others). The camera's aspect ratio
 //!   is always the image's.
 //!
-//! # Embedding (first part)
+//! # Embedding
 //!
-//! Supported today:
 //! - **Your device and queue**: [`GpuContext::from_device`] wraps them (cheap `wgpu` handles,
 //!   shared with your renderer) after [`check_device`] — a device short of a feature or limit
 //!   gives [`RenderError::MissingFeatures`] or [`RenderError::LimitsTooLow`] naming it and its
@@ -74,35 +73,46 @@
 //! - **Your encoder and view**: [`Renderer::new`] for an output format, then per frame
 //!   [`Renderer::prepare`] and [`Renderer::record`] into your command encoder and any view of
 //!   that format and the prepared size. It writes every pixel of the view: the finished,
-//!   tone-mapped image (firmament's own objects included).
+//!   tone-mapped image (firmament's own objects included). An output format the output pass
+//!   cannot draw into ([`targets::check_output_format`]) is refused by `prepare` with
+//!   [`RenderError::OutputFormat`].
 //! - **Images in memory**: [`headless::HeadlessRenderer`] (8-bit display or linear HDR).
-//! - **Lighting and fogging your materials** with a physical sky: [`Renderer::sky_lighting_buffer`]
-//!   (each sun's direction and colour at the camera, the sky's irradiance as spherical harmonics;
-//!   [`sky_lighting_layout_entry`], [`firmament_lighting_wgsl`]) and
-//!   [`Renderer::aerial_perspective_bindings`] (the aerial-perspective froxel volume and its
-//!   uniforms; [`aerial_perspective_layout_entries`], [`firmament_aerial_perspective_wgsl`]'s
-//!   `firmament_apply_aerial_perspective(color, ndc_xy, distance_m)`). The renderer builds the
-//!   volume only in atmosphere frames with its own objects, or in every atmosphere frame once
-//!   the bindings were asked for. The `custom_material` example (`firmament-examples`) uses both.
-//!
 //! - **Your frame: your HDR target, depth buffer and depth convention**:
 //!   [`Renderer::prepare_into`] and [`Renderer::record_into`] with an [`EmbedTarget`] (your
 //!   colour view of one of [`EMBED_COLOR_FORMATS`], your depth view of one of
 //!   [`EMBED_DEPTH_FORMATS`] holding your geometry, and its [`DepthConvention`]: reversed or
 //!   standard Z, the far plane finite or infinite as the camera says). The sky lies behind your
-//!   geometry, aerial perspective falls on it, flares are hidden by it; linear radiance, for
-//!   your tone mapping. Bad targets (format, multisampling, size, depth format or usages) give
-//!   [`RenderError::InvalidTarget`] naming what is needed.
+//!   geometry, aerial perspective falls on it, flares are hidden by it. Linear radiance for your
+//!   own tone mapping — or, with [`EmbedTarget::with_output`], firmament's output pass writes the
+//!   finished image into your displayable view (a window's surface, an 8-bit texture): the same
+//!   pixels `firmament render` writes for the same scene, your geometry included (tested within
+//!   1/255 in both depth conventions, finite and infinite far plane). Bad targets — format,
+//!   usages, sample counts (MSAA is refused: resolve first), sizes, textures with layers or mips
+//!   — give [`RenderError::InvalidTarget`] naming what is needed.
+//! - **Lighting and fogging your materials** with a physical sky: [`Renderer::sky_lighting_buffer`]
+//!   (each sun's direction and colour at the camera, the sky's irradiance as spherical harmonics;
+//!   [`sky_lighting_layout_entry`], [`firmament_lighting_wgsl`]) and
+//!   [`Renderer::aerial_perspective_bindings`] (the aerial-perspective froxel volume and its
+//!   uniforms; [`aerial_perspective_layout_entries`], [`firmament_aerial_perspective_wgsl`]'s
+//!   `firmament_apply_aerial_perspective(color, ndc_xy, distance_m)`);
+//!   [`Renderer::record_lighting`] encodes this frame's values before your geometry. The renderer
+//!   builds the volume only in atmosphere frames with its own objects, or in every atmosphere
+//!   frame after [`Renderer::set_aerial_perspective_for_users`]. The `custom_material` example
+//!   (`firmament-examples`) uses both; `embed_minimal` is a winit app drawing its own cube lit by
+//!   firmament's sun and sky, with firmament's sky, air and flares around it.
+//! - **Scenes in code**: `firmament_scene::SceneBuilder` (a separate crate; this one draws any
+//!   [`firmament_core::Frame`]).
 //!
-//! Not yet (issue 9's later parts):
-//! - **MSAA targets** drawn directly (rejected: resolve first) and LDR targets of yours through
-//!   the output pass on the [`Renderer::record_into`] path ([`Renderer::record`]'s output format
-//!   is not checked: it must be a renderable colour format).
+//! Limits:
 //! - On the [`Renderer::record_into`] path, a clear-colour sky (the background is left to you)
-//!   and firmament's own objects are not drawn.
-//! - **Scene builders** in code, and capturing GPU
-//!   errors of [`Renderer::prepare`] / [`Renderer::record`] (wgpu's default handler panics on
-//!   them; [`headless::HeadlessRenderer`] captures them as [`RenderError::Gpu`]).
+//!   and firmament's own objects (`frame.objects`) are not drawn.
+//! - wgpu's `TextureView` does not say which layer, mip level or format it shows, so
+//!   [`EmbedTarget`] checks the texture behind each view: pass views of whole single-image
+//!   textures in their own format.
+//! - GPU errors of [`Renderer::prepare`] / [`Renderer::record`] go to your device's error handler
+//!   (wgpu's default panics); [`headless::HeadlessRenderer`] captures them as
+//!   [`RenderError::Gpu`]. Everything firmament can check beforehand it checks, and returns as
+//!   an error.
 
 pub mod bench;
 pub mod context;
