@@ -134,6 +134,85 @@ fn fs_main() -> @location(0) vec4<f32> {
 }
 ";
 
+/// The user's pipeline of `module` (entry points `vs_main`, `fs_main`; override `constants`)
+/// into an `Rgba16Float` target, depth-tested and written in `convention` (`Depth32Float`).
+fn user_pipeline(
+    ctx: &GpuContext,
+    (module, constants): (&wgpu::ShaderModule, &[(&str, f64)]),
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    topology: wgpu::PrimitiveTopology,
+    convention: DepthConvention,
+) -> wgpu::RenderPipeline {
+    let options = || wgpu::PipelineCompilationOptions {
+        constants,
+        ..Default::default()
+    };
+    let compare = match convention {
+        DepthConvention::Standard => wgpu::CompareFunction::Less,
+        _ => wgpu::CompareFunction::Greater,
+    };
+    ctx.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("user pipeline"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: options(),
+            buffers,
+        },
+        primitive: wgpu::PrimitiveState {
+            topology,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: options(),
+            targets: &[Some(wgpu::TextureFormat::Rgba16Float.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The user's pass over its colour target and depth buffer, cleared to black and to the
+/// convention's far depth.
+fn begin_user_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    (color, depth): (&wgpu::TextureView, &wgpu::TextureView),
+    convention: DepthConvention,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("user pass"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: color,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(convention.far_depth() as f32),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        ..Default::default()
+    })
+}
+
 /// Clears the user's targets (black; the convention's far depth) and draws the square of
 /// radiance `color` at view depth `distance`.
 fn draw_user_geometry(
@@ -150,65 +229,10 @@ fn draw_user_geometry(
         source: wgpu::ShaderSource::Wgsl(USER_SHADER.into()),
     });
     let constants = [("DEPTH", clip.z / clip.w), ("COLOR", color), ("FACE", FACE)];
-    let options = || wgpu::PipelineCompilationOptions {
-        constants: &constants,
-        ..Default::default()
-    };
-    let compare = match convention {
-        DepthConvention::Standard => wgpu::CompareFunction::Less,
-        _ => wgpu::CompareFunction::Greater,
-    };
-    let pipeline = ctx.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("user square pipeline"),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: options(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleStrip,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth32Float,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(compare),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: options(),
-            targets: &[Some(wgpu::TextureFormat::Rgba16Float.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("user pass"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: &targets.color_view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &targets.depth_view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(convention.far_depth() as f32),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
-        ..Default::default()
-    });
+    let strip = wgpu::PrimitiveTopology::TriangleStrip;
+    let pipeline = user_pipeline(ctx, (&module, &constants), &[], strip, convention);
+    let views = (&targets.color_view, &targets.depth_view);
+    let mut pass = begin_user_pass(encoder, views, convention);
     pass.set_pipeline(&pipeline);
     pass.draw(0..4, 0..1);
 }
@@ -270,6 +294,19 @@ fn mean_rgb(pixels: &[f32], inside: bool) -> DVec3 {
     sum / n
 }
 
+/// The f64 reference's air over `distance` metres of `ray` under `sky`: the light it scatters
+/// towards the camera (linear sRGB, cd/m²) and its transmittance (R, G, B).
+fn reference_air(sky: &AtmosphereSky, ray: &Ray, distance: f64) -> (DVec3, DVec3) {
+    let settings = ReferenceSettings {
+        paths: 4096,
+        ..Default::default()
+    };
+    let want = Reference::new(sky.atmosphere, &sky.suns, settings).radiance_before(ray, distance);
+    let s = sky.atmosphere.spectral_conversion().linear_srgb(want.scattered());
+    let t = want.transmittance;
+    (DVec3::new(s.r, s.g, s.b), DVec3::new(t.x, t.y, t.z))
+}
+
 #[test]
 fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
     let _turn = turn();
@@ -280,25 +317,14 @@ fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
     let Sky::Atmosphere(sky) = frame(view, None).sky else {
         unreachable!("an atmosphere frame")
     };
-    let reference = Reference::new(
-        sky.atmosphere,
-        &sky.suns,
-        ReferenceSettings {
-            paths: 4096,
-            ..Default::default()
-        },
-    );
-    let want = reference.radiance_before(
+    let (want_s, want_t) = reference_air(
+        &sky,
         &Ray {
             origin: eye,
             direction: view,
         },
         distance,
     );
-    let conversion = sky.atmosphere.spectral_conversion();
-    let want_s = conversion.linear_srgb(want.scattered());
-    let want_s = DVec3::new(want_s.r, want_s.g, want_s.b);
-    let want_t = DVec3::new(want.transmittance.x, want.transmittance.y, want.transmittance.z);
 
     let mut own = HeadlessRenderer::new(&ctx);
     let mut renderer = Renderer::new(&ctx, wgpu::TextureFormat::Rgba8UnormSrgb);
@@ -824,41 +850,13 @@ fn draw_user_cube(
         label: Some("user cube shader"),
         source: wgpu::ShaderSource::Wgsl(USER_CUBE_SHADER.into()),
     });
-    let compare = match convention {
-        DepthConvention::Standard => wgpu::CompareFunction::Less,
-        _ => wgpu::CompareFunction::Greater,
+    let layout = wgpu::VertexBufferLayout {
+        array_stride: 12,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3],
     };
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("user cube pipeline"),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: 12,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-            })],
-        },
-        primitive: Default::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth32Float,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(compare),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::TextureFormat::Rgba16Float.into())],
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    let triangles = wgpu::PrimitiveTopology::TriangleList;
+    let pipeline = user_pipeline(ctx, (&module, &[]), &[Some(layout)], triangles, convention);
     let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("user cube bind group"),
         layout: &pipeline.get_bind_group_layout(0),
@@ -867,27 +865,7 @@ fn draw_user_cube(
             resource: uniforms.as_entire_binding(),
         }],
     });
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("user cube pass"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: color,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: depth,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Clear(convention.far_depth() as f32),
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
-        ..Default::default()
-    });
+    let mut pass = begin_user_pass(encoder, (color, depth), convention);
     pass.set_pipeline(&pipeline);
     pass.set_bind_group(0, &bind_group, &[]);
     pass.set_vertex_buffer(0, positions.slice(..));
@@ -972,23 +950,12 @@ fn the_users_cube_matches_firmament_render_and_is_fogged_as_the_reference_predic
     let Sky::Atmosphere(sky) = frame.sky.clone() else {
         unreachable!("an atmosphere scene")
     };
-    let reference = Reference::new(
-        sky.atmosphere,
-        &sky.suns,
-        ReferenceSettings {
-            paths: 4096,
-            ..Default::default()
-        },
-    );
     let axis = Ray {
         origin: frame.camera.position,
         direction: frame.camera.forward(),
     };
-    let want = reference.radiance_before(&axis, CUBE_DISTANCE);
-    let s = sky.atmosphere.spectral_conversion().linear_srgb(want.scattered());
-    let c = frame.objects.objects[0].front.diffuse.truncate();
-    let t = DVec3::new(want.transmittance.x, want.transmittance.y, want.transmittance.z);
-    let want_face = c * t + DVec3::new(s.r, s.g, s.b);
+    let (s, t) = reference_air(&sky, &axis, CUBE_DISTANCE);
+    let want_face = frame.objects.objects[0].front.diffuse.truncate() * t + s;
 
     let mut renderer = Renderer::new(&ctx, wgpu::TextureFormat::Rgba8UnormSrgb);
     let mut own = HeadlessRenderer::new(&ctx);
