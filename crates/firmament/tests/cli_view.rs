@@ -217,3 +217,74 @@ fn bad_input_is_one_clear_message_and_no_window() {
     }
     assert_eq!(std::fs::read_dir(d).expect("dir").count(), 0, "no file written");
 }
+
+#[test]
+fn a_lost_device_ends_with_one_message_and_a_lost_surface_is_made_anew() {
+    let x = Xvfb::start();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let view = |fault: &str, shot: &str| {
+        Command::new(env!("CARGO_BIN_EXE_firmament"))
+            .args([
+                "view",
+                "--size",
+                "64x36",
+                "--frames",
+                "4",
+                "--paused",
+                "--screenshot",
+                shot,
+            ])
+            .current_dir(d)
+            .env("DISPLAY", &x.display)
+            .env("FIRMAMENT_VIEW_INJECT_FAULT", fault)
+            .env_remove("WAYLAND_DISPLAY")
+            .env_remove("FIRMAMENT_LOG")
+            .output()
+            .expect("the firmament binary runs")
+    };
+
+    // The device destroyed after two frames (and before the first): one error line, no panic,
+    // no screenshot.
+    for fault in ["device-lost@2", "device-lost@0"] {
+        let out = view(fault, "lost.png");
+        let message = stderr(&out);
+        assert!(!out.status.success(), "{fault}: the viewer went on");
+        assert!(!message.contains("panicked"), "{fault}: {message}");
+        let errors: Vec<&str> = message.lines().filter(|l| l.starts_with("error")).collect();
+        assert_eq!(errors.len(), 1, "{fault}: {message}");
+        assert!(errors[0].contains("GPU device was lost"), "{fault}: {message}");
+        assert!(!d.join("lost.png").exists(), "{fault}: a screenshot of a lost device");
+    }
+
+    // The surface lost once: a new one, and the run completes with its screenshot.
+    let out = view("surface-lost@1", "recovered.png");
+    let message = stderr(&out);
+    assert!(out.status.success(), "surface-lost: {message}");
+    assert!(message.contains("making a new one"), "{message}");
+    assert!(
+        d.join("recovered.png").exists(),
+        "no screenshot after the surface came back"
+    );
+}
+
+#[test]
+fn no_adapter_for_the_backend_is_one_clear_message() {
+    let x = Xvfb::start();
+    let dir = tempfile::tempdir().expect("temp dir");
+    // This machine has GL (and maybe Vulkan); Metal and DX12 exist only on their systems.
+    let backend = if cfg!(target_os = "macos") { "dx12" } else { "metal" };
+    let out = x.view(dir.path(), &["--backend", backend, "--frames", "1"]);
+    let message = stderr(&out);
+    assert!(!out.status.success(), "--backend {backend} found an adapter: {message}");
+    assert!(!message.contains("panicked"), "{message}");
+    assert!(
+        message.contains("no GPU adapter") && message.contains("firmament render"),
+        "{message}"
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).expect("dir").count(),
+        0,
+        "no file written"
+    );
+}

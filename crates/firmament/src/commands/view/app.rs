@@ -17,6 +17,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::ViewOptions;
+use super::fault::InjectedFault;
 use super::gpu::{EguiFrame, Gpu, Presented};
 use super::input::{self, Command};
 use super::panel::{self, FrameInfo, PanelState, Request};
@@ -130,7 +131,7 @@ impl App {
         let raw = egui_state.take_egui_input(&gpu.window);
         let (session, panel_state, info) = (&mut self.session, &mut self.panel, &self.info);
         let mut requests = Vec::new();
-        let output = self.egui_ctx.run_ui(raw, |ui| {
+        let mut output = self.egui_ctx.run_ui(raw, |ui| {
             if panel_state.show_info {
                 panel::info_overlay(ui.ctx(), session, info);
             }
@@ -138,14 +139,31 @@ impl App {
                 requests = panel::side_panel(ui, session, panel_state, info);
             }
         });
-        egui_state.handle_platform_output(&gpu.window, output.platform_output);
+        egui_state.handle_platform_output(&gpu.window, std::mem::take(&mut output.platform_output));
+        let frame = match self.session.frame(self.info.scene_size) {
+            Ok(frame) => frame,
+            Err(error) => {
+                // egui's texture changes must be applied or cleared, never dropped (a panic).
+                output.textures_delta.clear();
+                return Err(error);
+            }
+        };
         let ui = EguiFrame {
             primitives: self.egui_ctx.tessellate(output.shapes, output.pixels_per_point),
             textures: output.textures_delta,
             pixels_per_point: output.pixels_per_point,
         };
-
-        let frame = self.session.frame(self.info.scene_size)?;
+        if let Some(fault) = self.options.fault
+            && fault.after_frames() == self.frames
+        {
+            // The frame then fails, or finds the surface lost, as it would after a driver's.
+            self.options.fault = None;
+            tracing::warn!("injecting {fault:?}");
+            match fault {
+                InjectedFault::DeviceLost(_) => gpu.lose_device(),
+                InjectedFault::SurfaceLost(_) => gpu.lose_surface(),
+            }
+        }
         gpu.set_frame_interval((dt > 0.0).then_some(dt));
         match gpu.draw(&frame, self.info.scene_size, ui)? {
             Presented::Shown => {

@@ -52,14 +52,20 @@ pub(crate) struct Gpu {
     /// The first uncaptured GPU error or device loss, reported by wgpu's callbacks.
     fault: Arc<Mutex<Option<String>>>,
     timing: bool,
+    /// Report the surface lost at the next frame (an injected fault).
+    lose_surface: bool,
 }
 
 impl Gpu {
     /// Opens a device for `window`'s surface on `backend`.
     pub(crate) fn new(instance: &wgpu::Instance, window: Arc<Window>, backend: Backend) -> Result<Self> {
-        let surface = instance
-            .create_surface(window.clone())
-            .context("cannot create a drawing surface for the window")?;
+        // With no backend of `backend` on this system there is no surface either: say so.
+        let surface = instance.create_surface(window.clone()).map_err(|e| {
+            anyhow!(
+                "no GPU adapter for --backend {backend} can draw into this window (no surface: {e}); \
+                 try another --backend, or render headless with `firmament render`"
+            )
+        })?;
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
@@ -143,6 +149,7 @@ impl Gpu {
             egui,
             fault,
             timing,
+            lose_surface: false,
         })
     }
 
@@ -173,6 +180,18 @@ impl Gpu {
             .context("the window's surface was lost and a new one could not be made")?;
         self.surface.configure(&self.ctx.device, &self.config);
         Ok(())
+    }
+
+    /// Destroys the device, as a driver reset would lose it (an injected fault, for tests).
+    pub(crate) fn lose_device(&self) {
+        self.ctx.device.destroy();
+        // Lets wgpu run the device-lost callback now rather than at some later call.
+        let _ = self.ctx.device.poll(wgpu::PollType::Poll);
+    }
+
+    /// Reports the surface lost at the next frame, as a driver would (an injected fault).
+    pub(crate) fn lose_surface(&mut self) {
+        self.lose_surface = true;
     }
 
     /// An error wgpu reported since the last check (a device loss, a validation error).
@@ -218,6 +237,9 @@ impl Gpu {
         if size.width == 0 || size.height == 0 {
             return Ok(Presented::Skipped);
         }
+        if std::mem::take(&mut self.lose_surface) {
+            return Ok(Presented::Lost);
+        }
         let surface_texture = match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t) => t,
             wgpu::CurrentSurfaceTexture::Suboptimal(t) => {
@@ -233,9 +255,11 @@ impl Gpu {
                 return Ok(Presented::Skipped);
             }
             wgpu::CurrentSurfaceTexture::Lost => return Ok(Presented::Lost),
-            wgpu::CurrentSurfaceTexture::Validation => {
-                bail!("the window's surface could not give a texture (a validation error)")
-            }
+            wgpu::CurrentSurfaceTexture::Validation => match self.fault() {
+                // A lost device fails here first: say that, not what it broke.
+                Some(fault) => bail!("{fault}"),
+                None => bail!("the window's surface could not give a texture (a validation error)"),
+            },
         };
         let scene_view = self.scene_view(scene_size);
         self.renderer.prepare(&self.ctx, frame, scene_size.0, scene_size.1)?;
@@ -353,7 +377,14 @@ fn watch_faults(device: &wgpu::Device, fault: &Arc<Mutex<Option<String>>>) {
     let on_lost = fault.clone();
     device.set_device_lost_callback(move |reason, message| {
         if let Ok(mut slot) = on_lost.lock() {
-            slot.get_or_insert_with(|| format!("the GPU device was lost ({reason:?}): {message}"));
+            let detail = if message.is_empty() {
+                String::new()
+            } else {
+                format!(": {message}")
+            };
+            slot.get_or_insert_with(|| {
+                format!("the GPU device was lost ({reason:?}{detail}); restart the viewer (the driver may have reset)")
+            });
         }
     });
 }

@@ -3,6 +3,7 @@
 //! edits every scene value live and saves the scene.
 
 mod app;
+mod fault;
 mod gpu;
 mod input;
 mod panel;
@@ -41,6 +42,8 @@ pub(crate) struct ViewOptions {
     pub(crate) backend: Backend,
     /// What the window's title names.
     pub(crate) title: String,
+    /// A fault to inject for tests (`FIRMAMENT_VIEW_INJECT_FAULT`).
+    pub(crate) fault: Option<fault::InjectedFault>,
 }
 
 /// Opens the viewer and runs it until the window closes (or `--frames` are drawn).
@@ -55,6 +58,7 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
     if let Some(path) = &args.save_scene {
         crate::output::check_parent_dir(path)?;
     }
+    let fault = fault::InjectedFault::from_env()?;
     let doc = super::load_document(
         args.scene.as_deref(),
         args.scene_args.preset.as_deref(),
@@ -82,6 +86,7 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
         render_scale: args.scale,
         backend,
         title: what,
+        fault,
     };
     let mut app = app::App::new(options, instance, session);
     event_loop.run_app(&mut app).context("the window's event loop failed")?;
