@@ -1,5 +1,7 @@
-//! Image files: chosen by extension, written to a temporary file and renamed into place, so a
-//! failure never leaves a half-written image.
+//! Image files: chosen by extension, written to a temporary file (`.firmament-*.tmp`), synced to
+//! disk and renamed into place, so a failure, a kill or an OS crash never leaves a half-written
+//! image. Only a kill (SIGKILL, a second Ctrl-C) can leave the temporary file itself behind:
+//! [`remove_stale_temp_files`] clears those when a time-lapse resumes.
 
 use std::io::Write;
 use std::path::Path;
@@ -42,12 +44,44 @@ pub(crate) fn check_parent_dir(path: &Path) -> Result<()> {
     if path.is_dir() {
         bail!("output {}: is a folder; name a file in it", path.display());
     }
-    tempfile::Builder::new()
-        .prefix(".firmament-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
+    temp_file_in(dir)
         .with_context(|| format!("output {}: cannot create a file in {}", path.display(), dir.display()))?;
     Ok(())
+}
+
+/// The start and end of the temporary files' names.
+const TEMP_PREFIX: &str = ".firmament-";
+const TEMP_SUFFIX: &str = ".tmp";
+
+/// A new temporary file in `dir`, named `.firmament-*.tmp` (removed when dropped).
+pub(crate) fn temp_file_in(dir: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .suffix(TEMP_SUFFIX)
+        .tempfile_in(dir)
+}
+
+/// Removes the temporary files (`.firmament-*.tmp`) a killed run left in `dir`; returns how many.
+/// Only files of exactly that form are touched; a missing folder has none.
+pub(crate) fn remove_stale_temp_files(dir: &Path) -> Result<usize> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(0);
+    };
+    let mut removed = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        let stale = name.len() > TEMP_PREFIX.len() + TEMP_SUFFIX.len()
+            && name.starts_with(TEMP_PREFIX)
+            && name.ends_with(TEMP_SUFFIX)
+            && entry.file_type().is_ok_and(|t| t.is_file());
+        if stale {
+            std::fs::remove_file(entry.path())
+                .with_context(|| format!("cannot remove the stale temporary file {}", entry.path().display()))?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
 }
 
 fn parent(path: &Path) -> &Path {
@@ -72,17 +106,13 @@ pub(crate) fn write_atomically_or_abandon(
     path: &Path,
     write: impl FnOnce(&mut Writer<'_>) -> Result<bool>,
 ) -> Result<bool> {
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".firmament-")
-        .suffix(".tmp")
-        .tempfile_in(parent(path))
-        .with_context(|| {
-            format!(
-                "output {}: cannot create a file in {}",
-                path.display(),
-                parent(path).display()
-            )
-        })?;
+    let mut tmp = temp_file_in(parent(path)).with_context(|| {
+        format!(
+            "output {}: cannot create a file in {}",
+            path.display(),
+            parent(path).display()
+        )
+    })?;
     {
         let mut writer = std::io::BufWriter::new(tmp.as_file_mut());
         if !write(&mut writer)? {
@@ -92,6 +122,11 @@ pub(crate) fn write_atomically_or_abandon(
             .flush()
             .with_context(|| format!("output {}: cannot write the file", path.display()))?;
     }
+    // On disk before the rename: otherwise an OS crash soon after could leave the new name on an
+    // empty or partial file (the rename reaching the disk before the data).
+    tmp.as_file()
+        .sync_all()
+        .with_context(|| format!("output {}: cannot write the file to disk", path.display()))?;
     // Temporary files are created private (0600); an image is an ordinary file.
     #[cfg(unix)]
     {

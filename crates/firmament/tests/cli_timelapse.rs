@@ -294,7 +294,8 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
         (
             with(&[("--frames", "100001")], &[]),
             2,
-            "invalid value '100001' for '--frames <N>': must be a whole number of frames from 1 to 100000",
+            "invalid value '100001' for '--frames <N>': must be a whole number of frames from 1 to 100000 (a \
+             fixed limit: for more, split the span over several runs",
         ),
         (with(&[], &["--fps", "0"]), 2, "invalid value '0' for '--fps <FPS>'"),
         (
@@ -446,6 +447,26 @@ fn sky_luminance_decreases_monotonically_through_sunset_and_twilight() {
     assert!(png[5] < png[0], "{png:?}");
 }
 
+/// Starts the time-lapse `run` (its output folder `lapse`) in `dir` and returns once its first
+/// frame exists.
+fn start_until_the_first_frame(dir: &Path, run: &[String], stderr: std::process::Stdio) -> std::process::Child {
+    let child = Command::new(env!("CARGO_BIN_EXE_firmament"))
+        .args(args(run))
+        .current_dir(dir)
+        .env_remove("FIRMAMENT_LOG")
+        .stderr(stderr)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("spawns");
+    let first = dir.join("lapse/frame_0001.png");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !first.exists() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    assert!(first.exists(), "no frame within 2 minutes");
+    child
+}
+
 /// Ctrl-C (SIGINT) and SIGTERM stop after the frame in flight: exit 130, only complete frames,
 /// no GIF yet, a message saying how to resume; the same command then finishes the rest.
 #[cfg(unix)]
@@ -455,20 +476,7 @@ fn a_signal_stops_cleanly_and_the_same_command_resumes() {
         let dir = tempfile::tempdir().expect("temp dir");
         let d = dir.path();
         let run = tiny("lapse", "60");
-        let child = Command::new(env!("CARGO_BIN_EXE_firmament"))
-            .args(args(&run))
-            .current_dir(d)
-            .env_remove("FIRMAMENT_LOG")
-            .stderr(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::null())
-            .spawn()
-            .expect("spawns");
-        let first = d.join("lapse/frame_0001.png");
-        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
-        while !first.exists() && std::time::Instant::now() < deadline {
-            std::thread::sleep(std::time::Duration::from_millis(2));
-        }
-        assert!(first.exists(), "no frame within 2 minutes");
+        let child = start_until_the_first_frame(d, &run, std::process::Stdio::piped());
         let killed = Command::new("kill")
             .args([format!("-{signal}"), child.id().to_string()])
             .status()
@@ -503,5 +511,73 @@ fn a_signal_stops_cleanly_and_the_same_command_resumes() {
         };
         assert!(err.contains(&rendered), "{err}");
         assert_eq!(names_in(&d.join("lapse")).len(), 62);
+    }
+}
+
+/// SIGKILL (or a crash, or power loss) mid-run: no handler runs, so the frame being written may
+/// leave its temporary file, and a frame copied or cut short by a crash is not a whole PNG. The
+/// same command then removes the temporary files, renders every missing or incomplete frame again,
+/// and ends with exactly the files, byte for byte, of a run never interrupted.
+#[cfg(unix)]
+#[test]
+fn a_killed_run_resumes_to_the_files_of_an_uninterrupted_one() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let run = tiny("lapse", "24");
+    let lapse = d.join("lapse");
+    let mut child = start_until_the_first_frame(d, &run, std::process::Stdio::null());
+    child.kill().expect("SIGKILL");
+    let status = child.wait().expect("waits");
+    assert!(!status.success(), "killed before it finished: {status:?}");
+
+    // Only whole frames under their own names; a temporary file at most.
+    let names = names_in(&lapse);
+    let kept: Vec<&String> = names.iter().filter(|n| !n.starts_with(".firmament-")).collect();
+    assert!(
+        kept.iter().all(|n| n.starts_with("frame_") && n.ends_with(".png")),
+        "only frames: {names:?}"
+    );
+    assert!((1..24).contains(&kept.len()), "{} frames after SIGKILL", kept.len());
+    for n in &kept {
+        image::open(lapse.join(n)).expect("every frame kept is a complete PNG");
+    }
+    // What a kill mid-write leaves (the temporary file), and what a crash before the data reached
+    // the disk, or a copy cut short, would leave (a frame that is not a whole PNG).
+    std::fs::write(lapse.join(".firmament-Kx3f9a.tmp"), b"\x89PNG\r\n\x1a\npartial").expect("writes");
+    let cut = lapse.join(kept[0].as_str());
+    let bytes = std::fs::read(&cut).expect("reads");
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).expect("cuts a frame short");
+
+    let out = firmament(d, &args(&run));
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("is not a complete frame") && err.contains("rendering it again"),
+        "{err}"
+    );
+    assert!(err.contains("removed"), "stale temporary files are reported: {err}");
+    let skipped = kept.len() - 1;
+    assert!(
+        skipped == 0 || err.contains(&format!("{skipped} of 24 frames skipped")),
+        "{err}"
+    );
+    assert!(err.contains(&format!("{} frames rendered", 24 - skipped)), "{err}");
+    assert!(
+        names_in(&lapse).iter().all(|n| !n.starts_with('.')),
+        "temporary files left: {:?}",
+        names_in(&lapse)
+    );
+
+    // The same frames, GIF and contact sheet as a run never interrupted.
+    let whole = tempfile::tempdir().expect("temp dir");
+    let out = firmament(whole.path(), &args(&run));
+    assert!(out.status.success(), "{}", stderr(&out));
+    let reference = whole.path().join("lapse");
+    assert_eq!(names_in(&lapse), names_in(&reference));
+    assert_eq!(names_in(&lapse).len(), 26);
+    for name in names_in(&reference) {
+        let a = std::fs::read(lapse.join(&name)).expect("resumed file");
+        let b = std::fs::read(reference.join(&name)).expect("uninterrupted file");
+        assert!(a == b, "{name} differs between the resumed and the uninterrupted run");
     }
 }

@@ -50,7 +50,10 @@ pub(crate) fn date_time(text: &str) -> Result<CivilDateTime, String> {
 
 /// `--frames`: 1 to [`MAX_FRAMES`].
 pub(crate) fn frame_count(text: &str) -> Result<u32, String> {
-    let rule = format!("must be a whole number of frames from 1 to {MAX_FRAMES}");
+    let rule = format!(
+        "must be a whole number of frames from 1 to {MAX_FRAMES} (a fixed limit: for more, split the span over \
+         several runs, each with its own --from, --to and output folder)"
+    );
     match text.trim().parse::<u64>() {
         Ok(n) if (1..=u64::from(MAX_FRAMES)).contains(&n) => Ok(n as u32),
         _ => Err(rule),
@@ -204,10 +207,7 @@ fn check_output_dir(dir: &Path) -> Result<()> {
 /// Creates the output folder and proves it writable with a temporary file (removed at once).
 fn create_output_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("output {}: cannot create the folder", dir.display()))?;
-    tempfile::Builder::new()
-        .prefix(".firmament-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
+    crate::output::temp_file_in(dir)
         .with_context(|| format!("output {}: cannot write in the folder", dir.display()))?;
     Ok(())
 }
@@ -298,27 +298,50 @@ fn format_eta(seconds: f64) -> String {
     }
 }
 
-/// Checks that every frame already on disk has this run's size, so a resumed run never mixes
-/// sizes (the GIF and the contact sheet need one).
-fn check_existing_frames(existing: &[&PathBuf], width: u32, height: u32) -> Result<()> {
-    for path in existing {
-        let size = image::image_dimensions(path).with_context(|| {
-            format!(
-                "{} is not a readable PNG: delete it, or use --overwrite to render every frame again",
-                path.display()
-            )
-        })?;
-        if size != (width, height) {
-            bail!(
-                "{} is {}x{} but this run renders {width}x{height}: use --overwrite to render every \
-                 frame again, or another output folder",
-                path.display(),
-                size.0,
-                size.1
-            );
-        }
+/// The frames already on disk (`done`, 0-based) that must be rendered again: each is decoded
+/// whole (in parallel), and one that does not decode — cut short, by a crash before firmament
+/// synced its frames or by a copy — is rendered again. A complete frame of another size is an
+/// error, so that a resumed run never mixes sizes (the GIF and the contact sheet need one).
+fn incomplete_frames(
+    done: &[u32],
+    files: impl Fn(u32) -> Vec<PathBuf> + Sync,
+    width: u32,
+    height: u32,
+) -> Result<Vec<u32>> {
+    use rayon::prelude::*;
+    let checked: Vec<Result<Option<u32>>> = done
+        .par_iter()
+        .map(|&k| {
+            for path in files(k) {
+                let image = match image::open(&path) {
+                    Ok(image) => image,
+                    Err(error) => {
+                        tracing::warn!(
+                            "{} is not a complete frame ({error}): rendering it again",
+                            path.display()
+                        );
+                        return Ok(Some(k));
+                    }
+                };
+                let size = (image.width(), image.height());
+                if size != (width, height) {
+                    bail!(
+                        "{} is {}x{} but this run renders {width}x{height}: use --overwrite to render every \
+                         frame again, or another output folder",
+                        path.display(),
+                        size.0,
+                        size.1
+                    );
+                }
+            }
+            Ok(None)
+        })
+        .collect();
+    let mut again = Vec::new();
+    for result in checked {
+        again.extend(result?);
     }
-    Ok(())
+    Ok(again)
 }
 
 /// Renders the missing frames, then the GIF and the contact sheet.
@@ -348,13 +371,15 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
     let pngs = png_paths(dir, n);
     let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
     let is_done = |k: u32| pngs[k as usize].is_file() && (!args.exr || exr_path(k).is_file());
-    let todo: Vec<u32> = (0..n).filter(|&k| args.overwrite || !is_done(k)).collect();
+    let mut todo: Vec<u32> = (0..n).filter(|&k| args.overwrite || !is_done(k)).collect();
+    let done: Vec<u32> = (0..n).filter(|k| todo.binary_search(k).is_err()).collect();
+    let files = |k: u32| {
+        let png = pngs[k as usize].clone();
+        if args.exr { vec![png, exr_path(k)] } else { vec![png] }
+    };
+    todo.extend(incomplete_frames(&done, files, width, height)?);
+    todo.sort_unstable();
     let skipped = n - todo.len() as u32;
-    let existing: Vec<&PathBuf> = (0..n)
-        .filter(|k| todo.binary_search(k).is_err())
-        .map(|k| &pngs[k as usize])
-        .collect();
-    check_existing_frames(&existing, width, height)?;
 
     let step = if n > 1 { span / f64::from(n - 1) } else { 0.0 };
     tracing::info!(
@@ -372,6 +397,16 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
     if skipped > 0 {
         tracing::info!(
             "{skipped} of {n} frames skipped: already in {} (--overwrite renders them again)",
+            dir.display()
+        );
+    }
+
+    // A run killed while it wrote a file (SIGKILL, a second Ctrl-C) left its temporary file.
+    let stale = crate::output::remove_stale_temp_files(dir)?;
+    if stale > 0 {
+        tracing::info!(
+            "removed {stale} temporary file{} that an interrupted run left in {}",
+            if stale == 1 { "" } else { "s" },
             dir.display()
         );
     }
