@@ -6,6 +6,7 @@ mod support;
 
 use firmament_core::frame::Sky;
 use firmament_core::{Frame, TimeOfDay};
+use firmament_render::headless::{LDR_FORMAT, ldr_texture};
 use firmament_render::passes::atmosphere::MEDIUM_BUILD_STEPS;
 use firmament_render::readback::read_texture;
 use firmament_render::{GpuContext, Renderer, wgpu};
@@ -13,7 +14,7 @@ use firmament_render::{GpuContext, Renderer, wgpu};
 /// Tiny: llvmpipe is slow, and each medium build takes seconds on it.
 const WIDTH: u32 = 32;
 const HEIGHT: u32 = 18;
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+const FORMAT: wgpu::TextureFormat = LDR_FORMAT;
 
 fn scene() -> firmament_scene::Scene {
     firmament_scene::load(firmament_scene::SceneSource::Preset("earth-sunset"), None, &[]).expect("earth-sunset")
@@ -34,20 +35,12 @@ fn thicker_air(mut frame: Frame) -> Frame {
 }
 
 fn output_texture(ctx: &GpuContext) -> wgpu::Texture {
-    ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("gpu_lut_rebuild test output"),
-        size: wgpu::Extent3d {
-            width: WIDTH,
-            height: HEIGHT,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+    ldr_texture(
+        &ctx.device,
+        "gpu_lut_rebuild test output",
+        (WIDTH, HEIGHT),
+        wgpu::TextureUsages::COPY_SRC,
+    )
 }
 
 /// Prepares, records and submits `frame`; the 8-bit image.
