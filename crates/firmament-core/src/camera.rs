@@ -48,6 +48,19 @@ impl Camera {
         })
     }
 
+    /// The same camera with a vertical field of view of `fov_y` radians, in (0, π).
+    #[must_use]
+    pub fn with_fov_y(self, fov_y: f64) -> Self {
+        Self { fov_y, ..self }
+    }
+
+    /// The same camera with its near plane at `near` metres (> 0) and its far plane at `far`
+    /// metres (`None`: infinite).
+    #[must_use]
+    pub fn with_clip_planes(self, near: f64, far: Option<f64>) -> Self {
+        Self { near, far, ..self }
+    }
+
     /// The unit direction the camera looks along, world frame.
     pub fn forward(&self) -> DVec3 {
         self.orientation * DVec3::NEG_Z

@@ -210,9 +210,75 @@ pub struct Frame {
     pub night: NightLayer,
 }
 
+impl Frame {
+    /// `sky` seen by `camera`, shown with the default display settings (exposure 1, no tone
+    /// curve, sRGB), with no objects, flares or night sky; the `with_` methods add them.
+    pub fn new(camera: Camera, sky: Sky) -> Self {
+        Self {
+            camera,
+            sky,
+            display: DisplaySettings::default(),
+            objects: ObjectLayer::default(),
+            flares: FlareLayer::default(),
+            night: NightLayer::default(),
+        }
+    }
+
+    /// The same frame shown with `display`.
+    #[must_use]
+    pub fn with_display(self, display: DisplaySettings) -> Self {
+        Self { display, ..self }
+    }
+
+    /// The same frame with `objects` in front of the sky.
+    #[must_use]
+    pub fn with_objects(self, objects: ObjectLayer) -> Self {
+        Self { objects, ..self }
+    }
+
+    /// The same frame with `flares`.
+    #[must_use]
+    pub fn with_flares(self, flares: FlareLayer) -> Self {
+        Self { flares, ..self }
+    }
+
+    /// The same frame with `night` (stars and the Moon).
+    #[must_use]
+    pub fn with_night(self, night: NightLayer) -> Self {
+        Self { night, ..self }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_frame_built_with_new_and_with_is_the_literal() {
+        let camera = Camera::from_heading_pitch(DVec3::Z, 1.0, 0.1)
+            .with_fov_y(0.7)
+            .with_clip_planes(0.5, Some(9.0));
+        let display = DisplaySettings {
+            exposure: crate::display::Exposure::from_ev100(14.0),
+            ..Default::default()
+        };
+        let sky = Sky::Clear(LinearRgb::new(0.1, 0.2, 0.3));
+        let built = Frame::new(camera, sky.clone()).with_display(display);
+        let literal = Frame {
+            camera: Camera {
+                fov_y: 0.7,
+                near: 0.5,
+                far: Some(9.0),
+                ..Camera::from_heading_pitch(DVec3::Z, 1.0, 0.1)
+            },
+            sky,
+            display,
+            objects: ObjectLayer::default(),
+            flares: FlareLayer::default(),
+            night: NightLayer::default(),
+        };
+        assert_eq!(built, literal);
+    }
     use crate::atmosphere::Planet;
 
     fn seed_sky() -> SeedSky {
