@@ -49,7 +49,11 @@ pub enum RenderError {
         shortfalls: Vec<LimitShortfall>,
     },
     /// The image is larger than the GPU allows, or empty.
-    #[error("image size {width}x{height}: each side must be 1 to {max} pixels on this GPU")]
+    #[error(
+        "image size {width}x{height}: each side must be 1 to {max} pixels on this GPU (its \
+         max_texture_dimension_2d, a limit of the GPU and its driver that firmament cannot raise): ask for a \
+         smaller image (--width/--height, render.width/height); firmament does not render an image in tiles"
+    )]
     ImageSize {
         /// Requested width, pixels.
         width: u32,

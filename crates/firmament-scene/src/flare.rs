@@ -28,7 +28,8 @@ use std::sync::Arc;
 
 use firmament_core::classic::scene::LightSpace;
 use firmament_core::flare::{
-    FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_IMAGES, MAX_FLARE_SOURCES,
+    FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_ELEMENTS, MAX_FLARE_IMAGES,
+    MAX_FLARE_SAMPLES, MAX_FLARE_SOURCES,
 };
 use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
 use firmament_core::geometry::Ray;
@@ -75,7 +76,8 @@ impl FlareImages<'_> {
             self.images.len() < MAX_FLARE_IMAGES,
             key,
             format!("{file:?}"),
-            "a flare may use at most 16 different image files",
+            "a flare may use at most 16 different image files (MAX_FLARE_IMAGES, a fixed limit of the flare pass \
+             that no key raises: let elements share files)",
         )?;
         let image = crate::assets::load_flare_image(key, &path)?;
         self.paths.push(path);
@@ -179,6 +181,27 @@ pub(crate) fn lens_flare(scene: &Scene) -> Result<LensFlare, SceneError> {
             "not a built-in flare (classic, subtle, anamorphic)",
         )
     })?;
+    // The core checks these too; here the message says they are fixed, and no image is loaded for
+    // a list that is too long.
+    check(
+        (1..=MAX_FLARE_SAMPLES).contains(&f.samples),
+        "flare.samples",
+        f.samples,
+        &format!(
+            "must be 1 to {MAX_FLARE_SAMPLES} (MAX_FLARE_SAMPLES, a fixed limit of the flare pass that no key \
+             raises)"
+        ),
+    )?;
+    let listed = f.elements.as_ref().map_or(0, Vec::len);
+    check(
+        listed <= MAX_FLARE_ELEMENTS,
+        "flare.elements",
+        format!("{listed} elements"),
+        &format!(
+            "at most {MAX_FLARE_ELEMENTS} elements (MAX_FLARE_ELEMENTS, a fixed limit of the flare pass that no \
+             key raises: drop the faintest elements)"
+        ),
+    )?;
     let mut images = FlareImages {
         base_dir: &scene.base_dir,
         paths: Vec::new(),
@@ -362,7 +385,8 @@ pub(crate) fn flare_layer(scene: &Scene, camera: &Camera, sky: &Sky) -> Result<F
         sources.len() <= MAX_FLARE_SOURCES,
         "flare",
         format!("{} sources", sources.len()),
-        "at most 64 flare sources (suns and lights with flare = true)",
+        "at most 64 flare sources, suns and lights with flare = true (MAX_FLARE_SOURCES, a fixed limit of the \
+         flare pass that no key raises: set flare = false on the weakest lights)",
     )?;
     Ok(FlareLayer {
         flare: Some(flare),

@@ -334,7 +334,8 @@ fn lighting(scene: &Scene, sky_light: Option<&SkyLight<'_>>) -> Result<ObjectLig
         scene.lights.len() <= MAX_CLASSIC_LIGHTS,
         "lights",
         format!("{} lights", scene.lights.len()),
-        "at most 8 lights (GL_MAX_LIGHTS)",
+        "at most 8 lights (GL_MAX_LIGHTS, a fixed limit of the classic lighting model that no key or flag \
+         raises: drop or merge the weakest lights)",
     )?;
     let lights = scene
         .lights

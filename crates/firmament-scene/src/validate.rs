@@ -67,7 +67,10 @@ pub(crate) fn time(key: &str, text: &str) -> Result<TimeOfDay, SceneError> {
 
 /// Checks every rule of the format.
 pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
-    let side = format!("must be 1 to {MAX_IMAGE_SIDE} pixels");
+    let side = format!(
+        "must be 1 to {MAX_IMAGE_SIDE} pixels (a fixed limit of the scene format that no key or flag raises; \
+         firmament does not render an image in tiles)"
+    );
     check(
         (1..=MAX_IMAGE_SIDE).contains(&scene.render.width),
         "render.width",
@@ -94,7 +97,8 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         "camera.position",
         format!("[{e:e}, {n:e}, {u:e}]"),
         &format!(
-            "must be within {:e} m (about 6700 AU) of the origin",
+            "must be within {:e} m (about 6700 AU) of the origin (a fixed limit of the scene format that no key \
+             raises; firmament is tested to 100 AU)",
             crate::MAX_CAMERA_DISTANCE
         ),
     )?;
@@ -227,7 +231,10 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         scene.objects.len() <= MAX_OBJECTS,
         "objects",
         format!("{} objects", scene.objects.len()),
-        &format!("at most {MAX_OBJECTS} objects"),
+        &format!(
+            "at most {MAX_OBJECTS} objects (a fixed limit of the scene format that no key or flag raises; \
+             each object is drawn on its own: merge objects into one mesh file)"
+        ),
     )?;
     let mut triangles = 0_u64;
     for (i, object) in scene.objects.iter().enumerate() {
@@ -240,7 +247,8 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
             &format!(
                 "the built-in shapes of a scene may have at most {MAX_SHAPE_TRIANGLES} triangles together \
                  (a glt_sphere of 2896 x 2896), and objects[0..={i}] have {triangles}: use fewer or coarser \
-                 shapes (slices, stacks, subdivisions)"
+                 shapes (slices, stacks, subdivisions), or a mesh file (a fixed limit of the scene format that no key \
+                 or flag raises)"
             ),
         )?;
     }

@@ -35,6 +35,8 @@ struct Case {
     fixtures: Vec<Fixture>,
     args: Vec<String>,
     env: Vec<(&'static str, &'static str)>,
+    /// The process's address-space limit (`ulimit -v`), KiB.
+    address_space: Option<u64>,
     code: i32,
     expect: Vec<&'static str>,
 }
@@ -47,6 +49,7 @@ fn case(name: &'static str, code: i32, args: &[&str], expect: &[&'static str]) -
         fixtures: Vec::new(),
         args: args.iter().map(|a| (*a).to_owned()).collect(),
         env: Vec::new(),
+        address_space: None,
         code,
         expect: expect.to_vec(),
     }
@@ -70,6 +73,12 @@ impl Case {
 
     fn env(mut self, key: &'static str, value: &'static str) -> Self {
         self.env.push((key, value));
+        self
+    }
+
+    /// Runs the case under `ulimit -v kib` (through `sh`), as a machine short of memory.
+    fn address_space(mut self, kib: u64) -> Self {
+        self.address_space = Some(kib);
         self
     }
 }
@@ -99,11 +108,21 @@ struct Ran {
 }
 
 /// Runs `firmament -q ARGS` in `dir` with no display (so `view` can never open a window), no
-/// `FIRMAMENT_LOG`, and `env`; killed after two minutes. Output goes to files in `scratch`, so a
-/// flood of it cannot block the process.
-fn run(dir: &Path, scratch: &Path, args: &[String], env: &[(&str, &str)]) -> Ran {
+/// `FIRMAMENT_LOG`, `env` and the case's address-space limit; killed after two minutes. Output
+/// goes to files in `scratch`, so a flood of it cannot block the process.
+fn run(dir: &Path, scratch: &Path, case: &Case) -> Ran {
+    let (args, env) = (&case.args, &case.env);
     let (out_path, err_path) = (scratch.join("stdout"), scratch.join("stderr"));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_firmament"))
+    let binary = env!("CARGO_BIN_EXE_firmament");
+    let mut command = match case.address_space {
+        None => Command::new(binary),
+        Some(kib) => {
+            let mut sh = Command::new("sh");
+            sh.args(["-c", &format!("ulimit -v {kib} && exec \"$0\" \"$@\""), binary]);
+            sh
+        }
+    };
+    let mut child = command
         .arg("-q")
         .args(args)
         .current_dir(dir)
@@ -415,7 +434,7 @@ fn corpus() -> Vec<Case> {
             "render: --width 100000",
             1,
             &["render", "--width", "100000"],
-            &["render.width = 100000: must be 1 to 16384 pixels"],
+            &["render.width = 100000: must be 1 to 16384 pixels (a fixed limit of the scene format"],
         ),
         case(
             "render: render.width = 0 in a file",
@@ -457,34 +476,44 @@ fn corpus() -> Vec<Case> {
             "render: 9 suns",
             1,
             &["render", "s.toml"],
-            &["suns = 9 suns: at most 8 suns"],
+            &["suns = 9 suns: at most 8 suns", "a fixed limit of the renderer"],
         )
         .file("s.toml", nine_suns.clone()),
         case(
             "render: 9 lights",
             1,
             &["render", "s.toml"],
-            &["lights = 9 lights: at most 8 lights"],
+            &[
+                "lights = 9 lights: at most 8 lights",
+                "a fixed limit of the classic lighting model",
+            ],
         )
         .file("s.toml", nine_lights.clone()),
         case(
             "render: 65 flare elements",
             1,
             &["render", "s.toml"],
-            &["flare.elements = 65 elements: at most 64 elements"],
+            &[
+                "flare.elements = 65 elements: at most 64 elements",
+                "a fixed limit of the flare pass",
+            ],
         )
         .file("s.toml", many_flare_elements),
         case(
             "render: 100000 flare samples",
             1,
             &["render", "--set", "flare.enabled=true", "--set", "flare.samples=100000"],
-            &["flare.samples = 100000: must be 1 to 256"],
+            &["flare.samples = 100000: must be 1 to 256 (MAX_FLARE_SAMPLES, a fixed limit"],
         ),
         case(
             "render: 16385 objects",
             1,
             &["render", "s.toml"],
-            &["objects = 16385 objects: at most 16384 objects"],
+            &[
+                "objects = 16385 objects: at most 16384 objects",
+                "a fixed limit of the scene format",
+                "merge objects into one mesh file",
+            ],
         )
         .file("s.toml", too_many_objects),
         case(
@@ -726,7 +755,7 @@ fn corpus() -> Vec<Case> {
             "sky-sample: 9 suns",
             1,
             &[&SKY_SAMPLE[..], &["s.toml"]].concat(),
-            &["suns = 9 suns: at most 8 suns"],
+            &["suns = 9 suns: at most 8 suns", "a fixed limit of the renderer"],
         )
         .file("s.toml", nine_suns.clone()),
         case(
@@ -859,9 +888,17 @@ fn corpus() -> Vec<Case> {
             &["invalid value '99999-03-20T16:00:00Z' for '--from <ISO8601>'"],
         )
         .with_args(timelapse(&["--from", "99999-03-20T16:00:00Z", "-o", "out"])),
-        case("timelapse: 9 lights", 1, &[], &["lights = 9 lights: at most 8 lights"])
-            .with_args(timelapse(&["s.toml", "-o", "out"]))
-            .file("s.toml", nine_lights),
+        case(
+            "timelapse: 9 lights",
+            1,
+            &[],
+            &[
+                "lights = 9 lights: at most 8 lights",
+                "drop or merge the weakest lights",
+            ],
+        )
+        .with_args(timelapse(&["s.toml", "-o", "out"]))
+        .file("s.toml", nine_lights),
         case(
             "timelapse: a missing texture",
             1,
@@ -896,7 +933,7 @@ fn corpus() -> Vec<Case> {
             "view: 9 suns",
             1,
             &["view", "s.toml", "--frames", "1"],
-            &["suns = 9 suns: at most 8 suns"],
+            &["suns = 9 suns: at most 8 suns", "a fixed limit of the renderer"],
         )
         .file("s.toml", nine_suns),
         case(
@@ -952,6 +989,63 @@ fn corpus() -> Vec<Case> {
 
     #[cfg(target_os = "linux")]
     {
+        // The pixel limit raised past any machine: the memory free now still bounds the image.
+        // `ulimit -v` stands for a machine short of memory (1 GiB), so the cases fail anywhere.
+        cases.push(
+            case(
+                "render: 16384 x 16384 with the pixel limit lifted, over the memory",
+                1,
+                &["render", "--width", "16384", "--height", "16384"],
+                &[
+                    "the image is 16384x16384 = 268435456 pixels: rendering it needs about 12.0 GiB of memory \
+                     (48 bytes a pixel), more than the",
+                    "address-space limit (ulimit -v); render a smaller image, or raise that limit (ulimit -v)",
+                ],
+            )
+            .env("FIRMAMENT_MAX_PIXELS", "1000000000000")
+            .address_space(1 << 20),
+        );
+        cases.push(
+            case(
+                "render --reference: f64 pixels over the memory",
+                1,
+                &[
+                    "render",
+                    "--reference",
+                    "--preset",
+                    "earth-noon",
+                    "--width",
+                    "4096",
+                    "--height",
+                    "4096",
+                    "-o",
+                    "ref.exr",
+                ],
+                &["rendering it needs about 1.1 GiB of memory (72 bytes a pixel)"],
+            )
+            .address_space(1 << 20),
+        );
+        cases.push(
+            case(
+                "timelapse: frames over the memory",
+                1,
+                &[],
+                &["each frame is 16384x16384 = 268435456 pixels: rendering it needs about 12.0 GiB"],
+            )
+            .with_args(timelapse(&["--width", "16384", "--height", "16384", "-o", "out"]))
+            .env("FIRMAMENT_MAX_PIXELS", "1000000000000")
+            .address_space(1 << 20),
+        );
+        cases.push(
+            case(
+                "view: a window over the memory",
+                1,
+                &["view", "--size", "16384x16384", "--frames", "1"],
+                &["the window (--size) is 16384x16384 = 268435456 pixels: rendering it needs about 12.0 GiB"],
+            )
+            .env("FIRMAMENT_MAX_PIXELS", "1000000000000")
+            .address_space(1 << 20),
+        );
         cases.push(case(
             "render: an output in a folder no file can be made in",
             1,
@@ -972,7 +1066,9 @@ fn corpus() -> Vec<Case> {
 fn every_bad_input_fails_with_one_clear_message_and_writes_nothing() {
     let scratch = tempfile::tempdir().expect("temp dir");
     let cases = corpus();
-    assert!(cases.len() >= 45, "only {} cases", cases.len());
+    // The count the corpus has (docs/RELIABILITY.md), so that no case can vanish unnoticed.
+    let floor = if cfg!(target_os = "linux") { 96 } else { 90 };
+    assert!(cases.len() >= floor, "only {} cases", cases.len());
     let mut failures = Vec::new();
     for case in &cases {
         let dir = tempfile::tempdir().expect("temp dir");
@@ -983,7 +1079,7 @@ fn every_bad_input_fails_with_one_clear_message_and_writes_nothing() {
             }
         }
         let before = tree(dir.path());
-        let ran = run(dir.path(), scratch.path(), &case.args, &case.env);
+        let ran = run(dir.path(), scratch.path(), case);
         let after = tree(dir.path());
         let wrong = problems(case, &ran, &before, &after);
         if !wrong.is_empty() {

@@ -20,7 +20,10 @@ pub(super) fn suns(entries: &[SunEntry], body: Body, atmosphere: &Atmosphere) ->
         entries.len() <= MAX_SUNS,
         "suns",
         format!("{} suns", entries.len()),
-        &format!("at most {MAX_SUNS} suns"),
+        &format!(
+            "at most {MAX_SUNS} suns (MAX_SUNS, a fixed limit of the renderer that no key or flag raises: \
+             drop the faintest suns)"
+        ),
     )?;
     entries
         .iter()

@@ -28,7 +28,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
-    crate::limits::check_pixels("the image", width, height)?;
+    if args.reference {
+        crate::limits::check_reference_pixels("the image", width, height)?;
+    } else {
+        crate::limits::check_pixels("the image", width, height)?;
+    }
     // `--time` on a scene with `time.date_time` sets the clock time on that date.
     let frame = match &args.time {
         Some(_) => scene.frame_at(Some(scene.time_of_day()?)),
