@@ -1,16 +1,21 @@
 //! Scenes in code: [`SceneBuilder`], typed setters over the same [`Scene`] a scene file parses
 //! into. Every setter names its unit (`_deg` degrees, `_m` metres, `_per_m` per metre, `_nm`
 //! nanometres, `_px` pixels, `_k` kelvin); [`SceneBuilder::build`] checks the scene with
-//! [`Scene::validate`], so a bad value gives the message a scene file with it would.
+//! [`Scene::validate`], so a bad value gives the message a scene file with it would. Entries of
+//! the scene's lists (suns, lights, objects) have constructors of their own (`entries.rs`), and
+//! [`SceneBuilder::edit`] reaches any field a setter does not cover.
 
 use firmament_core::display::{Encoding, ToneCurve};
 
 use crate::error::SceneError;
 use crate::model::{
-    AtmosphereModelName, Body, FlarePresetName, FogModeName, GlColor, LightEntry, LightSpaceName, LightingModelName,
-    MaterialEntry, MeshEntry, MiePhaseName, ObjectEntry, Scene, ShadingName, SkyModelName, SunEntry, TransformEntry,
+    AtmosphereModelName, Body, FlareElementEntry, FlarePresetName, FogCoordinateName, FogModeName, GlColor,
+    KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry, Scene, SeedSection, ShadingName,
+    SkyModelName, SunEntry,
 };
 use crate::spectrum::SceneSpectrum;
+
+mod entries;
 
 /// Builds a [`Scene`] in code, starting from the built-in `default` preset (the base every scene
 /// file is layered on), so that a builder and a scene file saying the same things give equal
@@ -346,157 +351,69 @@ impl SceneBuilder {
         self.scene.flare.preset = preset;
         self
     }
-}
 
-impl SunEntry {
-    /// The body's sun at `azimuth` (from north, clockwise towards east) and `elevation` (above
-    /// the horizontal plane), degrees, in the world frame; everything else the body's.
-    pub fn at_deg(azimuth: f64, elevation: f64) -> Self {
-        Self {
-            name: None,
-            azimuth: Some(azimuth),
-            elevation: Some(elevation),
-            position: None,
-            angular_radius: None,
-            temperature: None,
-            color: None,
-            irradiance: None,
-            limb_darkening: None,
-        }
-    }
-
-    /// The same sun with a label.
-    #[must_use]
-    pub fn named(self, name: &str) -> Self {
-        Self {
-            name: Some(name.to_owned()),
-            ..self
-        }
-    }
-
-    /// The same sun with a disc of angular radius `radius`, degrees.
-    #[must_use]
-    pub fn angular_radius_deg(self, radius: f64) -> Self {
-        Self {
-            angular_radius: Some(radius),
-            ..self
-        }
-    }
-
-    /// The same sun coloured as a black body at `temperature`, kelvin.
-    #[must_use]
-    pub fn temperature_k(self, temperature: f64) -> Self {
-        Self {
-            temperature: Some(temperature),
-            ..self
-        }
-    }
-
-    /// The same sun with spectral irradiance `irradiance` at 550 nm above the air, W·m⁻²·nm⁻¹.
-    #[must_use]
-    pub fn irradiance(self, irradiance: f64) -> Self {
-        Self {
-            irradiance: Some(irradiance),
-            ..self
-        }
-    }
-}
-
-impl LightEntry {
-    /// A GL light with every value GL's initial one for its index: `position` `[x, y, z, w]`
-    /// (`w = 0` directional, towards the light; `w = 1` positional, metres), in eye space.
-    pub fn at(position: [f64; 4]) -> Self {
-        Self {
-            space: LightSpaceName::Eye,
-            position: Some(position),
-            ambient: None,
-            diffuse: None,
-            specular: None,
-            spot_direction: None,
-            spot_exponent: None,
-            spot_cutoff: None,
-            attenuation: None,
-            flare: false,
-            flare_radius: None,
-        }
-    }
-
-    /// The same light fixed in the world instead of to the camera.
-    #[must_use]
-    pub fn in_world(self) -> Self {
-        Self {
-            space: LightSpaceName::World,
-            ..self
-        }
-    }
-
-    /// The same light with `GL_DIFFUSE` and `GL_SPECULAR` both `color`.
-    #[must_use]
-    pub fn color(self, color: GlColor) -> Self {
-        Self {
-            diffuse: Some(color),
-            specular: Some(color),
-            ..self
-        }
-    }
-}
-
-impl ObjectEntry {
-    /// `mesh` at the origin, GL's initial material on both sides, no texture or spin.
-    pub fn new(mesh: MeshEntry) -> Self {
-        Self {
-            name: None,
-            mesh,
-            transform: Vec::new(),
-            material: MaterialEntry::default(),
-            back_material: None,
-            texture: None,
-            spin: None,
-            fog_coord: 0.0,
-        }
-    }
-
-    /// The same object with a label.
-    #[must_use]
-    pub fn named(self, name: &str) -> Self {
-        Self {
-            name: Some(name.to_owned()),
-            ..self
-        }
-    }
-
-    /// Appends `glTranslate(offset)`, metres (steps apply like GL calls: the last acts first).
-    #[must_use]
-    pub fn translate_m(mut self, offset: [f64; 3]) -> Self {
-        self.transform.push(TransformEntry::Translate(offset));
+    /// Changes the scene directly — any field, each documented with its unit and rule — for
+    /// what no setter covers; [`build`](Self::build) checks it all the same.
+    pub fn edit(mut self, change: impl FnOnce(&mut Scene)) -> Self {
+        change(&mut self.scene);
         self
     }
 
-    /// Appends `glRotate(angle, axis)`: `angle` degrees counter-clockwise about `axis`.
-    #[must_use]
-    pub fn rotate_deg(mut self, angle: f64, axis: [f64; 3]) -> Self {
-        self.transform
-            .push(TransformEntry::Rotate([angle, axis[0], axis[1], axis[2]]));
+    /// `time.pressure` (millibars) and `time.temperature` (°C): the air at the observer, for the
+    /// sun's refraction.
+    pub fn refraction_air(mut self, pressure_mbar: f64, temperature_c: f64) -> Self {
+        self.scene.time.pressure = pressure_mbar;
+        self.scene.time.temperature = temperature_c;
         self
     }
 
-    /// Appends `glScale(factors)`.
-    #[must_use]
-    pub fn scale(mut self, factors: [f64; 3]) -> Self {
-        self.transform.push(TransformEntry::Scale(factors));
+    /// `time.delta_t`: TT − UT, seconds (`None`: estimated for the date).
+    pub fn delta_t_s(mut self, delta_t: Option<f64>) -> Self {
+        self.scene.time.delta_t = delta_t;
         self
     }
 
-    /// The same object with `material` on both sides.
-    #[must_use]
-    pub fn material(self, material: MaterialEntry) -> Self {
-        Self { material, ..self }
+    /// `time.star_limit`: the faintest star drawn, visual magnitude, <= 6.5.
+    pub fn star_limit_mag(mut self, magnitude: f64) -> Self {
+        self.scene.time.star_limit = magnitude;
+        self
     }
 
-    /// The same object with `GL_DIFFUSE` `color` (with lighting off, its colour).
-    #[must_use]
-    pub fn diffuse(mut self, color: GlColor) -> Self {
-        self.material.diffuse = Some(color);
+    /// `sun.latitude` and `sun.declination`: the gradient sky's sun path, degrees.
+    pub fn gradient_sun_path_deg(mut self, latitude: f64, declination: f64) -> Self {
+        self.scene.sun.latitude = latitude;
+        self.scene.sun.declination = declination;
+        self
+    }
+
+    /// The gradient sky's `[[sky.gradient.keyframes]]`, replacing the preset's.
+    pub fn gradient_keyframes(mut self, keyframes: Vec<KeyframeSection>) -> Self {
+        self.scene.sky.gradient.keyframes = keyframes;
+        self
+    }
+
+    /// `[atmosphere.seed]`: the seed model's values.
+    pub fn seed_values(mut self, seed: SeedSection) -> Self {
+        self.scene.atmosphere.seed = seed;
+        self
+    }
+
+    /// `fog.coordinate`: what distance the classic fog uses.
+    pub fn fog_coordinate(mut self, coordinate: FogCoordinateName) -> Self {
+        self.scene.fog.coordinate = coordinate;
+        self
+    }
+
+    /// `flare.intensity` (>= 0) and `flare.samples` (occlusion samples per source, 1 to 256).
+    pub fn flare_look(mut self, intensity: f64, samples: u32) -> Self {
+        self.scene.flare.intensity = intensity;
+        self.scene.flare.samples = samples;
+        self
+    }
+
+    /// `flare.elements`: the flare's own elements instead of the preset's.
+    pub fn flare_elements(mut self, elements: Vec<FlareElementEntry>) -> Self {
+        self.scene.flare.elements = Some(elements);
         self
     }
 }

@@ -2,8 +2,8 @@
 //! one set of rules), and a bad value gives the file's own message.
 
 use firmament_scene::{
-    Body, FlarePresetName, GlColor, LightEntry, LightingModelName, MeshEntry, MiePhaseName, ObjectEntry, Scene,
-    SceneBuilder, SceneError, SceneSource, ShadingName, SunEntry,
+    Body, FlarePresetName, FogCoordinateName, GlColor, LightEntry, LightingModelName, MaterialEntry, MeshEntry,
+    MiePhaseName, ObjectEntry, Scene, SceneBuilder, SceneError, SceneSource, ShadingName, SunEntry,
 };
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
@@ -147,6 +147,95 @@ preset = "subtle"
         built.frame_at(None).expect("a frame"),
         parsed.frame_at(None).expect("a frame")
     );
+}
+
+/// The setters for the rest of the format, and `edit` for any field, against the same file.
+#[test]
+fn the_remaining_setters_and_edit_equal_the_same_scene_file() {
+    let built = Scene::builder()
+        .refraction_air(950.0, -5.0)
+        .delta_t_s(Some(69.0))
+        .star_limit_mag(5.0)
+        .gradient_sun_path_deg(60.0, 23.0)
+        .fog_coordinate(FogCoordinateName::EyeDistance)
+        .linear_fog_m(10.0, 500.0, GlColor::Rgba([0.6, 0.6, 0.7, 1.0]))
+        .flare(FlarePresetName::Classic)
+        .flare_look(0.5, 32)
+        .sun(
+            SunEntry::at_position_m([0.0, 1.0e11, 1.0e11])
+                .limb_darkening(0.5)
+                .angular_radius_deg(0.3),
+        )
+        .light(
+            LightEntry::at([0.0, 0.0, 5.0, 1.0])
+                .spot_deg([0.0, 0.0, -1.0], 30.0, 4.0)
+                .attenuation([1.0, 0.1, 0.01])
+                .with_flare(),
+        )
+        .object(
+            ObjectEntry::new(MeshEntry::GltSphere {
+                radius: 1.0,
+                slices: 12,
+                stacks: 6,
+            })
+            .back_material(MaterialEntry {
+                diffuse: Some(GlColor::Rgb([0.8, 0.2, 0.2])),
+                ..Default::default()
+            })
+            .spin_deg_per_s([0.0, 0.0, 1.0], 10.0),
+        )
+        .edit(|scene| scene.camera.heading = 123.0)
+        .build()
+        .expect("a valid scene");
+    let parsed = parse(
+        r#"
+[camera]
+heading = 123.0
+
+[time]
+pressure = 950.0
+temperature = -5.0
+delta_t = 69.0
+star_limit = 5.0
+
+[sun]
+latitude = 60.0
+declination = 23.0
+
+[fog]
+mode = "linear"
+start = 10.0
+end = 500.0
+color = [0.6, 0.6, 0.7, 1.0]
+coordinate = "eye_distance"
+
+[flare]
+enabled = true
+preset = "classic"
+intensity = 0.5
+samples = 32
+
+[[suns]]
+position = [0.0, 1.0e11, 1.0e11]
+limb_darkening = 0.5
+angular_radius = 0.3
+
+[[lights]]
+position = [0.0, 0.0, 5.0, 1.0]
+spot_direction = [0.0, 0.0, -1.0]
+spot_cutoff = 30.0
+spot_exponent = 4.0
+attenuation = [1.0, 0.1, 0.01]
+flare = true
+
+[[objects]]
+mesh = { kind = "glt_sphere", radius = 1.0, slices = 12, stacks = 6 }
+back_material = { diffuse = [0.8, 0.2, 0.2] }
+spin = { axis = [0.0, 0.0, 1.0], degrees_per_second = 10.0 }
+"#,
+    )
+    .expect("the same scene as a file");
+    assert_eq!(built, parsed);
 }
 
 #[test]
