@@ -152,6 +152,8 @@ pub struct Renderer {
     pass_timer: Option<PassTimer>,
     /// Why `new`'s output format cannot be drawn into, if it cannot (`prepare` refuses it).
     output_format_error: Option<String>,
+    /// The device's features, for `record_into`'s check of its target.
+    features: wgpu::Features,
 }
 
 impl Renderer {
@@ -159,7 +161,7 @@ impl Renderer {
     /// cannot draw into ([`check_output_format`](crate::targets::check_output_format)) is
     /// refused by every [`prepare`](Self::prepare) with [`RenderError::OutputFormat`].
     pub fn new(ctx: &GpuContext, output_format: wgpu::TextureFormat) -> Self {
-        let output_format_error = crate::targets::check_output_format(&ctx.device, output_format).err();
+        let output_format_error = crate::targets::check_output_format(output_format, ctx.device.features()).err();
         // A pipeline for an unusable format would be a wgpu validation panic: build a valid one.
         let tonemap_format = match output_format_error {
             None => output_format,
@@ -181,6 +183,7 @@ impl Renderer {
             embedded_size: (0, 0),
             pass_timer: None,
             output_format_error,
+            features: ctx.device.features(),
         }
     }
 
@@ -326,9 +329,10 @@ impl Renderer {
     /// there. A frame whose sky is a clear colour (`Sky::Clear`) draws no background: that is
     /// yours.
     ///
-    /// An error when nothing was prepared for a target of this kind and size (nothing encoded).
+    /// An error when the target breaks [`EmbedTarget`]'s rules, or nothing was prepared for a
+    /// target of its kind and size (nothing encoded).
     pub fn record_into(&self, encoder: &mut wgpu::CommandEncoder, target: &EmbedTarget<'_>) -> Result<(), RenderError> {
-        let size = target.size();
+        let size = target.check_with(self.features)?;
         let output = target.output.map(|view| view.texture().format());
         if self.active != Some(target.key()) || size != self.embedded_size || output != self.embedded_output {
             return Err(RenderError::InvalidTarget(format!(

@@ -181,6 +181,15 @@ impl<'a> EmbedTarget<'a> {
 
     /// Checks the rules above on `ctx`'s device; the target's size.
     pub fn check(&self, ctx: &GpuContext) -> Result<(u32, u32), RenderError> {
+        let size = self.check_with(ctx.device.features())?;
+        ctx.check_image_size(size.0, size.1)?;
+        Ok(size)
+    }
+
+    /// The rules above on a device with `features`, all but the device's largest texture side;
+    /// the target's size. [`Renderer::record_into`](crate::Renderer::record_into) checks its
+    /// target with these too: it need not be the very one prepared.
+    pub(crate) fn check_with(&self, features: wgpu::Features) -> Result<(u32, u32), RenderError> {
         let invalid = |m: String| Err(RenderError::InvalidTarget(m));
         let color = self.color.texture();
         let depth = self.depth.texture();
@@ -209,9 +218,7 @@ impl<'a> EmbedTarget<'a> {
                  finished image in any format)"
             ));
         }
-        if format == wgpu::TextureFormat::Rgba32Float
-            && !ctx.device.features().contains(wgpu::Features::FLOAT32_BLENDABLE)
-        {
+        if format == wgpu::TextureFormat::Rgba32Float && !features.contains(wgpu::Features::FLOAT32_BLENDABLE) {
             return invalid(
                 "an Rgba32Float colour target needs the device feature FLOAT32_BLENDABLE (firmament \
                  blends into it); request it, or use Rgba16Float"
@@ -251,9 +258,8 @@ impl<'a> EmbedTarget<'a> {
             ));
         }
         if let Some(output) = self.output {
-            check_output(ctx, color, output.texture())?;
+            check_output(features, color, output.texture())?;
         }
-        ctx.check_image_size(size.0, size.1)?;
         Ok(size)
     }
 }
@@ -278,15 +284,16 @@ fn whole_2d(what: &str, texture: &wgpu::Texture) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// Whether `format` can be a colour output of firmament's output pass on `device`, which writes
-/// a float colour without blending: a colour-renderable, non-integer format. `Err` names why not.
-pub fn check_output_format(device: &wgpu::Device, format: wgpu::TextureFormat) -> Result<(), String> {
+/// Whether `format` can be a colour output of firmament's output pass on a device with
+/// `features`, which writes a float colour without blending: a colour-renderable, non-integer
+/// format. `Err` names why not.
+pub fn check_output_format(format: wgpu::TextureFormat, features: wgpu::Features) -> Result<(), String> {
     let renderable = format
-        .guaranteed_format_features(device.features())
+        .guaranteed_format_features(features)
         .allowed_usages
         .contains(wgpu::TextureUsages::RENDER_ATTACHMENT);
     let float = matches!(
-        format.sample_type(None, Some(device.features())),
+        format.sample_type(None, Some(features)),
         Some(wgpu::TextureSampleType::Float { .. })
     );
     if !renderable || !float || format.is_depth_stencil_format() || format.is_compressed() {
@@ -300,7 +307,7 @@ pub fn check_output_format(device: &wgpu::Device, format: wgpu::TextureFormat) -
 }
 
 /// The rules for [`EmbedTarget::output`] against the colour target `color`.
-fn check_output(ctx: &GpuContext, color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), RenderError> {
+fn check_output(features: wgpu::Features, color: &wgpu::Texture, output: &wgpu::Texture) -> Result<(), RenderError> {
     let invalid = |m: String| Err(RenderError::InvalidTarget(m));
     if !color.usage().contains(wgpu::TextureUsages::TEXTURE_BINDING) {
         return invalid(format!(
@@ -316,7 +323,7 @@ fn check_output(ctx: &GpuContext, color: &wgpu::Texture, output: &wgpu::Texture)
         ));
     }
     whole_2d("output", output)?;
-    check_output_format(&ctx.device, output.format())
+    check_output_format(output.format(), features)
         .or_else(|reason| invalid(format!("the output's format {reason}")))?;
     if !output.usage().contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
         return invalid(format!(

@@ -579,6 +579,24 @@ fn bad_targets_are_refused_with_what_is_needed() {
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
     let error = renderer.record_into(&mut encoder, &target).expect_err("not prepared");
     assert!(error.to_string().contains("prepare_into"), "{error}");
+    // Recording into another target of the prepared kind and size is checked by the same rules:
+    // one that breaks them is refused (was a wgpu validation panic when the encoder finished).
+    let prepared = EmbedTarget::new(&color_view, &depth_view, DepthConvention::Standard);
+    renderer
+        .prepare_into(&ctx, &frame(direction(0.0, 5.0), None), &prepared)
+        .expect("a valid target");
+    let unrenderable = texture(&ctx, "colour", size, F::Rgba16Float, U::TEXTURE_BINDING);
+    let unrenderable_view = unrenderable.create_view(&Default::default());
+    let other = EmbedTarget::new(&unrenderable_view, &depth_view, DepthConvention::Standard);
+    let error = renderer
+        .record_into(&mut encoder, &other)
+        .expect_err("an invalid target");
+    println!("record_into another, bad target: {error}");
+    assert!(error.to_string().contains("lack RENDER_ATTACHMENT"), "{error}");
+    renderer
+        .record_into(&mut encoder, &prepared)
+        .expect("the prepared target");
+    ctx.queue.submit([encoder.finish()]);
 }
 
 #[test]
