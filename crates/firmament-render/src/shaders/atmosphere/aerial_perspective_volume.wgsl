@@ -4,7 +4,8 @@
 // One invocation per froxel column: it marches the column's view ray through the air once and
 // stores, at each slice, the scattered light so far (spectral radiance, all suns) and the
 // transmittance so far — O(N) per column instead of O(N²). Slices and their distances: see
-// `AERIAL_PERSPECTIVE_SIZE` in view.wgsl. Two midpoint samples per slice.
+// `AERIAL_PERSPECTIVE_SIZE` in view.wgsl. Two midpoint samples per slice. A column that passes
+// under the ground goes on through ground-level air (`aerial_span`, `aerial_sample_point`).
 //
 // The volume is a 2D atlas of its slices side by side (slice k at x ∈ [32k, 32k + 32)): GL
 // binds a 3D storage texture one layer at a time, so a 3D volume would only get its first slice.
@@ -36,7 +37,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             let b = min(mix(previous, distance, f32(s + 1u) / f32(SAMPLES_PER_SLICE)), air);
             let dt = b - a;
             if dt > 0.0 {
-                let here = medium_sample(ray.origin + ray.direction * (span.x + 0.5 * (a + b)), ray.direction, 0u, view.sun_count.x);
+                let p = aerial_sample_point(ray.origin + ray.direction * (span.x + 0.5 * (a + b)));
+                let here = medium_sample(p, ray.direction, 0u, view.sun_count.x);
                 let diffuse_step = exp(-here.diffuse_extinction * dt);
                 radiance += diffuse_transmittance * integrate_step(here.source, here.diffuse_extinction, diffuse_step, dt);
                 diffuse_transmittance *= diffuse_step;

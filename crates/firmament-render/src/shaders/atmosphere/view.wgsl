@@ -217,18 +217,24 @@ fn to_linear_srgb(radiance: vec3<f32>) -> vec3<f32> {
 
 const AERIAL_PERSPECTIVE_SIZE: vec3<u32> = vec3<u32>(32u, 32u, 32u);
 
-// Where a view ray's air starts and ends (t along the ray; the ground ends it): equal when the
-// ray misses the atmosphere.
+// Where a view ray's air starts and ends for aerial perspective (t along the ray): equal when the
+// ray misses the atmosphere. The ground does not end it: a froxel column just below the horizon
+// meets the ground ~100 m out from a street, yet geometry on the ground kilometres away lies
+// between it and the column above, and is filtered from both. Past the ground the column goes on
+// through ground-level air (see `aerial_sample_point`), as Hillaire 2020's volume does by moving
+// voxels under the ground up onto it.
 fn aerial_span(ray: ViewRay) -> vec2<f32> {
     let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
     if top.x > top.y || top.y <= ray.near {
         return vec2<f32>(ray.near);
     }
     let start = max(top.x, ray.near);
-    var end = top.y;
-    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
-    if ground.x <= ground.y && ground.x > ray.near {
-        end = min(end, ground.x);
-    }
-    return vec2<f32>(start, max(end, start));
+    return vec2<f32>(start, max(top.y, start));
+}
+
+// Where the aerial-perspective volume samples the air for a point p of a column: p itself, or,
+// under the ground, the point of the surface above it.
+fn aerial_sample_point(p: vec3<f32>) -> vec3<f32> {
+    let here = altitude_up(p);
+    return select(p, p - here.up * here.h, here.h < 0.0);
 }
