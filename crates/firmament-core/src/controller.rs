@@ -1,7 +1,8 @@
 //! The heading/pitch/forward-speed fly camera of NeHe lesson 44 (`glCamera`).
 //!
-//! Keys as in the lesson: W/S pitch, A/D turn, Z/C speed up and slow down, X stops. Rates are
-//! per second (the lesson used per-frame steps) so motion does not depend on the frame rate.
+//! Keys: W/S pitch, A/D turn, speed up and slow down while held, stop (the viewer's Z/C/X set a
+//! constant forward or backward speed or stop, as the lesson's text says). Rates are per second
+//! (the lesson used per-frame steps) so motion does not depend on the frame rate.
 
 use glam::DVec3;
 

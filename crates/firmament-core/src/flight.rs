@@ -37,8 +37,9 @@ pub const MIN_SPEED_SCALE: f64 = 1e-3;
 pub const MAX_SPEED_SCALE: f64 = 1e3;
 /// Default mouse-look sensitivity, radians per pixel of mouse motion.
 pub const DEFAULT_LOOK_SENSITIVITY: f64 = 0.003;
-/// In NeHe mode, the Z/C acceleration as a fraction of the top speed per second, 1/s: full speed
-/// in two seconds of holding Z.
+/// In NeHe mode, the controller's speed-up/slow-down acceleration as a fraction of the top speed
+/// per second, 1/s: full speed in two seconds of holding the key (the viewer sets constant speeds
+/// with Z/C/X instead).
 pub const NEHE_ACCELERATION_RATE: f64 = 0.5;
 /// Eye height of [`goto_ground`] above the surface, metres.
 pub const GROUND_HEIGHT: f64 = 2.0;
@@ -58,7 +59,8 @@ pub enum FlightMode {
     /// Mouse look; WASD flies forward/left/back/right, Q/E down/up, at the altitude's speed.
     #[default]
     Free,
-    /// NeHe lesson 44: W/S pitch, A/D turn, Z/C speed up and down, X stops.
+    /// NeHe lesson 44: W/S pitch, A/D turn; its forward speed is `nehe.speed` (the viewer's Z,
+    /// C and X set it to a constant forward or backward speed or stop it, as the lesson does).
     NeHe,
 }
 
