@@ -3,10 +3,9 @@
 
 mod support;
 
-use support::{clear_targets, direction, gpu, street_sky};
+use support::{clear_targets, direction, gpu, sky_reference, street_sky};
 
 use firmament_core::Camera;
-use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::frame::AtmosphereSky;
 use firmament_core::geometry::Ray;
 use firmament_render::passes::AtmospherePass;
@@ -87,14 +86,7 @@ fn aerial_perspective_matches_the_reference() {
     let gpu = gpu();
     let ctx = &gpu.ctx;
     let sky = street_sky(90.0, 25.0);
-    let reference = Reference::new(
-        sky.atmosphere,
-        &sky.suns,
-        ReferenceSettings {
-            paths: 4096,
-            ..Default::default()
-        },
-    );
+    let reference = sky_reference(&sky, 4096);
     let conversion = sky.atmosphere.spectral_conversion();
     let mut pass = AtmospherePass::new(&ctx.device);
     let mut worst = (0.0_f64, 0.0_f64);
@@ -149,14 +141,7 @@ fn geometry_at_the_horizon_of_a_wide_view_gets_its_air() {
     let gpu = gpu();
     let ctx = &gpu.ctx;
     let sky = street_sky(90.0, 25.0);
-    let reference = Reference::new(
-        sky.atmosphere,
-        &sky.suns,
-        ReferenceSettings {
-            paths: 4096,
-            ..Default::default()
-        },
-    );
+    let reference = sky_reference(&sky, 4096);
     let conversion = sky.atmosphere.spectral_conversion();
     let mut pass = AtmospherePass::new(&ctx.device);
     let eye = DVec3::Z * 2.0;

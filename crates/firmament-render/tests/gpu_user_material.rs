@@ -7,10 +7,9 @@
 
 mod support;
 
-use support::{direction, gpu, street_sky};
+use support::{direction, gpu, sky_reference, street_sky};
 
 use firmament_core::Camera;
-use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::geometry::Ray;
 use firmament_render::SkyLightingGpu;
 use firmament_render::passes::AtmospherePass;
@@ -82,14 +81,7 @@ fn a_white_lambertian_surface_is_lit_and_fogged_as_the_reference() {
     let ctx = &gpu.ctx;
     let device = &ctx.device;
     let sky = street_sky(90.0, 25.0);
-    let reference = Reference::new(
-        sky.atmosphere,
-        &sky.suns,
-        ReferenceSettings {
-            paths: 4096,
-            ..Default::default()
-        },
-    );
+    let reference = sky_reference(&sky, 4096);
     let conversion = sky.atmosphere.spectral_conversion();
     let pass = AtmospherePass::new(device);
 

@@ -106,3 +106,23 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
         suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
     }
 }
+
+/// The f64 reference for `sky`'s atmosphere and suns with `paths` Monte Carlo paths per radiance.
+#[allow(
+    dead_code,
+    reason = "each test binary compiles this module; not all of them compare with the reference"
+)]
+pub(crate) fn sky_reference(
+    sky: &firmament_core::frame::AtmosphereSky,
+    paths: usize,
+) -> firmament_core::atmosphere::reference::Reference {
+    use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+    Reference::new(
+        sky.atmosphere,
+        &sky.suns,
+        ReferenceSettings {
+            paths,
+            ..Default::default()
+        },
+    )
+}
