@@ -767,10 +767,9 @@ fn an_output_view_gets_the_pixels_firmament_render_writes() {
 
 /// A scene as `firmament render` reads it: Earth at 45° N, the Sun 25° up behind a camera 300 m up
 /// looking north, and an unlit cube 200 m on a side whose near face is 2 km away, straight ahead.
-/// (300 m, not street level: there the volume's froxel row just below the horizon meets the
-/// ground a few hundred metres out, and a face at the horizon 2 km away, filtered between that
-/// row and the one above, gets half the reference's air light — a limit of the 32 × 32 volume,
-/// not of the embedding.)
+/// (Geometry at a street's horizon, between a froxel row above it and one below, is checked
+/// against the reference by `gpu_aerial_perspective`'s
+/// `geometry_at_the_horizon_of_a_wide_view_gets_its_air`.)
 const CUBE_SCENE: &str = r#"
 preset = "earth-noon"
 
