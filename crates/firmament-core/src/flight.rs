@@ -90,6 +90,29 @@ pub enum FlightAction {
     NeHe(ControllerKey),
 }
 
+/// NeHe lesson 44's Z, C and X: "'Z' gives the camera a constant forward velocity, 'C' a
+/// constant backward velocity and 'X' will stop the camera" ([`FlightController::set_nehe_velocity`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NeHeVelocity {
+    /// Z: a constant forward speed.
+    Forward,
+    /// C: a constant backward speed.
+    Backward,
+    /// X: stopped.
+    Stop,
+}
+
+impl NeHeVelocity {
+    /// The forward speed, m/s, for a flying speed of `speed` m/s.
+    pub fn speed(self, speed: f64) -> f64 {
+        match self {
+            Self::Forward => speed,
+            Self::Backward => -speed,
+            Self::Stop => 0.0,
+        }
+    }
+}
+
 /// The viewer's camera controller (see the module docs for frames, units and the speed rule).
 ///
 /// `position`, `heading` and `pitch` are the state in both modes; `nehe` carries NeHe mode's
@@ -201,6 +224,12 @@ impl FlightController {
             let scale = self.clamped_speed_scale() * WHEEL_STEP.powf(notches);
             self.speed_scale = scale.clamp(MIN_SPEED_SCALE, MAX_SPEED_SCALE);
         }
+    }
+
+    /// NeHe mode's forward speed from now on: `velocity` at the flying speed at `altitude`
+    /// metres ([`Self::speed`]) — kept, not a held acceleration.
+    pub fn set_nehe_velocity(&mut self, velocity: NeHeVelocity, altitude: f64) {
+        self.nehe.speed = velocity.speed(self.speed(altitude));
     }
 
     /// Flying speed at `altitude` metres, m/s: `speed_scale · (BASE_SPEED + ALTITUDE_RATE · h)`
@@ -428,6 +457,21 @@ mod tests {
 
     fn earth_at_45() -> Planet {
         Planet::spheroid(6_378_137.0, 6_356_752.3, 60_000.0).posed_at(45f64.to_radians(), 0.3)
+    }
+
+    #[test]
+    fn nehe_velocity_is_kept_at_the_altitude_speed() {
+        let mut c = FlightController::new(DVec3::new(0.0, 0.0, 100.0), 0.0, 0.0);
+        c.mode = FlightMode::NeHe;
+        let speed = c.speed(100.0);
+        c.set_nehe_velocity(NeHeVelocity::Forward, 100.0);
+        assert_eq!(c.nehe.speed, speed);
+        c.update(&[], 100.0, 0.5);
+        assert_eq!(c.nehe.speed, speed, "no key held: the speed stays");
+        c.set_nehe_velocity(NeHeVelocity::Backward, 100.0);
+        assert_eq!(c.nehe.speed, -speed);
+        c.set_nehe_velocity(NeHeVelocity::Stop, 100.0);
+        assert_eq!(c.nehe.speed, 0.0);
     }
 
     #[test]

@@ -252,6 +252,7 @@ impl Frame {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::atmosphere::Planet;
 
     #[test]
     fn a_frame_built_with_new_and_with_is_the_literal() {
@@ -279,7 +280,6 @@ mod tests {
         };
         assert_eq!(built, literal);
     }
-    use crate::atmosphere::Planet;
 
     fn seed_sky() -> SeedSky {
         let a = SeedAtmosphere::seed_earth();

@@ -264,10 +264,12 @@ fn smoke(name: &str, mutations: usize) {
         run_one(target, input, &format!("regression {shown}"));
     }
     let mut corpus = seeds(target);
+    let seed_count = corpus.len();
     assert!(!corpus.is_empty(), "{name} has no seeds");
     for (i, input) in corpus.iter().enumerate() {
         run_one(target, input, &format!("seed {i}"));
     }
+    let regression_count = regressions.len();
     corpus.extend(regressions.into_iter().map(|(_, b)| b));
     // A fixed seed per target: the same inputs every run.
     let mut rng = Pcg64::seed_from_u64(
@@ -287,8 +289,8 @@ fn smoke(name: &str, mutations: usize) {
     }
     eprintln!(
         "{name}: {} regressions, {} seeds, {done} mutations in {:.2?} ({})",
-        files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("regressions").join(name)).len(),
-        seeds(target).len(),
+        regression_count,
+        seed_count,
         started.elapsed(),
         match budget {
             Budget::Count(_) => "a fixed count".to_owned(),

@@ -265,13 +265,23 @@ impl SceneDocument {
         Ok(())
     }
 
+    /// The key path of `key` in the table at `path` (`path.key`; `key` alone at the top level,
+    /// `path` `""`), as [`get`](Self::get) and [`set`](Self::set) address it.
+    pub fn key_path(path: &str, key: &str) -> String {
+        if path.is_empty() {
+            key.to_owned()
+        } else {
+            format!("{path}.{key}")
+        }
+    }
+
     /// The keys the scene format accepts in the table at `path` (`""`: the top level; `planet`,
     /// `atmosphere`, `suns.0`, `flare.elements.0`), in the format's order: its own answer to a
     /// key it does not know (serde's "unknown field, expected one of"). `None` when the path is no
     /// table of fixed keys, or when another error in the document comes first.
     pub fn known_keys(&self, path: &str) -> Option<Vec<String>> {
         let mut probe = self.table.clone();
-        layers::set_path(&mut probe, &join(path, PROBE_KEY), toml::Value::Boolean(true)).ok()?;
+        layers::set_path(&mut probe, &Self::key_path(path, PROBE_KEY), toml::Value::Boolean(true)).ok()?;
         let error = serde_path_to_error::deserialize::<_, Scene>(toml::Value::Table(probe)).err()?;
         let message = error.inner().message();
         let expected = message.strip_prefix(&format!("unknown field `{PROBE_KEY}`"))?;
@@ -338,8 +348,8 @@ impl SceneDocument {
             item: format!("{path}=[…]"),
             rule: rule.to_owned(),
         };
-        let items = match self.value_mut(path) {
-            Some(toml::Value::Array(items)) if items.iter().all(toml::Value::is_table) => items,
+        let mut items = match self.get(path) {
+            Some(toml::Value::Array(items)) if items.iter().all(toml::Value::is_table) => items.clone(),
             _ => return Err(bad("the key is no list of tables")),
         };
         let entry = match items.last() {
@@ -352,21 +362,8 @@ impl SceneDocument {
         };
         items.push(entry);
         let index = items.len() - 1;
+        self.set(path, toml::Value::Array(items))?;
         self.fill_required(&format!("{path}.{index}"))
-    }
-
-    /// The value at a dotted key path, as [`get`](Self::get) finds it, to change in place.
-    fn value_mut(&mut self, path: &str) -> Option<&mut toml::Value> {
-        let mut keys = path.split('.');
-        let mut node = self.table.get_mut(keys.next()?)?;
-        for key in keys {
-            node = match node {
-                toml::Value::Table(t) => t.get_mut(key)?,
-                toml::Value::Array(items) => items.get_mut(key.parse::<usize>().ok()?)?,
-                _ => return None,
-            };
-        }
-        Some(node)
     }
 
     /// The key path of the first required key the table lacks, as serde reports it.
@@ -378,7 +375,7 @@ impl SceneDocument {
             .strip_prefix("missing field `")?
             .split('`')
             .next()?;
-        Some(join(&dotted(&error.path().to_string()), field))
+        Some(Self::key_path(&dotted(&error.path().to_string()), field))
     }
 
     /// The names the string key at `path` accepts, when it has a fixed set (models, tone
@@ -443,15 +440,6 @@ const ENTRY_TEMPLATES: &[(&str, &str)] = &[
 
 /// Required keys [`SceneDocument::add_entry`] fills at most (more would be a loop).
 const MAX_REQUIRED_KEYS: usize = 16;
-
-/// `path.key`, or `key` at the top level.
-fn join(path: &str, key: &str) -> String {
-    if path.is_empty() {
-        key.to_owned()
-    } else {
-        format!("{path}.{key}")
-    }
-}
 
 /// A serde path (`suns[0].azimuth`; `.` for the top) as a document key path (`suns.0.azimuth`).
 fn dotted(serde_path: &str) -> String {

@@ -473,3 +473,9 @@ fn empty_lists_grow_by_an_entry_that_parses() {
     doc.scene().expect("a flare with one new element");
     assert!(doc.add_entry("camera").is_err(), "the camera is no list");
 }
+
+#[test]
+fn key_paths_join_under_the_top_level() {
+    assert_eq!(SceneDocument::key_path("", "flare"), "flare");
+    assert_eq!(SceneDocument::key_path("suns.0", "temperature"), "suns.0.temperature");
+}

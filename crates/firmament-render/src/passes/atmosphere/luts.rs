@@ -95,6 +95,36 @@ impl Lut {
     }
 }
 
+/// The LUTs that depend on the medium alone — transmittance, the multiple-scattering moments, the
+/// sky irradiance — for the set the sky reads or the one a rebuild writes (`suffix` ends their
+/// labels).
+pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MULTISCATTERING_MOMENTS], Lut) {
+    let transmittance = Lut::new(
+        device,
+        &format!("transmittance{suffix}"),
+        TRANSMITTANCE_SIZE,
+        TRANSMITTANCE_FORMAT,
+        wgpu::TextureUsages::STORAGE_BINDING,
+    );
+    let multiscattering = MOMENT_NAMES.map(|moment| {
+        Lut::new(
+            device,
+            &format!("multiple-scattering {moment} moment{suffix}"),
+            MULTISCATTERING_SIZE,
+            MULTISCATTERING_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+    });
+    let irradiance = Lut::new(
+        device,
+        &format!("sky irradiance{suffix}"),
+        IRRADIANCE_SIZE,
+        IRRADIANCE_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    );
+    (transmittance, multiscattering, irradiance)
+}
+
 /// Every LUT of the atmosphere pass.
 #[derive(Debug)]
 pub struct AtmosphereLuts {
@@ -122,32 +152,13 @@ impl AtmosphereLuts {
 
     /// Creates the textures (contents undefined until the pass renders them).
     pub fn new(device: &wgpu::Device) -> Self {
+        let (transmittance, multiscattering, irradiance) = medium_luts(device, "");
         let (x, y, z) = AERIAL_PERSPECTIVE_SIZE;
         let aerial_atlas = (x * z, y);
         Self {
-            transmittance: Lut::new(
-                device,
-                "transmittance",
-                TRANSMITTANCE_SIZE,
-                TRANSMITTANCE_FORMAT,
-                wgpu::TextureUsages::STORAGE_BINDING,
-            ),
-            multiscattering: MOMENT_NAMES.map(|moment| {
-                Lut::new(
-                    device,
-                    &format!("multiple-scattering {moment} moment"),
-                    MULTISCATTERING_SIZE,
-                    MULTISCATTERING_FORMAT,
-                    wgpu::TextureUsages::RENDER_ATTACHMENT,
-                )
-            }),
-            irradiance: Lut::new(
-                device,
-                "sky irradiance",
-                IRRADIANCE_SIZE,
-                IRRADIANCE_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            ),
+            transmittance,
+            multiscattering,
+            irradiance,
             sky_view: Lut::new(
                 device,
                 "sky-view",

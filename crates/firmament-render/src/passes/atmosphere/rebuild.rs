@@ -12,10 +12,7 @@ use std::ops::Range;
 
 use firmament_core::atmosphere::Atmosphere;
 
-use super::luts::{
-    AtmosphereLuts, IRRADIANCE_FORMAT, IRRADIANCE_SIZE, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT,
-    MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE, TRANSMITTANCE_FORMAT, TRANSMITTANCE_SIZE, moment_views,
-};
+use super::luts::{AtmosphereLuts, Lut, MULTISCATTERING_MOMENTS, medium_luts, moment_views};
 use super::multiscattering::MULTISCATTERING_ITERATIONS;
 use crate::gpu_types::AtmosphereParamsUniforms;
 
@@ -56,30 +53,11 @@ pub(super) struct MediumLuts {
 
 impl MediumLuts {
     pub(super) fn new(device: &wgpu::Device) -> Self {
-        let building = |name: &str, size, format, written_by| {
-            Lut::new(device, &format!("{name} (building)"), size, format, written_by)
-        };
+        let (transmittance, multiscattering, irradiance) = medium_luts(device, " (building)");
         Self {
-            transmittance: building(
-                "transmittance",
-                TRANSMITTANCE_SIZE,
-                TRANSMITTANCE_FORMAT,
-                wgpu::TextureUsages::STORAGE_BINDING,
-            ),
-            multiscattering: MOMENT_NAMES.map(|moment| {
-                building(
-                    &format!("multiple-scattering {moment} moment"),
-                    MULTISCATTERING_SIZE,
-                    MULTISCATTERING_FORMAT,
-                    wgpu::TextureUsages::RENDER_ATTACHMENT,
-                )
-            }),
-            irradiance: building(
-                "sky irradiance",
-                IRRADIANCE_SIZE,
-                IRRADIANCE_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            ),
+            transmittance,
+            multiscattering,
+            irradiance,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("firmament AtmospherePass params (building)"),
                 size: std::mem::size_of::<AtmosphereParamsUniforms>() as u64,

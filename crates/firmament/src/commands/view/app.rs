@@ -277,8 +277,8 @@ impl App {
             Command::TogglePanel => self.panel.visible = !self.panel.visible,
             Command::ShowInfo(show) => self.panel.show_info = show,
             Command::NeHeVelocity(velocity) => {
-                let speed = self.session.flight.speed(self.session.altitude());
-                self.session.flight.nehe.speed = velocity.speed(speed);
+                let altitude = self.session.altitude();
+                self.session.flight.set_nehe_velocity(velocity, altitude);
             }
             Command::Screenshot { exr } => self.handle(Request::Screenshot { exr }),
             Command::Quit => event_loop.exit(),

@@ -11,7 +11,7 @@
 //! saves a PNG screenshot (Shift+F12 an EXR), Escape quits.
 
 use firmament_core::controller::ControllerKey;
-use firmament_core::flight::{FlightAction, FlightMode};
+use firmament_core::flight::{FlightAction, FlightMode, NeHeVelocity};
 use winit::keyboard::KeyCode;
 
 /// What a key press asks of the viewer (beyond the flight keys held down).
@@ -44,28 +44,6 @@ pub(crate) enum Command {
     },
     /// Close the viewer.
     Quit,
-}
-
-/// The forward speeds NeHe lesson 44's Z, C and X keys set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum NeHeVelocity {
-    /// Z: a constant forward speed.
-    Forward,
-    /// C: a constant backward speed.
-    Backward,
-    /// X: stopped.
-    Stop,
-}
-
-impl NeHeVelocity {
-    /// The forward speed, m/s, for a flying speed of `speed` m/s.
-    pub(crate) fn speed(self, speed: f64) -> f64 {
-        match self {
-            Self::Forward => speed,
-            Self::Backward => -speed,
-            Self::Stop => 0.0,
-        }
-    }
 }
 
 /// The flight action a held key drives in `mode`, if any.

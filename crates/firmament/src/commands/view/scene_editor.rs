@@ -94,7 +94,7 @@ impl Tree<'_> {
                 .show(ui, |ui| {
                     let mut changed = false;
                     for (key, child) in table.iter_mut() {
-                        changed |= self.value(ui, key, &format!("{path}.{key}"), child);
+                        changed |= self.value(ui, key, &SceneDocument::key_path(path, key), child);
                     }
                     self.add_key_menu(ui, path, table);
                     changed
@@ -160,7 +160,7 @@ impl Tree<'_> {
             .show_ui(ui, |ui| {
                 for key in missing {
                     if ui.selectable_label(false, key.as_str()).clicked() {
-                        self.grow = Some(Grow::Key(join(path, key)));
+                        self.grow = Some(Grow::Key(SceneDocument::key_path(path, key)));
                     }
                 }
             });
@@ -220,15 +220,6 @@ impl Tree<'_> {
     }
 }
 
-/// `path.key`, or `key` at the top level.
-fn join(path: &str, key: &str) -> String {
-    if path.is_empty() {
-        key.to_owned()
-    } else {
-        format!("{path}.{key}")
-    }
-}
-
 /// The sRGB bytes of a `#rrggbb` colour.
 fn hex_colour(text: &str) -> Option<[u8; 3]> {
     let hex = text.strip_prefix('#')?;
@@ -264,11 +255,5 @@ mod tests {
         assert!(curves.contains(&"aces_fitted".to_owned()), "{curves:?}");
         assert_eq!(doc.accepted_names("time.time_of_day"), None);
         assert_eq!(doc.accepted_names("sky.gradient.keyframes.0.zenith"), None);
-    }
-
-    #[test]
-    fn paths_join_under_the_top_level() {
-        assert_eq!(join("", "flare"), "flare");
-        assert_eq!(join("suns.0", "temperature"), "suns.0.temperature");
     }
 }
