@@ -24,7 +24,7 @@ pub fn required_features() -> wgpu::Features {
 /// | limit | firmament's use | where |
 /// |---|---|---|
 /// | `max_bind_groups` | 1 | every pipeline has one bind group |
-/// | `max_sampled_textures_per_shader_stage` | 9 | the atmosphere's sky: transmittance, irradiance, sky view and six scattering moments |
+/// | `max_sampled_textures_per_shader_stage` | 10 | the atmosphere's sky: transmittance, irradiance, sky view and seven scattering moments |
 /// | `max_samplers_per_shader_stage` | 1 | |
 /// | `max_storage_buffers_per_shader_stage` | 2 | lens-flare occlusion: its sources and their visibility |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
@@ -32,8 +32,8 @@ pub fn required_features() -> wgpu::Features {
 /// | `max_vertex_buffers` | 2 | objects: geometry and per-vertex shading |
 /// | `max_vertex_attributes` | 6 | objects |
 /// | `max_inter_stage_shader_variables` | 9 | objects: eight varyings and `front_facing` |
-/// | `max_color_attachments` | 6 | the multiple-scattering iteration writes its six moments at once |
-/// | `max_color_attachment_bytes_per_sample` | 48 | six `Rgba16Float` targets: more than the 32 of `downlevel_defaults()` and of WebGPU's `Limits::default()` |
+/// | `max_color_attachments` | 7 | the multiple-scattering iteration writes its seven moments at once |
+/// | `max_color_attachment_bytes_per_sample` | 56 | seven `Rgba16Float` targets: more than the 32 of `downlevel_defaults()` and of WebGPU's `Limits::default()` (native adapters give 64 or 128) |
 /// | `max_compute_workgroup_size_x`, `_y`, `_z` | 256, 8, 1 | sky lighting (256 × 1), the LUTs (8 × 8) |
 /// | `max_compute_invocations_per_workgroup` | 256 | sky lighting |
 /// | `max_texture_dimension_2d` | 1536 | the sky-view LUT: a 192-texel tile for each of 8 suns |
@@ -57,7 +57,7 @@ pub fn required_features() -> wgpu::Features {
 pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits {
         max_bind_groups: 1,
-        max_sampled_textures_per_shader_stage: 9,
+        max_sampled_textures_per_shader_stage: 10,
         max_samplers_per_shader_stage: 1,
         max_storage_buffers_per_shader_stage: 2,
         max_storage_textures_per_shader_stage: 2,
@@ -65,8 +65,8 @@ pub fn required_limits() -> wgpu::Limits {
         max_vertex_buffers: 2,
         max_vertex_attributes: 6,
         max_inter_stage_shader_variables: 9,
-        max_color_attachments: 6,
-        max_color_attachment_bytes_per_sample: 48,
+        max_color_attachments: 7,
+        max_color_attachment_bytes_per_sample: 56,
         max_compute_workgroup_size_x: 256,
         max_compute_workgroup_size_y: 8,
         max_compute_workgroup_size_z: 1,
@@ -120,14 +120,14 @@ mod tests {
 
     #[test]
     fn webgpu_default_limits_lack_only_the_colour_bytes_of_the_moment_targets() {
-        // Six Rgba16Float targets at once need 48 bytes per sample; WebGPU's defaults give 32.
+        // Seven Rgba16Float targets at once need 56 bytes per sample; WebGPU's defaults give 32.
         let Err(RenderError::LimitsTooLow { shortfalls, .. }) =
             check("test adapter", required_features(), &wgpu::Limits::default())
         else {
             panic!("wgpu::Limits::default() was expected to fall short");
         };
         let named: Vec<_> = shortfalls.iter().map(|s| (s.name, s.required, s.available)).collect();
-        assert_eq!(named, [("max_color_attachment_bytes_per_sample", 48, 32)]);
+        assert_eq!(named, [("max_color_attachment_bytes_per_sample", 56, 32)]);
     }
 
     #[test]

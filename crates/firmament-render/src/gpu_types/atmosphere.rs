@@ -78,7 +78,7 @@ pub struct AtmosphereParamsUniforms {
     /// The Mie phase function's Legendre coefficients a₁…a₄ (`MiePhase::legendre_coefficient`).
     pub mie_legendre: [f32; 4],
     /// `x` = the share f of Mie scattering that multiple scattering treats as going straight on
-    /// ([`MIE_FORWARD_PEAK_SHARE`] × a₅, 0 when a₅ < 0; see `Coefficients` in
+    /// (a₅, at most [`MIE_FORWARD_PEAK_MAX`], 0 when a₅ < 0; see `Coefficients` in
     /// `atmosphere/common.wgsl`); `yzw` unused.
     pub mie_forward_peak: [f32; 4],
     /// Rayleigh density profile.
@@ -89,16 +89,19 @@ pub struct AtmosphereParamsUniforms {
     pub absorber_density: DensityProfileUniform,
 }
 
-/// How much of the delta-M forward peak a₅ (Wiscombe 1977) multiple scattering sends straight on.
+/// The largest share f of Mie scattering that multiple scattering sends straight on: the delta-M
+/// forward peak (Wiscombe 1977) is a₅, the first Legendre coefficient past the four bands the
+/// LUTs hold, but no more than this.
 ///
-/// Delta-M assumes the light the peak scatters hardly changes over the peak's width (some 20°
-/// for Cornette–Shanks with g = 0.8). That fails where it matters most on Earth: the sky near the
-/// ground is brightest in a band a few degrees high above a dark ground, so a view along the
-/// horizon gets its forward-scattered light from half a lobe of sky and half a lobe of ground.
-/// Measured against the reference (Earth, sun 10° up, views within 1° of the horizon): the whole
-/// peak (1) overshoots by 1.5–2.1 %, none (0: the series cut off after band 4) falls 1.1–1.5 %
-/// short, half stays within 0.6 %.
-pub const MIE_FORWARD_PEAK_SHARE: f64 = 0.5;
+/// Delta-M assumes the light the peak scatters hardly changes over the peak's width. That holds
+/// for Mars's dust (Henyey–Greenstein g = 0.63, a₅ = 0.099), whose sky is smooth, but not for
+/// Earth's haze (Cornette–Shanks g = 0.8, a₅ = 0.374): the sky near the ground is brightest in a
+/// band a few degrees high above a dark ground, so a view along the horizon gets its
+/// forward-scattered light from half a lobe of sky and half a lobe of ground. Measured against
+/// the reference (`sky-sample`, 65 536 paths; docs/ATMOSPHERE.md): on Earth (sun 10° up, views
+/// within 1° of the horizon) the whole a₅ overshoots by 1.6–2.2 %, half of it stays within 0.6 %;
+/// on Mars (sun 20° up) the whole a₅ is within 0.3–2.4 %, half of it 0.3–2.8 % low everywhere.
+pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
 /// planet's mean radius `(a·b·c)^⅓` (the radius itself for a sphere).
@@ -132,7 +135,11 @@ impl AtmosphereParamsUniforms {
             ground_albedo: spectrum_w(medium.ground_albedo, 0.0),
             mie_legendre: [1, 2, 3, 4].map(|l| medium.mie.phase.legendre_coefficient(l) as f32),
             mie_forward_peak: [
-                (MIE_FORWARD_PEAK_SHARE * medium.mie.phase.legendre_coefficient(5)).max(0.0) as f32,
+                medium
+                    .mie
+                    .phase
+                    .legendre_coefficient(5)
+                    .clamp(0.0, MIE_FORWARD_PEAK_MAX) as f32,
                 0.0,
                 0.0,
                 0.0,

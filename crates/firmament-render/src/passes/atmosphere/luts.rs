@@ -3,7 +3,7 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; the alphas of zz, xx, xz, x hold the bands 3 and 4 about the up axis and about the sun, over Ψ summed over wavelengths) | 32 × 32, six | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
+//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh texture, over Ψ summed over wavelengths) | 32 × 32, seven | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
 //! | sky irradiance (stored as its logarithm, as Ψ) | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
@@ -20,9 +20,9 @@ pub const TRANSMITTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba3
 /// Multiple-scattering LUT size (texels): mu_s × h.
 pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
 /// Number of multiple-scattering moment textures (`Moments` in `atmosphere/luts.wgsl`).
-pub const MULTISCATTERING_MOMENTS: usize = 6;
+pub const MULTISCATTERING_MOMENTS: usize = 7;
 /// Their names, for labels.
-pub(super) const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z"];
+pub(super) const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z", "band 3"];
 
 /// The views of a set of moment textures.
 pub(super) fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {

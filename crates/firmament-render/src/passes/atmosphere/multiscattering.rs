@@ -1,7 +1,7 @@
 //! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`):
-//! each iterate reads the previous moments (Ψ, zz, xx, xz) and ground sky irradiance E and writes
-//! the next, ping-ponging between two sets of textures so that the last iterate lands in the
-//! build set's moments ([`MediumLuts`], copied into
+//! each iterate reads the previous moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) and ground sky
+//! irradiance E and writes the next, ping-ponging between two sets of textures so that the last
+//! iterate lands in the build set's moments ([`MediumLuts`], copied into
 //! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done).
 
 use super::luts::{

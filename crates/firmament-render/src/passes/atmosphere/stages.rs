@@ -21,12 +21,13 @@ pub(super) mod binding {
     pub(in crate::passes::atmosphere) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
     pub(in crate::passes::atmosphere) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(in crate::passes::atmosphere) const SKY_LIGHTING_OUT: u32 = 26;
-    /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z; `Moments` in `atmosphere/luts.wgsl`).
+    /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
+    /// `atmosphere/luts.wgsl`).
     pub(in crate::passes::atmosphere) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
-        [MULTISCATTERING, 15, 17, 18, 21, 22];
+        [MULTISCATTERING, 15, 17, 18, 21, 22, 27];
     /// The previous iterate's moments, while the multiple-scattering LUTs are built.
     pub(in crate::passes::atmosphere) const PREVIOUS_MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
-        [13, 16, 19, 20, 23, 24];
+        [13, 16, 19, 20, 23, 24, 28];
 }
 
 /// A sampled 2D texture, seen by the fragment and compute stages.

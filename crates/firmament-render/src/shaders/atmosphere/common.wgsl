@@ -56,9 +56,10 @@ fn profile_density(profile: DensityProfile, h: f32) -> f32 {
 // and Mie's forward peak reaches far beyond them (a_5 = 0.37 for Cornette–Shanks with g = 0.8).
 // So a share f of it is split off as light that goes straight on — it lowers the extinction
 // scattered light meets by f·σ_M — and the rest, with coefficients a_l − f, is left to bands 0–4.
-// Delta-M takes f = a_5; firmament takes half of that (MIE_FORWARD_PEAK_SHARE in
-// gpu_types/atmosphere.rs: the horizon's light is a band narrower than the peak). Cutting the
-// series off after band 4 instead left the sky 1–1.5 % dark near the horizon (docs/ATMOSPHERE.md).
+// Delta-M takes f = a_5; firmament takes at most 0.19 (MIE_FORWARD_PEAK_MAX in
+// gpu_types/atmosphere.rs: Earth's horizon light is a band narrower than its haze's wide peak).
+// Cutting the series off after band 4 instead left the sky 1–1.5 % dark near the horizon
+// (docs/ATMOSPHERE.md).
 // Sunlight itself keeps the full extinction and the exact phase function: single scattering, the
 // sun's disc and whatever stands behind the air (whose transmittance is `extinction`'s) are exact.
 struct Coefficients {

@@ -14,6 +14,7 @@
 @group(0) @binding(18) var multiscattering_xz_lut: texture_2d<f32>;
 @group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
 @group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
+@group(0) @binding(27) var multiscattering_band3_lut: texture_2d<f32>;
 
 fn load_bilinear(lut: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(textureDimensions(lut));
@@ -53,13 +54,15 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 // A radiance field at a point known by its moments over directions ω, in the frame x = towards
 // the sun's azimuth, z = up (y across; the field is mirror-symmetric in y): psi = mean(L) and the
 // second moments mean(L·ωz²), mean(L·ωx²), mean(L·ωx·ωz), the first moments mean(L·ωx),
-// mean(L·ωz), and bands 3 and 4 about the up axis and about the sun (`zonal`).
+// mean(L·ωz) — bands 0 to 2 per wavelength — and bands 3 and 4 whole, as their projections
+// mean(L·Y) on the real spherical harmonics Y of `band3_basis` and `band4_basis`.
 //
-// Stored as ln(psi) and the other moments over psi (`zonal` over psi summed over wavelengths:
-// one shape for all three, in the alphas of four textures). Below the horizon psi falls by ~e^70 per unit
-// of mu_s (docs/ATMOSPHERE.md): linear filtering between texels that differ 16-fold overshot the
-// twilight sky by up to 50 %, and half floats lost it altogether from the sun 10° down. ln(psi)
-// is nearly linear there, the ratios are bounded (|x/psi| ≤ 1) and smooth.
+// Stored as ln(psi) and the other moments over psi (bands 3 and 4 over psi summed over
+// wavelengths: one shape for all three, in the alphas of five textures and a seventh's rgba).
+// Below the horizon psi falls by ~e^70 per unit of mu_s (docs/ATMOSPHERE.md): linear filtering
+// between texels that differ 16-fold overshot the twilight sky by up to 50 %, and half floats
+// lost it altogether from the sun 10° down. ln(psi) is nearly linear there, the ratios are
+// bounded (|x/psi| ≤ 1, |band/psi| ≤ 3) and smooth.
 struct Moments {
     psi: vec3<f32>,
     zz: vec3<f32>,
@@ -67,25 +70,26 @@ struct Moments {
     xz: vec3<f32>,
     x: vec3<f32>,
     z: vec3<f32>,
-    // Bands 3 and 4 about the up axis u and about the sun s, summed over wavelengths and over
-    // the summed psi: (mean(L·P_3(ω·u)), mean(L·P_4(ω·u)), mean(L·P_3(ω·s)), mean(L·P_4(ω·s))).
-    zonal: vec4<f32>,
+    // Band 3 (m = 0…3) and band 4 (m = 0…3, then m = 4), summed over wavelengths, over the summed psi.
+    band3: vec4<f32>,
+    band4: vec4<f32>,
+    band4_m4: f32,
 }
 
 // The light such a field scatters per unit length towards a direction ω with components
-// (`toward`, ·, `up`) in that frame, the sun at mu_s. A phase function with Legendre coefficients
-// a_l scatters Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; the moments hold
-// bands 0 to 2: L_0 = psi, L_1(ω) = 3 ω·m (m the first moments) and L_2(ω) = 5·(3/2 ωᵀQω −
-// psi/2), Q the second-moment matrix. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10 and
-// nothing else, so its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 4, with the
-// medium's own a_l (`atmosphere.mie_legendre`, from firmament_core's
+// (`toward`, ·, `up`) in that frame. A phase function with Legendre coefficients a_l scatters
+// Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; L_0 = psi, L_1(ω) = 3 ω·m (m the
+// first moments), L_2(ω) = 5·(3/2 ωᵀQω − psi/2) (Q the second-moment matrix), and L_3, L_4 the
+// stored projections times their harmonics. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10
+// and nothing else, so its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 4, with
+// the medium's own a_l (`atmosphere.mie_legendre`, from firmament_core's
 // MiePhase::legendre_coefficient) less its forward peak f (delta-M, see `Coefficients` in
 // common.wgsl: the peak's light goes straight on, which the marches account for by
-// `diffuse_extinction`). Bands 3 and 4 are known only along two axes — the up axis, for the
-// bright band of sky at the horizon, and the sun's, for the aureole a dusty sky (Mars) scatters
-// around it — and are taken in their span (`zonal_band`). Isotropic light (m = 0, Q = psi/3 on
-// the diagonal) gives (σ_R + (1 − f)·σ_M)·psi.
-fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32, mu_s: f32) -> vec3<f32> {
+// `diffuse_extinction`). Bands 3 and 4 matter for a dusty sky (Mars, g = 0.63): without them
+// the sky away from the sun was 13 % dark; with them held only about the up and sun axes, 4.6 %
+// (docs/ATMOSPHERE.md). Isotropic light (m = 0, Q = psi/3 on the diagonal, no bands 3–4) gives
+// (σ_R + (1 − f)·σ_M)·psi.
+fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f32> {
     let yy = m.psi - m.xx - m.zz;
     let across2 = max(1.0 - up * up - toward * toward, 0.0);
     let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
@@ -93,34 +97,46 @@ fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32, mu_s: f32)
     let a = atmosphere.mie_legendre - f;
     let band1 = 3.0 * (m.x * toward + m.z * up);
     let band2 = 5.0 * (1.5 * second - 0.5 * m.psi);
-    let d_sun = toward * safe_sqrt(1.0 - mu_s * mu_s) + up * mu_s;
-    let band3 = 7.0 * zonal_band(m.zonal.x, m.zonal.z, legendre_3(mu_s), legendre_3(up), legendre_3(d_sun));
-    let band4 = 9.0 * zonal_band(m.zonal.y, m.zonal.w, legendre_4(mu_s), legendre_4(up), legendre_4(d_sun));
+    let band3 = dot(m.band3, band3_basis(toward, across2, up));
+    let b4 = band4_basis(toward, across2, up);
+    let band4 = dot(m.band4, b4.low) + m.band4_m4 * b4.m4;
     let higher = (a.z * band3 + a.w * band4) * m.psi;
     let mie = max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + higher, vec3<f32>(0.0));
     return c.rayleigh * 0.75 * (m.psi + second) + c.mie * mie;
 }
 
-fn legendre_3(x: f32) -> f32 {
-    return 0.5 * x * (5.0 * x * x - 3.0);
-}
-
-fn legendre_4(x: f32) -> f32 {
+// The field's band-3 harmonics at the unit direction (x, y, z), y given as y²: the real spherical
+// harmonics even in y, P_3^m(z)·cos(mφ) for m = 0…3, scaled so each has mean square 1 over the
+// sphere (then a band is Σ mean(L·Y)·Y).
+fn band3_basis(x: f32, y2: f32, z: f32) -> vec4<f32> {
     let x2 = x * x;
-    return (35.0 * x2 * x2 - 30.0 * x2 + 3.0) / 8.0;
+    let z2 = z * z;
+    return vec4<f32>(
+        2.6457513 * 0.5 * z * (5.0 * z2 - 3.0), // √7
+        1.6201852 * x * (5.0 * z2 - 1.0),       // √(21/8)
+        5.1234754 * z * (x2 - y2),              // √(105/4)
+        2.0916501 * x * (x2 - 3.0 * y2),        // √(35/8)
+    );
 }
 
-// A band l along ω, over psi and over 2l + 1, from the field's projections b_u = mean(L·P_l(ω·u))
-// and b_s = mean(L·P_l(ω·s)) (over psi) onto the zonal harmonics about u and s, whose overlap is
-// P_l(u·s): the band taken in their span, c_u·P_l(ω·u) + c_s·P_l(ω·s) with c solving the Gram
-// system. Ridge-regularised by 2 %, so the sun at the zenith (u = s) splits the band evenly
-// instead of dividing by zero.
-fn zonal_band(b_u: f32, b_s: f32, overlap: f32, p_u: f32, p_s: f32) -> f32 {
-    let diagonal = 1.02;
-    let determinant = diagonal * diagonal - overlap * overlap;
-    let c_u = (diagonal * b_u - overlap * b_s) / determinant;
-    let c_s = (diagonal * b_s - overlap * b_u) / determinant;
-    return c_u * p_u + c_s * p_s;
+// The same for band 4, m = 0…3 in `low` and m = 4.
+struct Band4 {
+    low: vec4<f32>,
+    m4: f32,
+}
+
+fn band4_basis(x: f32, y2: f32, z: f32) -> Band4 {
+    let x2 = x * x;
+    let z2 = z * z;
+    var out: Band4;
+    out.low = vec4<f32>(
+        3.0 * (35.0 * z2 * z2 - 30.0 * z2 + 3.0) / 8.0, // 3 = √9
+        2.3717082 * x * z * (7.0 * z2 - 3.0),           // √(45/8)
+        1.6770510 * (x2 - y2) * (7.0 * z2 - 1.0),       // √(45/16)
+        6.2749502 * z * x * (x2 - 3.0 * y2),            // √(315/8)
+    );
+    out.m4 = 2.2185299 * (x2 * x2 - 6.0 * x2 * y2 + y2 * y2); // √(315/64)
+    return out;
 }
 
 // The cosine between d and the horizontal direction towards the sun s at a point of up `up` (0
@@ -136,10 +152,10 @@ fn toward_sun_cosine(d: vec3<f32>, up: vec3<f32>, s: vec3<f32>) -> f32 {
 fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let m = sample_moments(
         multiscattering_lut, multiscattering_zz_lut, multiscattering_xx_lut,
-        multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut,
+        multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut, multiscattering_band3_lut,
         mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s), dot(up, s));
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
 }
 
 // The smallest psi (or ground irradiance) the LUTs hold: ln of it is what "none" is stored as.
@@ -159,11 +175,11 @@ fn moment_ratio(moment: vec3<f32>, psi: vec3<f32>) -> vec3<f32> {
     return select(moment / psi, vec3<f32>(0.0), psi <= vec3<f32>(1e-30));
 }
 
-// The moments stored in six LUTs (in `Moments` order; the zonal ones in the alphas of the
-// first four after psi) at uv, filtered.
+// The moments stored in seven LUTs (in `Moments` order; band 4 in the alphas of the five after
+// psi, band 3 in the seventh) at uv, filtered.
 fn sample_moments(
     psi: texture_2d<f32>, zz: texture_2d<f32>, xx: texture_2d<f32>,
-    xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, uv: vec2<f32>,
+    xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, band3: texture_2d<f32>, uv: vec2<f32>,
 ) -> Moments {
     let t_psi = textureSampleLevel(psi, lut_sampler, uv, 0.0);
     let t_zz = textureSampleLevel(zz, lut_sampler, uv, 0.0);
@@ -178,7 +194,9 @@ fn sample_moments(
     m.xz = t_xz.rgb * m.psi;
     m.x = t_x.rgb * m.psi;
     m.z = t_z.rgb * m.psi;
-    m.zonal = vec4<f32>(t_zz.a, t_xx.a, t_xz.a, t_x.a);
+    m.band3 = textureSampleLevel(band3, lut_sampler, uv, 0.0);
+    m.band4 = vec4<f32>(t_zz.a, t_xx.a, t_xz.a, t_x.a);
+    m.band4_m4 = t_z.a;
     return m;
 }
 

@@ -15,11 +15,11 @@
 // Hillaire's 1/(1 − f_ms) series instead assumes every point sees the same light, which is low
 // near the ground, where the sky near the horizon is brightest (measured in docs/ATMOSPHERE.md).
 //
-// `OUTPUT` picks the targets: 0 = the moments (Ψ, zz, xx, xz, x, z) over MULTISCATTERING_LUT_SIZE;
-// 1 = (E, unused…), E the sky irradiance on the ground per unit sun, one row over mu_s (the same
-// u mapping), needed by the next iterate's ground. Ψ and E are stored as their logarithms, the
-// other moments over Ψ (see `Moments` in luts.wgsl); the iteration starts from targets cleared to
-// (LOG_FLOOR, 0, …), i.e. zero.
+// `OUTPUT` picks the targets: 0 = the moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) over
+// MULTISCATTERING_LUT_SIZE; 1 = (E, unused…), E the sky irradiance on the ground per unit sun, one
+// row over mu_s (the same u mapping), needed by the next iterate's ground. Ψ and E are stored as
+// their logarithms, the other moments over Ψ (see `Moments` in luts.wgsl); the iteration starts
+// from targets cleared to (LOG_FLOOR, 0, …), i.e. zero.
 
 @group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
 @group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
@@ -28,6 +28,7 @@
 @group(0) @binding(20) var previous_multiscattering_xz: texture_2d<f32>;
 @group(0) @binding(23) var previous_multiscattering_x: texture_2d<f32>;
 @group(0) @binding(24) var previous_multiscattering_z: texture_2d<f32>;
+@group(0) @binding(28) var previous_multiscattering_band3: texture_2d<f32>;
 
 struct Targets {
     @location(0) psi: vec4<f32>,
@@ -36,6 +37,7 @@ struct Targets {
     @location(3) xz: vec4<f32>,
     @location(4) x: vec4<f32>,
     @location(5) z: vec4<f32>,
+    @location(6) band3: vec4<f32>,
 }
 
 override OUTPUT: u32 = 0u;
@@ -53,9 +55,9 @@ fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<
     let m = sample_moments(
         previous_multiscattering, previous_multiscattering_zz, previous_multiscattering_xx,
         previous_multiscattering_xz, previous_multiscattering_x, previous_multiscattering_z,
-        mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
+        previous_multiscattering_band3, mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s), dot(up, s));
+    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
 }
 
 fn previous_irradiance(mu_s: f32) -> vec3<f32> {
@@ -81,7 +83,9 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     moments.xz = vec3<f32>(0.0);
     moments.x = vec3<f32>(0.0);
     moments.z = vec3<f32>(0.0);
-    moments.zonal = vec4<f32>(0.0);
+    moments.band3 = vec4<f32>(0.0);
+    moments.band4 = vec4<f32>(0.0);
+    moments.band4_m4 = 0.0;
     var irradiance = vec3<f32>(0.0);
     for (var i = 0; i < DIRECTIONS_SQRT; i++) {
         for (var j = 0; j < DIRECTIONS_SQRT; j++) {
@@ -140,9 +144,12 @@ fn fs_main(in: FullscreenVertex) -> Targets {
             moments.xz += light * dir.x * dir.z;
             moments.x += light * dir.x;
             moments.z += light * dir.z;
-            let d_sun = dot(dir, sun);
-            let zonal = vec4<f32>(legendre_3(dir.z), legendre_4(dir.z), legendre_3(d_sun), legendre_4(d_sun));
-            moments.zonal += (light.r + light.g + light.b) * zonal;
+            let light_sum = light.r + light.g + light.b;
+            let y2 = dir.y * dir.y;
+            moments.band3 += light_sum * band3_basis(dir.x, y2, dir.z);
+            let b4 = band4_basis(dir.x, y2, dir.z);
+            moments.band4 += light_sum * b4.low;
+            moments.band4_m4 += light_sum * b4.m4;
             irradiance += light * max(mu, 0.0);
         }
     }
@@ -155,12 +162,16 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     }
     let psi = moments.psi / n;
     let psi_sum = psi.r + psi.g + psi.b;
-    let zonal = select(moments.zonal / n / psi_sum, vec4<f32>(0.0), psi_sum <= 1e-30);
+    let none = psi_sum <= 1e-30;
+    let band3 = select(moments.band3 / n / psi_sum, vec4<f32>(0.0), none);
+    let band4 = select(moments.band4 / n / psi_sum, vec4<f32>(0.0), none);
+    let band4_m4 = select(moments.band4_m4 / n / psi_sum, 0.0, none);
     out.psi = vec4<f32>(encode_log(psi), 0.0);
-    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), zonal.x);
-    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), zonal.y);
-    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), zonal.z);
-    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), zonal.w);
-    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), 0.0);
+    out.zz = vec4<f32>(moment_ratio(moments.zz / n, psi), band4.x);
+    out.xx = vec4<f32>(moment_ratio(moments.xx / n, psi), band4.y);
+    out.xz = vec4<f32>(moment_ratio(moments.xz / n, psi), band4.z);
+    out.x = vec4<f32>(moment_ratio(moments.x / n, psi), band4.w);
+    out.z = vec4<f32>(moment_ratio(moments.z / n, psi), band4_m4);
+    out.band3 = band3;
     return out;
 }
