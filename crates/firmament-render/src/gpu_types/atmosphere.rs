@@ -101,6 +101,8 @@ pub struct AtmosphereParamsUniforms {
 /// the reference (`sky-sample`, 65 536 paths; docs/ATMOSPHERE.md): on Earth (sun 10° up, views
 /// within 1° of the horizon) the whole a₅ overshoots by 1.6–2.2 %, half of it stays within 0.6 %;
 /// on Mars (sun 20° up) the whole a₅ is within 0.3–2.4 %, half of it 0.3–2.8 % low everywhere.
+/// Haze of Earth's kind fifty times thicker would want the whole a₅ again; no single rule fits
+/// every medium with four bands (docs/ATMOSPHERE.md, "Not yet done").
 pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
