@@ -76,8 +76,9 @@ struct Moments {
     band4_m4: f32,
 }
 
-// The light such a field scatters per unit length towards a direction ω with components
-// (`toward`, ·, `up`) in that frame. A phase function with Legendre coefficients a_l scatters
+// The light such a field, at a point of local up `up_axis` with the sun towards s, scatters per
+// unit length towards the ray direction d, whose components in the field's frame are
+// ω = (`toward`, ·, `up`). A phase function with Legendre coefficients a_l scatters
 // Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; L_0 = psi, L_1(ω) = 3 ω·m (m the
 // first moments), L_2(ω) = 5·(3/2 ωᵀQω − psi/2) (Q the second-moment matrix), and L_3, L_4 the
 // stored projections times their harmonics. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10
@@ -89,7 +90,9 @@ struct Moments {
 // the sky away from the sun was 13 % dark; with them held only about the up and sun axes, 4.6 %
 // (docs/ATMOSPHERE.md). Isotropic light (m = 0, Q = psi/3 on the diagonal, no bands 3–4) gives
 // (σ_R + (1 − f)·σ_M)·psi.
-fn scatter_moments(c: Coefficients, m: Moments, up: f32, toward: f32) -> vec3<f32> {
+fn scatter_moments(c: Coefficients, m: Moments, up_axis: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    let up = dot(d, up_axis);
+    let toward = toward_sun_cosine(d, up_axis, s);
     let yy = m.psi - m.xx - m.zz;
     let across2 = max(1.0 - up * up - toward * toward, 0.0);
     let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
@@ -153,9 +156,15 @@ fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: 
     let m = sample_moments(
         multiscattering_lut, multiscattering_zz_lut, multiscattering_xx_lut,
         multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut, multiscattering_band3_lut,
-        mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
+        moments_uv(h, up, s),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+    return scatter_moments(c, m, up, s, d);
+}
+
+// Where the moments of a point at altitude h, local up `up`, sun towards s lie in the
+// multiple-scattering LUTs.
+fn moments_uv(h: f32, up: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
+    return mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE);
 }
 
 // The smallest psi (or ground irradiance) the LUTs hold: ln of it is what "none" is stored as.

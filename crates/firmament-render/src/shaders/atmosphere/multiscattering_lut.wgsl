@@ -55,9 +55,9 @@ fn previous_multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<
     let m = sample_moments(
         previous_multiscattering, previous_multiscattering_zz, previous_multiscattering_xx,
         previous_multiscattering_xz, previous_multiscattering_x, previous_multiscattering_z,
-        previous_multiscattering_band3, mu_s_h_to_uv(dot(up, s), h, MULTISCATTERING_LUT_SIZE),
+        previous_multiscattering_band3, moments_uv(h, up, s),
     );
-    return scatter_moments(c, m, dot(d, up), toward_sun_cosine(d, up, s));
+    return scatter_moments(c, m, up, s, d);
 }
 
 fn previous_irradiance(mu_s: f32) -> vec3<f32> {
