@@ -6,7 +6,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use firmament_core::Camera;
-use firmament_core::frustum::{ClipDepth, Frustum};
+use firmament_core::camera::frustum::{ClipDepth, Frustum};
 use firmament_core::geometry::{Ellipsoid, Ray, Sphere};
 use glam::DVec3;
 

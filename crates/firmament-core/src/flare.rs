@@ -19,10 +19,10 @@ use std::sync::Arc;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 use crate::Camera;
+use crate::camera::frustum::{ClipDepth, Frustum};
+use crate::camera::viewport::{Viewport, project_zero_to_one};
 use crate::error::CoreError;
-use crate::frustum::{ClipDepth, Frustum};
 use crate::texture::TextureImage;
-use crate::viewport::{Viewport, project_zero_to_one};
 
 /// Most occlusion samples per source.
 pub const MAX_FLARE_SAMPLES: u32 = 256;

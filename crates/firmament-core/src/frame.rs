@@ -9,8 +9,8 @@ use crate::classic::scene::ObjectLayer;
 use crate::color::LinearRgb;
 use crate::display::DisplaySettings;
 use crate::flare::FlareLayer;
-use crate::gradient_sky::GradientSkyState;
-use crate::night_sky::NightLayer;
+use crate::sky::gradient::GradientSkyState;
+use crate::sky::night::NightLayer;
 
 /// The sky model drawn behind everything.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,8 +7,17 @@
 
 use glam::DVec4;
 
-use crate::classic::scene::TextureFilter;
 use crate::error::CoreError;
+
+/// Texture filtering, for both magnification and minification (no mipmaps).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TextureFilter {
+    /// `GL_NEAREST`.
+    Nearest,
+    /// `GL_LINEAR`.
+    #[default]
+    Linear,
+}
 
 /// The largest texture side accepted, texels (what every wgpu adapter supports, `max_texture_dimension_2d` ≥ 8192).
 pub const MAX_TEXTURE_SIDE: u32 = 8192;

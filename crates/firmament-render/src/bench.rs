@@ -342,7 +342,7 @@ pub fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLaye
     use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
     use firmament_core::classic::scene::{ClassicLighting, LightSpace, SceneFog, SceneLight, SceneObject};
     use glam::{DMat4, DQuat, DVec3, DVec4};
-    let mesh = Arc::new(firmament_core::mesh::Mesh::glt_sphere(0.4, slices, stacks)?);
+    let mesh = Arc::new(firmament_core::classic::mesh::Mesh::glt_sphere(0.4, slices, stacks)?);
     let side = (count as f64).sqrt().ceil() as usize;
     let objects = (0..count)
         .map(|i| {

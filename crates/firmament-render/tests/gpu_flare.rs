@@ -8,13 +8,13 @@ mod support;
 use std::sync::Arc;
 
 use firmament_core::classic::lighting::Material;
+use firmament_core::classic::mesh::Mesh;
 use firmament_core::classic::scene::{ObjectLayer, SceneObject};
 use firmament_core::color::LinearRgb;
 use firmament_core::display::{DisplaySettings, Exposure, ToneCurve};
 use firmament_core::flare::{FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, element_centers, on_screen};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::{Ray, Sphere};
-use firmament_core::mesh::Mesh;
 use firmament_core::{Camera, Frame};
 use glam::{DMat4, DQuat, DVec2, DVec3, DVec4};
 

@@ -11,14 +11,14 @@ use std::sync::Arc;
 
 use firmament_core::astro::moon::{moon_view, next_phase};
 use firmament_core::astro::{CivilDateTime, Instant};
+use firmament_core::camera::viewport::{Viewport, project_zero_to_one};
 use firmament_core::classic::lighting::Material;
+use firmament_core::classic::mesh::Mesh;
 use firmament_core::classic::scene::{ObjectLayer, SceneObject};
 use firmament_core::color::LinearRgb;
 use firmament_core::display::{DisplaySettings, Exposure, ToneCurve};
 use firmament_core::frame::Sky;
-use firmament_core::mesh::Mesh;
-use firmament_core::night_sky::{MoonDisc, NightLayer, StarPoint};
-use firmament_core::viewport::{Viewport, project_zero_to_one};
+use firmament_core::sky::night::{MoonDisc, NightLayer, StarPoint};
 use firmament_core::{Camera, Frame};
 use firmament_render::FrameTargets;
 use firmament_render::gpu_types::MoonDraw;

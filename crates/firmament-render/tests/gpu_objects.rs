@@ -10,11 +10,12 @@ use std::sync::Arc;
 use firmament_core::Camera;
 use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, FogSun, HeightFog};
 use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
+use firmament_core::classic::mesh::Mesh;
 use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight, SceneObject,
-    Shading, TextureFilter, TransformStep, transform_from_steps,
+    Shading, TransformStep, transform_from_steps,
 };
-use firmament_core::mesh::Mesh;
+use firmament_core::texture::TextureFilter;
 use firmament_core::texture::TextureImage;
 use firmament_render::FrameTargets;
 use firmament_render::passes::ObjectPass;

@@ -224,9 +224,9 @@ pub struct GradientSection {
     /// Exponent shaping the lower gradient, > 0.
     pub lower_exponent: f64,
     /// How colours blend across bands: `"smooth"` or `"linear"`.
-    pub blend: firmament_core::gradient_sky::Blend,
+    pub blend: firmament_core::sky::gradient::Blend,
     /// How colours blend between keyframes in time: `"smooth"` or `"linear"`.
-    pub keyframe_blend: firmament_core::gradient_sky::Blend,
+    pub keyframe_blend: firmament_core::sky::gradient::Blend,
     /// What the keyframes follow: `"clock"` (local solar time) or `"sun-elevation"` (the sun's
     /// elevation, mapped to the time of day at which `[sun]`'s path has it).
     pub by: KeyframesBy,

@@ -1,5 +1,5 @@
 //! The night sky of a frame at a real instant: the stars and the Moon of
-//! [`firmament_core::night_sky`] over `[planet]`'s place, in the units of the frame's sky.
+//! [`firmament_core::sky::night`] over `[planet]`'s place, in the units of the frame's sky.
 //!
 //! - **Physical atmosphere** (cd/m²): a star's light is its illuminance in lux
 //!   (`units_per_lux = 1`), dimmed per channel by the reference transmittance from the camera
@@ -21,7 +21,7 @@ use firmament_core::astro::moon::moon_view;
 use firmament_core::atmosphere::Sun;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS, SeedSky, Sky};
-use firmament_core::night_sky::{HORIZON_CUTOFF_DEG, NightLayer};
+use firmament_core::sky::night::{HORIZON_CUTOFF_DEG, NightLayer};
 use glam::{DMat3, DVec3};
 
 use crate::model::Scene;

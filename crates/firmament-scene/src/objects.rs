@@ -8,13 +8,14 @@ use std::sync::Arc;
 use firmament_core::TimeOfDay;
 use firmament_core::classic::fog::{Fog, FogCoordinate, FogMode, FogSun, HeightFog};
 use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
+use firmament_core::classic::mesh::Mesh;
 use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, MAX_CLASSIC_LIGHTS, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight,
-    SceneObject, Shading, TextureFilter, TransformStep, transform_from_steps,
+    SceneObject, Shading, TransformStep, transform_from_steps,
 };
 use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::frame::Sky;
-use firmament_core::mesh::Mesh;
+use firmament_core::texture::TextureFilter;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3, DVec4};
 

@@ -6,8 +6,8 @@ use firmament_core::atmosphere::Planet;
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
 use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
-use firmament_core::gradient_sky::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
-use firmament_core::sun::{SolarPath, SunDisc};
+use firmament_core::sky::gradient::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
+use firmament_core::sky::sun::{SolarPath, SunDisc};
 use firmament_core::{Camera, Frame, TimeOfDay};
 use glam::DVec3;
 

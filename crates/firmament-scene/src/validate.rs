@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::{Mutex, OnceLock};
 
 use firmament_core::TimeOfDay;
-use firmament_core::mesh::{GLU_CACHE_SIZE, MAX_GLT_SPHERE_DIVISIONS, MAX_QUAD_SUBDIVISIONS};
+use firmament_core::classic::mesh::{GLU_CACHE_SIZE, MAX_GLT_SPHERE_DIVISIONS, MAX_QUAD_SUBDIVISIONS};
 
 use crate::MAX_IMAGE_SIDE;
 use crate::error::SceneError;
@@ -319,7 +319,7 @@ fn log_paths_outside(scene: &Scene) {
 
 #[cfg(test)]
 mod tests {
-    use firmament_core::mesh::Mesh;
+    use firmament_core::classic::mesh::Mesh;
 
     use super::*;
 

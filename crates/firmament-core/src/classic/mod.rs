@@ -7,5 +7,6 @@
 
 pub mod fog;
 pub mod lighting;
+pub mod mesh;
 pub mod scene;
 pub mod sky_light;

@@ -17,8 +17,8 @@ use glam::{DMat4, DVec3, DVec4};
 
 use super::fog::{Fog, FogSun, HeightFog};
 use super::lighting::{Light, LightModel, Material, SpecularModel};
-use crate::mesh::Mesh;
-use crate::texture::TextureImage;
+use crate::classic::mesh::Mesh;
+use crate::texture::{TextureFilter, TextureImage};
 
 /// Most lights classic lighting takes at once (GL guarantees 8; so do we).
 pub const MAX_CLASSIC_LIGHTS: usize = 8;
@@ -112,16 +112,6 @@ impl ObjectLighting {
     pub fn clamps(&self) -> bool {
         !matches!(self, Self::Sky(_))
     }
-}
-
-/// Texture filtering, for both magnification and minification (no mipmaps).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum TextureFilter {
-    /// `GL_NEAREST`.
-    Nearest,
-    /// `GL_LINEAR`.
-    #[default]
-    Linear,
 }
 
 /// A texture on an object, modulating its lit colour (`GL_MODULATE`, repeat wrapping).

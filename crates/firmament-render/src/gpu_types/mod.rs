@@ -9,8 +9,8 @@ use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::color::LinearRgb;
 use firmament_core::display::{DisplaySettings, Encoding, ToneCurve};
-use firmament_core::gradient_sky::{Blend, GradientSkyState};
-use firmament_core::sun::SUN_HORIZON_FADE;
+use firmament_core::sky::gradient::{Blend, GradientSkyState};
+use firmament_core::sky::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
 
 pub mod atmosphere;

@@ -9,7 +9,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
-use firmament_core::night_sky::{MoonDisc, StarPoint};
+use firmament_core::sky::night::{MoonDisc, StarPoint};
 use glam::{DMat4, DVec3};
 
 /// Standard deviation of a star's Gaussian footprint, pixels.

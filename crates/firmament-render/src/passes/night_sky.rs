@@ -1,7 +1,7 @@
 //! The night-sky pass: the stars (an instanced Gaussian footprint each) and the Moon (a disc
 //! shaded per pixel with the Lommel–Seeliger law) added to the HDR target over the sky, where
 //! nothing nearer was drawn. See `shaders/night_sky.wgsl` for the footprint and the disc's
-//! geometry, and [`firmament_core::night_sky`] for the units.
+//! geometry, and [`firmament_core::sky::night`] for the units.
 //!
 //! Depth: both are drawn at the far plane (reversed-Z depth 0) with the sky passes' depth state,
 //! `GreaterEqual` and no writes (`far_plane_depth_state`): against a depth buffer
@@ -11,7 +11,7 @@
 //! Blending is additive, so the daylight sky swamps the stars by itself.
 
 use firmament_core::Camera;
-use firmament_core::night_sky::NightLayer;
+use firmament_core::sky::night::NightLayer;
 
 use crate::gpu_types::{MoonDraw, NightSkyUniforms, StarInstance};
 use crate::passes::SkyTarget;

@@ -11,8 +11,9 @@ use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use firmament_core::Camera;
-use firmament_core::classic::scene::{ObjectLayer, Shading, TextureFilter};
-use firmament_core::mesh::Mesh;
+use firmament_core::classic::mesh::Mesh;
+use firmament_core::classic::scene::{ObjectLayer, Shading};
+use firmament_core::texture::TextureFilter;
 use firmament_core::texture::TextureImage;
 
 pub use self::gpu_mesh::GpuMesh;

@@ -1,7 +1,7 @@
 //! The gradient sky pass: a full-screen triangle at the far plane, coloured by elevation.
 
 use firmament_core::Camera;
-use firmament_core::gradient_sky::GradientSkyState;
+use firmament_core::sky::gradient::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
 use crate::passes::SkyTarget;

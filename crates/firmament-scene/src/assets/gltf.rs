@@ -34,7 +34,7 @@ use ::gltf::{Accessor, Document, Gltf, Node, Primitive};
 use base64::Engine as _;
 use base64::alphabet;
 use base64::engine::{DecodePaddingMode, GeneralPurpose, GeneralPurposeConfig};
-use firmament_core::mesh::Mesh;
+use firmament_core::classic::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DQuat, DVec3};
 

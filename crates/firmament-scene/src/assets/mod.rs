@@ -72,7 +72,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
-use firmament_core::mesh::Mesh;
+use firmament_core::classic::mesh::Mesh;
 pub use firmament_core::texture::MAX_TEXTURE_SIDE;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3};

@@ -1,7 +1,7 @@
 //! Meshes and textures on the GPU for the object pass.
 
-use firmament_core::classic::scene::TextureFilter;
-use firmament_core::mesh::Mesh;
+use firmament_core::classic::mesh::Mesh;
+use firmament_core::texture::TextureFilter;
 use firmament_core::texture::TextureImage;
 use wgpu::util::DeviceExt;
 

@@ -65,7 +65,7 @@ impl App {
         let mut session = session;
         session.clock.paused = options.paused;
         if options.nehe {
-            session.flight.set_mode(firmament_core::flight::FlightMode::NeHe);
+            session.flight.set_mode(super::flight::FlightMode::NeHe);
         }
         Self {
             options,

@@ -10,8 +10,8 @@
 //! the panel, 1 shows and 2 hides the info text (the lesson's "toggle the info on and off"), F12
 //! saves a PNG screenshot (Shift+F12 an EXR), Escape quits.
 
-use firmament_core::controller::ControllerKey;
-use firmament_core::flight::{FlightAction, FlightMode, NeHeVelocity};
+use super::controller::ControllerKey;
+use super::flight::{FlightAction, FlightMode, NeHeVelocity};
 use winit::keyboard::KeyCode;
 
 /// What a key press asks of the viewer (beyond the flight keys held down).

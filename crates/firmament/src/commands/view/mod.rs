@@ -3,12 +3,36 @@
 //! edits every scene value live and saves the scene.
 
 mod app;
+#[cfg_attr(
+    not(test),
+    expect(
+        dead_code,
+        reason = "NeHe lesson 44's camera whole, as its tests check it; the viewer drives it through flight"
+    )
+)]
+mod controller;
 mod fault;
+#[cfg_attr(
+    not(test),
+    expect(
+        dead_code,
+        reason = "pose and altitude helpers the viewer does not call yet, tested with the controller"
+    )
+)]
+mod flight;
 mod gpu;
 mod input;
 mod panel;
 mod scene_editor;
 mod session;
+#[cfg_attr(
+    not(test),
+    expect(
+        dead_code,
+        reason = "the clock's rate and scrub controls, tested; the panel steps the rate ladder"
+    )
+)]
+mod sim_clock;
 
 use firmament_render::wgpu;
 use std::path::PathBuf;

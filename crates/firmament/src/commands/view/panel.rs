@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use firmament_core::flight::FlightMode;
+use super::flight::FlightMode;
 
 use super::scene_editor::SceneEditor;
 use super::session::Session;

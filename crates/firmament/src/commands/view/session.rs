@@ -4,12 +4,12 @@
 
 use std::path::Path;
 
+use super::flight::{FlightAction, FlightController};
+use super::sim_clock::SimClock;
 use anyhow::{Context, Result};
 use firmament_core::astro::CivilDateTime;
 use firmament_core::atmosphere::Planet;
-use firmament_core::flight::{FlightAction, FlightController};
-use firmament_core::sim_clock::SimClock;
-use firmament_core::time_of_day::SECONDS_PER_DAY;
+use firmament_core::sky::time_of_day::SECONDS_PER_DAY;
 use firmament_core::{Frame, TimeOfDay};
 use firmament_scene::{Scene, SceneDocument};
 use glam::DVec3;

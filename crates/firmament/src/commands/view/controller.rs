@@ -6,35 +6,35 @@
 
 use glam::DVec3;
 
-use crate::camera::{Camera, direction_from_heading_elevation, orientation_from_heading_pitch_roll};
+use firmament_core::camera::{Camera, direction_from_heading_elevation, orientation_from_heading_pitch_roll};
 
 /// Largest pitch magnitude, radians (89.9°): looking straight up or down would flip the view.
-pub const MAX_PITCH: f64 = 89.9 * std::f64::consts::PI / 180.0;
+pub(crate) const MAX_PITCH: f64 = 89.9 * std::f64::consts::PI / 180.0;
 
 /// A camera that flies along its view direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FlyController {
+pub(crate) struct FlyController {
     /// Position, metres, world frame.
-    pub position: DVec3,
+    pub(crate) position: DVec3,
     /// Heading from north, clockwise, radians, in [0, 2π).
-    pub heading: f64,
+    pub(crate) heading: f64,
     /// Pitch above the horizon, radians, in [-`MAX_PITCH`, `MAX_PITCH`].
-    pub pitch: f64,
+    pub(crate) pitch: f64,
     /// Forward speed, m/s (negative flies backwards).
-    pub speed: f64,
+    pub(crate) speed: f64,
     /// Largest turn rate, rad/s.
-    pub max_heading_rate: f64,
+    pub(crate) max_heading_rate: f64,
     /// Largest pitch rate, rad/s.
-    pub max_pitch_rate: f64,
+    pub(crate) max_pitch_rate: f64,
     /// Largest speed magnitude, m/s.
-    pub max_speed: f64,
+    pub(crate) max_speed: f64,
     /// Speed change per second while a speed key is held, m/s².
-    pub acceleration: f64,
+    pub(crate) acceleration: f64,
 }
 
 /// The keys of NeHe lesson 44's camera.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ControllerKey {
+pub(crate) enum ControllerKey {
     /// A: turn left.
     TurnLeft,
     /// D: turn right.
@@ -53,7 +53,7 @@ pub enum ControllerKey {
 
 impl FlyController {
     /// A stopped controller at `position` looking along `heading` and `pitch` (radians).
-    pub fn new(position: DVec3, heading: f64, pitch: f64) -> Self {
+    pub(crate) fn new(position: DVec3, heading: f64, pitch: f64) -> Self {
         let mut c = Self {
             position,
             heading: 0.0,
@@ -69,12 +69,12 @@ impl FlyController {
     }
 
     /// The unit view direction.
-    pub fn forward(&self) -> DVec3 {
+    pub(crate) fn forward(&self) -> DVec3 {
         direction_from_heading_elevation(self.heading, self.pitch)
     }
 
     /// Turns by the given angles (radians), wrapping the heading and clamping the pitch.
-    pub fn turn(&mut self, heading_delta: f64, pitch_delta: f64) {
+    pub(crate) fn turn(&mut self, heading_delta: f64, pitch_delta: f64) {
         if heading_delta.is_finite() {
             self.heading = (self.heading + heading_delta).rem_euclid(std::f64::consts::TAU);
             if self.heading >= std::f64::consts::TAU {
@@ -87,19 +87,19 @@ impl FlyController {
     }
 
     /// Changes the speed by `delta` m/s, clamped to ±`max_speed`.
-    pub fn change_velocity(&mut self, delta: f64) {
+    pub(crate) fn change_velocity(&mut self, delta: f64) {
         if delta.is_finite() {
             self.speed = (self.speed + delta).clamp(-self.max_speed, self.max_speed);
         }
     }
 
     /// Stops.
-    pub fn stop(&mut self) {
+    pub(crate) fn stop(&mut self) {
         self.speed = 0.0;
     }
 
     /// Reacts to a key held for `dt` seconds.
-    pub fn apply_key(&mut self, key: ControllerKey, dt: f64) {
+    pub(crate) fn apply_key(&mut self, key: ControllerKey, dt: f64) {
         let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
         match key {
             ControllerKey::TurnLeft => self.turn(-self.max_heading_rate * dt, 0.0),
@@ -113,14 +113,14 @@ impl FlyController {
     }
 
     /// Moves along the view direction for `dt` seconds at the current speed.
-    pub fn update(&mut self, dt: f64) {
+    pub(crate) fn update(&mut self, dt: f64) {
         if dt.is_finite() && dt > 0.0 {
             self.position += self.forward() * (self.speed * dt);
         }
     }
 
     /// `base` with this controller's position and orientation (fov, aspect, planes kept).
-    pub fn camera(&self, base: &Camera) -> Camera {
+    pub(crate) fn camera(&self, base: &Camera) -> Camera {
         Camera {
             position: self.position,
             orientation: orientation_from_heading_pitch_roll(self.heading, self.pitch, 0.0),

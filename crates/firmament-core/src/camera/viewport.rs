@@ -85,7 +85,7 @@ fn unproject_ndc(ndc: DVec4, model_view: &DMat4, projection: &DMat4) -> Option<D
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::projection::{glu_look_at, glu_perspective};
+    use crate::camera::projection::{glu_look_at, glu_perspective};
     use proptest::prelude::*;
 
     fn classic() -> (DMat4, DMat4, Viewport) {

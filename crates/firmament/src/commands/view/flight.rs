@@ -15,47 +15,47 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::atmosphere::Planet;
-use crate::camera::{Camera, direction_from_heading_elevation, orientation_from_heading_pitch_roll};
-use crate::controller::{ControllerKey, FlyController, MAX_PITCH};
+use super::controller::{ControllerKey, FlyController, MAX_PITCH};
+use firmament_core::atmosphere::Planet;
+use firmament_core::camera::{Camera, direction_from_heading_elevation, orientation_from_heading_pitch_roll};
 
 /// Speed at zero altitude with `speed_scale` 1, m/s.
-pub const BASE_SPEED: f64 = 4.0;
+pub(crate) const BASE_SPEED: f64 = 4.0;
 /// How the speed grows with altitude, (m/s) per metre of altitude, i.e. 1/s.
-pub const ALTITUDE_RATE: f64 = 0.5;
+pub(crate) const ALTITUDE_RATE: f64 = 0.5;
 /// The altitude the speed rule saturates at, metres (~100 light years), so speeds stay finite.
-pub const MAX_ALTITUDE: f64 = 1e18;
+pub(crate) const MAX_ALTITUDE: f64 = 1e18;
 /// Speed multiplier while [`FlightAction::Faster`] is held, dimensionless.
-pub const BOOST: f64 = 10.0;
+pub(crate) const BOOST: f64 = 10.0;
 /// Speed multiplier while [`FlightAction::Slower`] is held, dimensionless.
-pub const CREEP: f64 = 0.1;
+pub(crate) const CREEP: f64 = 0.1;
 /// Factor one wheel notch multiplies (up) or divides (down) `speed_scale` by, dimensionless.
-pub const WHEEL_STEP: f64 = 1.25;
+pub(crate) const WHEEL_STEP: f64 = 1.25;
 /// Smallest `speed_scale`, dimensionless.
-pub const MIN_SPEED_SCALE: f64 = 1e-3;
+pub(crate) const MIN_SPEED_SCALE: f64 = 1e-3;
 /// Largest `speed_scale`, dimensionless.
-pub const MAX_SPEED_SCALE: f64 = 1e3;
+pub(crate) const MAX_SPEED_SCALE: f64 = 1e3;
 /// Default mouse-look sensitivity, radians per pixel of mouse motion.
-pub const DEFAULT_LOOK_SENSITIVITY: f64 = 0.003;
+pub(crate) const DEFAULT_LOOK_SENSITIVITY: f64 = 0.003;
 /// In NeHe mode, the controller's speed-up/slow-down acceleration as a fraction of the top speed
 /// per second, 1/s: full speed in two seconds of holding the key (the viewer sets constant speeds
 /// with Z/C/X instead).
-pub const NEHE_ACCELERATION_RATE: f64 = 0.5;
+pub(crate) const NEHE_ACCELERATION_RATE: f64 = 0.5;
 /// Eye height of [`goto_ground`] above the surface, metres.
-pub const GROUND_HEIGHT: f64 = 2.0;
+pub(crate) const GROUND_HEIGHT: f64 = 2.0;
 /// Pitch of [`goto_ground`] above the local horizon, radians (5°).
-pub const GROUND_PITCH: f64 = 5.0 * std::f64::consts::PI / 180.0;
+pub(crate) const GROUND_PITCH: f64 = 5.0 * std::f64::consts::PI / 180.0;
 /// Angle of [`goto_orbit`]'s viewpoint from the zenith of the surface point under the world
 /// origin, towards the south, seen from the planet's centre, radians (45°).
-pub const ORBIT_ZENITH_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
+pub(crate) const ORBIT_ZENITH_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
 /// Smallest distance of [`goto_orbit`] from the planet's centre, in equatorial radii.
-pub const MIN_ORBIT_RADII: f64 = 1.1;
+pub(crate) const MIN_ORBIT_RADII: f64 = 1.1;
 /// Distance [`goto_orbit`] uses when given a non-finite one, in equatorial radii.
-pub const DEFAULT_ORBIT_RADII: f64 = 3.0;
+pub(crate) const DEFAULT_ORBIT_RADII: f64 = 3.0;
 
 /// Which controls drive the camera.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum FlightMode {
+pub(crate) enum FlightMode {
     /// Mouse look; WASD flies forward/left/back/right, Q/E down/up, at the altitude's speed.
     #[default]
     Free,
@@ -69,7 +69,7 @@ pub enum FlightMode {
 /// The movement actions act in [`FlightMode::Free`], the [`FlightAction::NeHe`] ones in
 /// [`FlightMode::NeHe`]; each is ignored in the other mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FlightAction {
+pub(crate) enum FlightAction {
     /// Fly along the view direction.
     Forward,
     /// Fly against the view direction.
@@ -93,7 +93,7 @@ pub enum FlightAction {
 /// NeHe lesson 44's Z, C and X: "'Z' gives the camera a constant forward velocity, 'C' a
 /// constant backward velocity and 'X' will stop the camera" ([`FlightController::set_nehe_velocity`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NeHeVelocity {
+pub(crate) enum NeHeVelocity {
     /// Z: a constant forward speed.
     Forward,
     /// C: a constant backward speed.
@@ -104,7 +104,7 @@ pub enum NeHeVelocity {
 
 impl NeHeVelocity {
     /// The forward speed, m/s, for a flying speed of `speed` m/s.
-    pub fn speed(self, speed: f64) -> f64 {
+    pub(crate) fn speed(self, speed: f64) -> f64 {
         match self {
             Self::Forward => speed,
             Self::Backward => -speed,
@@ -118,29 +118,29 @@ impl NeHeVelocity {
 /// `position`, `heading` and `pitch` are the state in both modes; `nehe` carries NeHe mode's
 /// forward speed and rates and is kept in step with them.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FlightController {
+pub(crate) struct FlightController {
     /// Which controls are active.
-    pub mode: FlightMode,
+    pub(crate) mode: FlightMode,
     /// Eye position, metres, world frame.
-    pub position: DVec3,
+    pub(crate) position: DVec3,
     /// Heading from north (+Y), clockwise towards east (+X), radians, in [0, 2π).
-    pub heading: f64,
+    pub(crate) heading: f64,
     /// Pitch above the world's horizontal plane, radians, in [−`MAX_PITCH`, `MAX_PITCH`].
-    pub pitch: f64,
+    pub(crate) pitch: f64,
     /// Multiplier of the altitude speed rule set by the mouse wheel, dimensionless, in
     /// [`MIN_SPEED_SCALE`, `MAX_SPEED_SCALE`].
-    pub speed_scale: f64,
+    pub(crate) speed_scale: f64,
     /// Mouse-look sensitivity, radians per pixel of mouse motion.
-    pub look_sensitivity: f64,
+    pub(crate) look_sensitivity: f64,
     /// NeHe mode's controller: its forward speed (m/s) persists between updates; its position,
     /// heading, pitch, top speed and acceleration are set from this controller on each update.
-    pub nehe: FlyController,
+    pub(crate) nehe: FlyController,
 }
 
 impl FlightController {
     /// A controller in [`FlightMode::Free`] at `position` (metres) looking along `heading` and
     /// `pitch` (radians; the heading is wrapped and the pitch clamped).
-    pub fn new(position: DVec3, heading: f64, pitch: f64) -> Self {
+    pub(crate) fn new(position: DVec3, heading: f64, pitch: f64) -> Self {
         let mut c = Self {
             mode: FlightMode::Free,
             position,
@@ -158,7 +158,7 @@ impl FlightController {
     /// A controller at `camera`'s position and looking its way: heading and pitch from its
     /// forward vector (the heading from its up vector when looking straight up or down); any roll
     /// is dropped.
-    pub fn from_camera(camera: &Camera) -> Self {
+    pub(crate) fn from_camera(camera: &Camera) -> Self {
         let forward = camera.forward();
         let pitch = forward.z.clamp(-1.0, 1.0).asin();
         // For a camera without roll, forward_h·cos p − up_h·sin p is the unit heading vector
@@ -172,7 +172,7 @@ impl FlightController {
     }
 
     /// `base` with this controller's position and orientation (fov, aspect and planes kept).
-    pub fn camera(&self, base: &Camera) -> Camera {
+    pub(crate) fn camera(&self, base: &Camera) -> Camera {
         Camera {
             position: self.position,
             orientation: orientation_from_heading_pitch_roll(self.heading, self.pitch, 0.0),
@@ -181,18 +181,18 @@ impl FlightController {
     }
 
     /// The unit view direction, world frame.
-    pub fn forward(&self) -> DVec3 {
+    pub(crate) fn forward(&self) -> DVec3 {
         direction_from_heading_elevation(self.heading, self.pitch)
     }
 
     /// The unit horizontal direction to the right of the image, world frame.
-    pub fn right(&self) -> DVec3 {
+    pub(crate) fn right(&self) -> DVec3 {
         let (sh, ch) = self.heading.sin_cos();
         DVec3::new(ch, -sh, 0.0)
     }
 
     /// Switches to `mode`, keeping position, heading and pitch; NeHe's forward speed starts at 0.
-    pub fn set_mode(&mut self, mode: FlightMode) {
+    pub(crate) fn set_mode(&mut self, mode: FlightMode) {
         if mode != self.mode {
             self.mode = mode;
             self.nehe.stop();
@@ -201,7 +201,7 @@ impl FlightController {
     }
 
     /// Switches between [`FlightMode::Free`] and [`FlightMode::NeHe`] (see [`Self::set_mode`]).
-    pub fn toggle_mode(&mut self) {
+    pub(crate) fn toggle_mode(&mut self) {
         self.set_mode(match self.mode {
             FlightMode::Free => FlightMode::NeHe,
             FlightMode::NeHe => FlightMode::Free,
@@ -210,7 +210,7 @@ impl FlightController {
 
     /// Mouse look: `delta_pixels` is the mouse motion in window coordinates (+x right, +y down);
     /// moving right turns right (heading grows), moving down looks down. Works in both modes.
-    pub fn look(&mut self, delta_pixels: DVec2) {
+    pub(crate) fn look(&mut self, delta_pixels: DVec2) {
         let k = self.look_sensitivity;
         self.turn(delta_pixels.x * k, -delta_pixels.y * k);
         self.sync_nehe();
@@ -219,7 +219,7 @@ impl FlightController {
     /// The mouse wheel: each notch up (positive) multiplies `speed_scale` by [`WHEEL_STEP`], each
     /// notch down divides it, within [`MIN_SPEED_SCALE`, `MAX_SPEED_SCALE`]. Fractional notches
     /// (touchpads) scale by the matching power; non-finite ones are ignored.
-    pub fn wheel(&mut self, notches: f64) {
+    pub(crate) fn wheel(&mut self, notches: f64) {
         if notches.is_finite() {
             let scale = self.clamped_speed_scale() * WHEEL_STEP.powf(notches);
             self.speed_scale = scale.clamp(MIN_SPEED_SCALE, MAX_SPEED_SCALE);
@@ -228,14 +228,14 @@ impl FlightController {
 
     /// NeHe mode's forward speed from now on: `velocity` at the flying speed at `altitude`
     /// metres ([`Self::speed`]) — kept, not a held acceleration.
-    pub fn set_nehe_velocity(&mut self, velocity: NeHeVelocity, altitude: f64) {
+    pub(crate) fn set_nehe_velocity(&mut self, velocity: NeHeVelocity, altitude: f64) {
         self.nehe.speed = velocity.speed(self.speed(altitude));
     }
 
     /// Flying speed at `altitude` metres, m/s: `speed_scale · (BASE_SPEED + ALTITUDE_RATE · h)`
     /// with `h` the altitude clamped to [0, `MAX_ALTITUDE`] (0 when not finite). Always finite and
     /// positive.
-    pub fn speed(&self, altitude: f64) -> f64 {
+    pub(crate) fn speed(&self, altitude: f64) -> f64 {
         let h = if altitude.is_finite() {
             altitude.clamp(0.0, MAX_ALTITUDE)
         } else {
@@ -254,7 +254,7 @@ impl FlightController {
     /// slows on the way down) and its acceleration to [`NEHE_ACCELERATION_RATE`] times that, feeds
     /// it the held NeHe keys, then lets it fly. A non-finite or non-positive `dt` does nothing; a
     /// step that would make the position non-finite is dropped.
-    pub fn update(&mut self, held: &[FlightAction], altitude: f64, dt: f64) {
+    pub(crate) fn update(&mut self, held: &[FlightAction], altitude: f64, dt: f64) {
         if !(dt.is_finite() && dt > 0.0) {
             return;
         }
@@ -309,7 +309,7 @@ impl FlightController {
 
     /// Sets position, heading and pitch, wrapping the heading and clamping the pitch; NeHe's
     /// forward speed is zeroed.
-    pub fn set_pose(&mut self, position: DVec3, heading: f64, pitch: f64) {
+    pub(crate) fn set_pose(&mut self, position: DVec3, heading: f64, pitch: f64) {
         self.position = position;
         self.heading = 0.0;
         self.pitch = 0.0;
@@ -319,19 +319,19 @@ impl FlightController {
     }
 
     /// Goes to [`goto_ground`]'s view of `planet`, keeping the current heading.
-    pub fn go_to_ground(&mut self, planet: &Planet) {
+    pub(crate) fn go_to_ground(&mut self, planet: &Planet) {
         let (position, heading, pitch) = goto_ground(planet, self.heading);
         self.set_pose(position, heading, pitch);
     }
 
     /// Goes to [`goto_orbit`]'s view of `planet` from `distance_in_radii` equatorial radii.
-    pub fn go_to_orbit(&mut self, planet: &Planet, distance_in_radii: f64) {
+    pub(crate) fn go_to_orbit(&mut self, planet: &Planet, distance_in_radii: f64) {
         let (position, heading, pitch) = goto_orbit(planet, distance_in_radii);
         self.set_pose(position, heading, pitch);
     }
 
     /// The eye's geodetic altitude above `planet` (posed in the world frame), metres.
-    pub fn altitude_above(&self, planet: &Planet) -> f64 {
+    pub(crate) fn altitude_above(&self, planet: &Planet) -> f64 {
         altitude_above(planet, self.position)
     }
 
@@ -374,7 +374,7 @@ impl Default for FlightController {
 
 /// The geodetic altitude of world-frame `position` above `planet` (posed in the world frame),
 /// metres (negative inside).
-pub fn altitude_above(planet: &Planet, position: DVec3) -> f64 {
+pub(crate) fn altitude_above(planet: &Planet, position: DVec3) -> f64 {
     planet.altitude(planet.to_planet_frame(position))
 }
 
@@ -417,7 +417,7 @@ fn tangent_towards(up: DVec3, towards: DVec3) -> DVec3 {
 /// For a planet posed at the world origin ([`Planet::posed_at`]) the local horizon is the world's
 /// horizontal plane; otherwise the direction is turned into heading and pitch in the world frame,
 /// and the camera, which keeps world +Z up, sees the horizon tilted.
-pub fn goto_ground(planet: &Planet, heading: f64) -> (DVec3, f64, f64) {
+pub(crate) fn goto_ground(planet: &Planet, heading: f64) -> (DVec3, f64, f64) {
     let heading = if heading.is_finite() { heading } else { 0.0 };
     let (site, up) = origin_site(planet);
     let position = site + up * GROUND_HEIGHT;
@@ -432,7 +432,7 @@ pub fn goto_ground(planet: &Planet, heading: f64) -> (DVec3, f64, f64) {
 /// finite), [`ORBIT_ZENITH_ANGLE`] south of the zenith of the surface point under the world origin,
 /// looking at the centre. Returns `(position in metres, heading, pitch)`, world frame; the centre
 /// is in the middle of the view (within the 0.1° of the pitch clamp).
-pub fn goto_orbit(planet: &Planet, distance_in_radii: f64) -> (DVec3, f64, f64) {
+pub(crate) fn goto_orbit(planet: &Planet, distance_in_radii: f64) -> (DVec3, f64, f64) {
     let radii = if distance_in_radii.is_finite() {
         distance_in_radii.max(MIN_ORBIT_RADII)
     } else {

@@ -106,8 +106,8 @@ impl Frustum {
 mod tests {
     use super::*;
     use crate::camera::Camera;
-    use crate::projection::{glu_look_at, glu_perspective};
-    use crate::viewport::{Viewport, project, project_zero_to_one};
+    use crate::camera::projection::{glu_look_at, glu_perspective};
+    use crate::camera::viewport::{Viewport, project, project_zero_to_one};
     use proptest::prelude::*;
 
     fn gl_setup() -> (DMat4, DMat4) {

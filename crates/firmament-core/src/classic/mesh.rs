@@ -47,7 +47,7 @@ pub const NORMAL_LENGTH_TOLERANCE: f64 = 1e-5;
 /// An indexed triangle mesh: per-vertex positions, normals and texture coordinates, and a
 /// triangle list of indices into them (counter-clockwise front faces).
 ///
-/// `f32` on purpose: see the [module documentation](crate::mesh).
+/// `f32` on purpose: see the [module documentation](crate::classic::mesh).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Mesh {
     /// Vertex positions, metres.

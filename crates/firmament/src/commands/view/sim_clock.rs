@@ -6,14 +6,14 @@
 //! seconds between frames; [`SimClock::rate`] is simulated seconds per real second.
 
 /// Simulated seconds in an hour.
-pub const SECONDS_PER_HOUR: f64 = 3600.0;
+pub(crate) const SECONDS_PER_HOUR: f64 = 3600.0;
 /// Simulated seconds in a day (the civil day: scrub the date by this).
-pub const SECONDS_PER_DAY: f64 = 86_400.0;
+pub(crate) const SECONDS_PER_DAY: f64 = 86_400.0;
 /// Largest rate magnitude, simulated seconds per real second (~116 days per second).
-pub const MAX_RATE: f64 = 1e7;
+pub(crate) const MAX_RATE: f64 = 1e7;
 /// The rates [`SimClock::faster`] and [`SimClock::slower`] step through, simulated seconds per real
 /// second: real time, 10 s/s, 1 min/s, 10 min/s, 1 h/s, 6 h/s, 1 day/s, 7 days/s, 30 days/s.
-pub const RATE_LADDER: [f64; 9] = [
+pub(crate) const RATE_LADDER: [f64; 9] = [
     1.0,
     10.0,
     60.0,
@@ -27,13 +27,13 @@ pub const RATE_LADDER: [f64; 9] = [
 
 /// The viewer's simulated clock.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SimClock {
+pub(crate) struct SimClock {
     /// Simulated seconds since the scene's own moment (negative before it).
-    pub offset_seconds: f64,
+    pub(crate) offset_seconds: f64,
     /// Simulated seconds per real second; negative runs time backwards; |rate| ≤ [`MAX_RATE`].
-    pub rate: f64,
+    pub(crate) rate: f64,
     /// Whether time stands still ([`SimClock::advance`] does nothing; scrubbing still works).
-    pub paused: bool,
+    pub(crate) paused: bool,
 }
 
 impl Default for SimClock {
@@ -50,7 +50,7 @@ impl Default for SimClock {
 impl SimClock {
     /// Advances by `real_dt` real seconds: the offset grows by `rate · real_dt` simulated seconds.
     /// Does nothing while paused, or for a non-finite or negative `real_dt`.
-    pub fn advance(&mut self, real_dt: f64) {
+    pub(crate) fn advance(&mut self, real_dt: f64) {
         if self.paused || !(real_dt.is_finite() && real_dt > 0.0) {
             return;
         }
@@ -58,13 +58,13 @@ impl SimClock {
     }
 
     /// Pauses when playing, plays when paused.
-    pub fn toggle_pause(&mut self) {
+    pub(crate) fn toggle_pause(&mut self) {
         self.paused = !self.paused;
     }
 
     /// The next rung of [`RATE_LADDER`] above |rate|, keeping the direction (no change at the
     /// top). A stopped clock (rate 0) goes to real time, forwards.
-    pub fn faster(&mut self) {
+    pub(crate) fn faster(&mut self) {
         let sign = self.direction();
         let magnitude = self.rate.abs();
         if let Some(&next) = RATE_LADDER.iter().find(|&&r| r > magnitude) {
@@ -74,7 +74,7 @@ impl SimClock {
 
     /// The next rung of [`RATE_LADDER`] below |rate|, keeping the direction (no change at real
     /// time or slower).
-    pub fn slower(&mut self) {
+    pub(crate) fn slower(&mut self) {
         let sign = self.direction();
         let magnitude = self.rate.abs();
         if let Some(&next) = RATE_LADDER.iter().rev().find(|&&r| r < magnitude) {
@@ -83,13 +83,13 @@ impl SimClock {
     }
 
     /// Runs time the other way at the same speed.
-    pub fn reverse(&mut self) {
+    pub(crate) fn reverse(&mut self) {
         self.rate = -self.rate;
     }
 
     /// Sets the rate, simulated seconds per real second, clamped to ±[`MAX_RATE`]; a non-finite
     /// rate is ignored.
-    pub fn set_rate(&mut self, rate: f64) {
+    pub(crate) fn set_rate(&mut self, rate: f64) {
         if rate.is_finite() {
             self.rate = rate.clamp(-MAX_RATE, MAX_RATE);
         }
@@ -98,21 +98,21 @@ impl SimClock {
     /// Moves the clock by `seconds` simulated seconds (negative goes back), paused or not: scrub
     /// the time of day by hours ([`SECONDS_PER_HOUR`]) and the date by days
     /// ([`SECONDS_PER_DAY`]). A non-finite amount is ignored.
-    pub fn scrub(&mut self, seconds: f64) {
+    pub(crate) fn scrub(&mut self, seconds: f64) {
         if seconds.is_finite() {
             self.add(seconds);
         }
     }
 
     /// Back to the scene's moment at real time, forwards; paused or playing as before.
-    pub fn reset(&mut self) {
+    pub(crate) fn reset(&mut self) {
         self.offset_seconds = 0.0;
         self.rate = 1.0;
     }
 
     /// The rate for an info panel: `"×60 (1 min/s)"`, `"×1 (real time)"`,
     /// `"×-3600 (1 h/s backwards)"`, `"×0 (stopped)"`. It does not say whether the clock is paused.
-    pub fn describe_rate(&self) -> String {
+    pub(crate) fn describe_rate(&self) -> String {
         let rate = if self.rate.is_finite() { self.rate } else { 0.0 };
         let factor = format!("×{}", significant(rate));
         let magnitude = rate.abs();

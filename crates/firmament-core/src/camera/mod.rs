@@ -1,8 +1,10 @@
 //! A perspective camera with an `f64` position, so it stays exact far from the origin.
 
-use glam::{DMat3, DMat4, DQuat, DVec2, DVec3, DVec4};
+pub mod frustum;
+pub mod projection;
+pub mod viewport;
 
-use crate::projection;
+use glam::{DMat3, DMat4, DQuat, DVec2, DVec3, DVec4};
 
 /// A perspective camera in the world frame (see the crate's conventions: +Z up).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::camera::direction_from_heading_elevation;
 use crate::color::LinearRgb;
-use crate::time_of_day::{SECONDS_PER_DAY, TimeOfDay};
+use crate::sky::time_of_day::{SECONDS_PER_DAY, TimeOfDay};
 
 /// The sun's diurnal path for a fixed latitude and declination, in local apparent solar time.
 ///

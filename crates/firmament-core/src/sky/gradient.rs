@@ -16,7 +16,7 @@
 
 use crate::color::LinearRgb;
 use crate::error::CoreError;
-use crate::time_of_day::TimeOfDay;
+use crate::sky::time_of_day::TimeOfDay;
 
 /// How a weight in [0, 1] is shaped before it mixes two colours.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -233,7 +233,7 @@ pub struct GradientSkyState {
     /// Their colours now.
     pub bands: SkyBands,
     /// The sun drawn over the bands.
-    pub sun: crate::sun::SunDisc,
+    pub sun: crate::sky::sun::SunDisc,
 }
 
 impl GradientSkyState {
