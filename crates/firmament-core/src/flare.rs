@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
-use crate::Camera;
+use crate::camera::Camera;
 use crate::camera::frustum::{ClipDepth, Frustum};
 use crate::camera::viewport::{Viewport, project_zero_to_one};
 use crate::error::CoreError;

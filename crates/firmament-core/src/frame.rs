@@ -58,10 +58,10 @@ pub struct AtmosphereSky {
 
 impl AtmosphereSky {
     /// Checks the atmosphere, every sun and the number of suns.
-    pub fn validate(&self) -> Result<(), crate::CoreError> {
+    pub fn validate(&self) -> Result<(), crate::error::CoreError> {
         self.atmosphere.validate()?;
         if self.suns.len() > MAX_SUNS {
-            return Err(crate::CoreError::Invalid {
+            return Err(crate::error::CoreError::Invalid {
                 field: "suns",
                 value: format!("{} suns", self.suns.len()),
                 rule: "at most 8 suns",
@@ -106,8 +106,8 @@ impl SeedSky {
     /// position, radius > 0 m, finite non-zero direction, colour finite and >= 0) and the
     /// luminance (finite, > 0 cd/m²). Field names start with `seed.` (the atmosphere's own with
     /// `atmosphere.seed.`).
-    pub fn validate(&self) -> Result<(), crate::CoreError> {
-        let invalid = |field, value: String, rule| Err(crate::CoreError::Invalid { field, value, rule });
+    pub fn validate(&self) -> Result<(), crate::error::CoreError> {
+        let invalid = |field, value: String, rule| Err(crate::error::CoreError::Invalid { field, value, rule });
         self.atmosphere.validate()?;
         if !self.center.is_finite() {
             return invalid("seed.center", format!("{:?}", self.center.to_array()), "must be finite");
@@ -319,7 +319,7 @@ mod tests {
     #[test]
     fn seed_sky_validation_names_the_field() {
         let field = |sky: SeedSky| match sky.validate() {
-            Err(crate::CoreError::Invalid { field, .. }) => field,
+            Err(crate::error::CoreError::Invalid { field, .. }) => field,
             other => panic!("{other:?}"),
         };
         let good = seed_sky();

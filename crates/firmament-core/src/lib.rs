@@ -16,6 +16,17 @@
 //! - **Directions** are unit vectors; **elevation** is the angle above the local horizon plane,
 //!   **heading** (azimuth) is measured from north (+y) clockwise towards east (+x).
 //! - **Colours** are linear RGB (not sRGB-encoded) unless a name says `srgb`.
+//!
+//! # Where things are
+//! - [`atmosphere`]: the physical sky — planet ellipsoid, media, suns, presets and the `f64`
+//!   reference integrator every GPU pass is checked against.
+//! - [`astro`]: time scales, NREL's SPA for the Sun, Meeus's Moon, sidereal time, the stars.
+//! - [`camera`]: the camera, its projections (reversed-Z and `glu*`-exact), frustum, viewport.
+//! - [`sky`]: the keyframed gradient sky, the sun's diurnal path, the time of day, the night sky.
+//! - [`classic`]: OpenGL 2.1 fixed-function lighting and fog, and the GLTools/GLU meshes.
+//! - [`flare`]: lens-flare elements and their placement; [`texture`]: texture images.
+//! - [`frame`]: everything one rendered frame needs, gathered; [`display`] and [`color`]: exposure,
+//!   tone curves, colour spaces; [`geometry`]: rays, spheres, ellipsoids.
 
 pub mod astro;
 pub mod atmosphere;

@@ -17,7 +17,7 @@ use glam::DVec3;
 use super::spa_terms::{B_TERMS, L_TERMS, NUTATION_ABCD, NUTATION_Y, R_TERMS};
 use super::time::J2000;
 use super::{Instant, horizon_direction};
-use crate::CoreError;
+use crate::error::CoreError;
 
 /// The sun's apparent radius that SPA uses for sunrise and sunset and for its refraction rule,
 /// degrees.

@@ -5,7 +5,7 @@
 //! none: the polynomials of Espenak & Meeus (*Five Millennium Canon of Solar Eclipses*, NASA
 //! TP-2006-214141, 2006), a few seconds from the measured value over 1950–2050.
 
-use crate::CoreError;
+use crate::error::CoreError;
 
 /// Seconds in a day.
 const SECONDS_PER_DAY: f64 = 86_400.0;

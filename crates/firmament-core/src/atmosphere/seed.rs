@@ -36,7 +36,7 @@
 
 use glam::DVec3;
 
-use crate::CoreError;
+use crate::error::CoreError;
 use crate::geometry::{Ellipsoid, Ray, RayHits, Sphere};
 
 /// Number of integration steps along the visible segment (the seed's `const int n=8`, line 390).

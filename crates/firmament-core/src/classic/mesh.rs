@@ -29,7 +29,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::CoreError;
+use crate::error::CoreError;
 
 /// The most cells per side [`Mesh::quad`] takes (`4096² = 16.8 M` cells).
 pub const MAX_QUAD_SUBDIVISIONS: u32 = 4096;

@@ -16,97 +16,24 @@
 //!   included without bias; [`MultipleScattering::per_order`] shows how each order adds.
 //!
 //! All inputs are in the world frame; the computation runs in the planet frame.
+//!
+//! [`Planet::altitude`]: crate::atmosphere::Planet::altitude
 
+mod inputs;
 mod path_tracer;
 mod quadrature;
 
 use glam::DVec3;
 
 use crate::atmosphere::spectrum::Spectrum;
-use crate::atmosphere::{Atmosphere, Planet, Sun};
+use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
 use crate::geometry::Ray;
+use inputs::segment;
 use quadrature::adaptive_simpson;
 
+pub use inputs::{Reference, ReferenceSettings};
 pub use path_tracer::{MultipleScattering, TALLIED_ORDERS};
-
-/// How hard the reference works.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ReferenceSettings {
-    /// Simpson panels along a view ray for single scattering (even).
-    pub view_steps: usize,
-    /// Monte Carlo paths per estimate of multiple scattering.
-    pub paths: usize,
-    /// Seed of the path tracer's random numbers.
-    pub seed: u64,
-    /// Radiance arriving from space in every direction, W·m⁻²·sr⁻¹·nm⁻¹ (zero for a real sky; a
-    /// uniform value turns the path tracer into a white-furnace test).
-    pub background: Spectrum,
-}
-
-impl Default for ReferenceSettings {
-    fn default() -> Self {
-        Self {
-            view_steps: 1024,
-            paths: 4096,
-            seed: 0x5EED_F1A7,
-            background: Spectrum::ZERO,
-        }
-    }
-}
-
-/// The visible part of a ray through the atmosphere, planet frame, metres along the ray.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Segment {
-    /// Where the ray enters the atmosphere (0 when it starts inside).
-    pub start: f64,
-    /// Where it leaves it or meets the ground.
-    pub end: f64,
-    /// True when the segment ends on the ground.
-    pub ends_on_ground: bool,
-}
-
-impl Segment {
-    /// The part of the segment in front of an opaque surface at `limit` along the ray (`None`
-    /// when the surface hides all of it), and whether the surface cut it short.
-    pub(crate) fn before(self, limit: f64) -> (Option<Self>, bool) {
-        if limit >= self.end {
-            (Some(self), false)
-        } else if limit <= self.start {
-            (None, true)
-        } else {
-            let cut = Self {
-                end: limit,
-                ends_on_ground: false,
-                ..self
-            };
-            (Some(cut), true)
-        }
-    }
-}
-
-/// The part of a planet-frame ray inside the atmosphere and above the ground, if any.
-pub(crate) fn segment(planet: &Planet, ray: &Ray) -> Option<Segment> {
-    let top = planet.atmosphere_top().intersect(ray)?;
-    if top.far <= 0.0 {
-        return None;
-    }
-    let start = top.near.max(0.0);
-    let mut end = top.far;
-    let mut ends_on_ground = false;
-    if let Some(ground) = planet.surface().intersect(ray)
-        && ground.far > 0.0
-        && ground.near < end
-    {
-        end = ground.near.max(start);
-        ends_on_ground = true;
-    }
-    Some(Segment {
-        start,
-        end,
-        ends_on_ground,
-    })
-}
 
 /// The radiance reaching the eye along one view ray, by source, W·m⁻²·sr⁻¹·nm⁻¹.
 #[derive(Debug, Clone, PartialEq)]
@@ -142,15 +69,6 @@ pub struct GroundIrradiance {
     pub direct: Spectrum,
     /// From the whole sky (all orders of scattering and ground inter-reflection).
     pub sky: Spectrum,
-}
-
-/// The reference integrator for one atmosphere lit by some suns.
-#[derive(Debug, Clone)]
-pub struct Reference {
-    atmosphere: Atmosphere,
-    /// Suns in the planet frame (directions converted).
-    suns: Vec<Sun>,
-    settings: ReferenceSettings,
 }
 
 impl Reference {

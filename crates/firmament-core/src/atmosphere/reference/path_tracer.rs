@@ -24,7 +24,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 
-use super::{Reference, segment};
+use super::inputs::{Reference, segment};
 use crate::atmosphere::medium::{LocalCoefficients, henyey_greenstein, rayleigh_phase};
 use crate::atmosphere::spectrum::Spectrum;
 use crate::geometry::Ray;

@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use super::*;
 use crate::atmosphere::medium::{DensityLayer, DensityProfile, rayleigh_phase};
-use crate::atmosphere::presets;
+use crate::atmosphere::{Planet, presets};
 
 fn relative(a: Spectrum, b: Spectrum) -> f64 {
     ((a - b) / b).abs().max_element()
