@@ -1,11 +1,11 @@
 //! The command line, declared with clap's derive API.
 
+pub(crate) mod values;
+
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use firmament_core::astro::CivilDateTime;
-
-use crate::commands::{sun, timelapse};
 
 /// firmament renders skies — a keyframed gradient sky with a day/night cycle, sun disc and glow —
 /// headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float).
@@ -191,25 +191,25 @@ pub(crate) struct SkySampleArgs {
 pub(crate) struct SunArgs {
     /// Date and time, ISO 8601: `2003-10-17T12:30:30-07:00`, `2003-10-17T19:30:30Z`, or without an
     /// offset for UTC. Sunrise, solar noon and sunset are given on the same clock.
-    #[arg(long, value_name = "ISO8601", value_parser = sun::spa_time)]
+    #[arg(long, value_name = "ISO8601", value_parser = values::spa_time)]
     pub(crate) time: CivilDateTime,
     /// Latitude, degrees north, [-90, 90].
-    #[arg(long, value_name = "DEG", value_parser = sun::latitude, allow_negative_numbers = true)]
+    #[arg(long, value_name = "DEG", value_parser = values::latitude, allow_negative_numbers = true)]
     pub(crate) lat: f64,
     /// Longitude, degrees east (west negative), [-180, 180].
-    #[arg(long, value_name = "DEG", value_parser = sun::longitude, allow_negative_numbers = true)]
+    #[arg(long, value_name = "DEG", value_parser = values::longitude, allow_negative_numbers = true)]
     pub(crate) lon: f64,
     /// Elevation above sea level, metres.
-    #[arg(long, value_name = "M", default_value_t = 0.0, value_parser = sun::elevation, allow_negative_numbers = true)]
+    #[arg(long, value_name = "M", default_value_t = 0.0, value_parser = values::elevation, allow_negative_numbers = true)]
     pub(crate) elevation: f64,
     /// Annual mean local pressure for refraction, millibars, (0, 5000].
-    #[arg(long, value_name = "MBAR", default_value_t = 1010.0, value_parser = sun::pressure, allow_negative_numbers = true)]
+    #[arg(long, value_name = "MBAR", default_value_t = 1010.0, value_parser = values::pressure, allow_negative_numbers = true)]
     pub(crate) pressure: f64,
     /// Annual mean local temperature for refraction, °C.
-    #[arg(long, value_name = "C", default_value_t = 10.0, value_parser = sun::temperature, allow_negative_numbers = true)]
+    #[arg(long, value_name = "C", default_value_t = 10.0, value_parser = values::temperature, allow_negative_numbers = true)]
     pub(crate) temperature: f64,
     /// ΔT = TT − UT, seconds (default: Espenak & Meeus's estimate for the date).
-    #[arg(long, value_name = "S", value_parser = sun::delta_t, allow_negative_numbers = true)]
+    #[arg(long, value_name = "S", value_parser = values::delta_t, allow_negative_numbers = true)]
     pub(crate) delta_t: Option<f64>,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -224,13 +224,13 @@ pub(crate) struct TimelapseArgs {
     pub(crate) scene_args: SceneArgs,
     /// The first frame's instant, ISO 8601 (`2024-03-20T16:00:00Z`, `...+01:00`, or no offset
     /// for UTC); every frame is on its clock.
-    #[arg(long, value_name = "ISO8601", value_parser = timelapse::date_time)]
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time)]
     pub(crate) from: CivilDateTime,
     /// The last frame's instant, ISO 8601; not before --from.
-    #[arg(long, value_name = "ISO8601", value_parser = timelapse::date_time)]
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time)]
     pub(crate) to: CivilDateTime,
     /// Frames, 1 to 100000, evenly spaced from --from to --to, both included (1: --from only).
-    #[arg(long, value_name = "N", value_parser = timelapse::frame_count)]
+    #[arg(long, value_name = "N", value_parser = values::frame_count)]
     pub(crate) frames: u32,
     /// Output folder (created if missing): frame_0001.png …, timelapse.gif, contact_sheet.png.
     #[arg(short, long, value_name = "DIR")]

@@ -2,75 +2,11 @@
 //! sunrise, solar noon and sunset.
 
 use anyhow::{Context, Result};
-use firmament_core::CoreError;
+use firmament_core::astro::Instant;
 use firmament_core::astro::spa::{self, RiseSet, SpaInput};
-use firmament_core::astro::time::J2000;
 use firmament_core::astro::time::format_offset;
-use firmament_core::astro::{CivilDateTime, Instant};
 
 use crate::cli::SunArgs;
-
-/// Checks one value by SPA's own rules ([`SpaInput::validate`]): `set` puts it into an input
-/// that is otherwise valid. The error is the rule it breaks, which clap prints after the flag and
-/// the value.
-fn check(set: impl FnOnce(&mut SpaInput)) -> Result<(), String> {
-    let mut input = SpaInput::new(Instant::from_jd(J2000), 0.0, 0.0);
-    set(&mut input);
-    input.validate().map_err(|e| match e {
-        CoreError::Invalid { rule, .. } => rule.to_owned(),
-        other => other.to_string(),
-    })
-}
-
-/// A number, as clap's value parsers want it.
-fn number(text: &str) -> Result<f64, String> {
-    text.trim()
-        .parse::<f64>()
-        .map_err(|_| format!("`{text}` is not a number"))
-}
-
-/// `--time`: ISO 8601, within SPA's years −2000 to 6000.
-pub(crate) fn spa_time(text: &str) -> Result<CivilDateTime, String> {
-    let civil = firmament_scene::parse_date_time(text)?;
-    check(|input| input.instant.jd = civil.julian_date())?;
-    Ok(civil)
-}
-
-/// `--lat`: degrees, [−90, 90].
-pub(crate) fn latitude(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.latitude_deg = v).map(|()| v)
-}
-
-/// `--lon`: degrees, [−180, 180].
-pub(crate) fn longitude(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.longitude_deg = v).map(|()| v)
-}
-
-/// `--elevation`: metres, finite.
-pub(crate) fn elevation(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.elevation_m = v).map(|()| v)
-}
-
-/// `--pressure`: millibars, (0, 5000].
-pub(crate) fn pressure(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.pressure_mbar = v).map(|()| v)
-}
-
-/// `--temperature`: °C, (−273, 6000].
-pub(crate) fn temperature(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.temperature_c = v).map(|()| v)
-}
-
-/// `--delta-t`: seconds, within ±8000.
-pub(crate) fn delta_t(text: &str) -> Result<f64, String> {
-    let v = number(text)?;
-    check(|input| input.instant.delta_t = v).map(|()| v)
-}
 
 /// `HH:MM:SS` of local hours in [0, 24), truncated to the second as NREL's `spa_tester.c`
 /// prints its times.
@@ -173,6 +109,7 @@ pub(crate) fn run(args: &SunArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use firmament_core::astro::CivilDateTime;
 
     #[test]
     fn times_print_on_the_given_clock() {
