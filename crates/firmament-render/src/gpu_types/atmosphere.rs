@@ -11,6 +11,7 @@ use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
+use super::codes;
 use super::planet_view::PlanetView;
 use super::vec3_w;
 
@@ -27,7 +28,7 @@ fn spectrum_w(s: Spectrum, w: f64) -> [f32; 4] {
     [s.x as f32, s.y as f32, s.z as f32, w as f32]
 }
 
-/// Mirrors `DensityProfile` in `atmosphere/common.wgsl`.
+/// Mirrors `DensityProfile` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct DensityProfileUniform {
@@ -57,13 +58,14 @@ impl DensityProfileUniform {
     }
 }
 
-/// Mirrors `AtmosphereParams` in `atmosphere/common.wgsl`: everything the LUTs depend on.
+/// Mirrors `AtmosphereParams` in `shaders/atmosphere/bindings.wgsl`: everything the LUTs depend on.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct AtmosphereParamsUniforms {
     /// Ellipsoid semi-axes (m); `w` = atmosphere height (m).
     pub radii: [f32; 4],
-    /// Bottom and top radius of the LUT sphere (m), Mie g, Mie phase (0 CS, 1 HG).
+    /// Bottom and top radius of the LUT sphere (m), Mie g, Mie phase (a `MIE_PHASE_*` of
+    /// [`codes`]).
     pub lut: [f32; 4],
     /// Rayleigh scattering at density 1, m⁻¹.
     pub rayleigh_scattering: [f32; 4],
@@ -119,8 +121,8 @@ impl AtmosphereParamsUniforms {
         let medium = &atmosphere.medium;
         let bottom = lut_bottom_radius(atmosphere);
         let (g, phase) = match medium.mie.phase {
-            MiePhase::CornetteShanks { g } => (g, 0.0),
-            MiePhase::HenyeyGreenstein { g } => (g, 1.0),
+            MiePhase::CornetteShanks { g } => (g, codes::MIE_PHASE_CORNETTE_SHANKS),
+            MiePhase::HenyeyGreenstein { g } => (g, codes::MIE_PHASE_HENYEY_GREENSTEIN),
         };
         Self {
             radii: vec3_w(planet.radii, planet.atmosphere_height),
@@ -128,7 +130,7 @@ impl AtmosphereParamsUniforms {
                 bottom as f32,
                 (bottom + planet.atmosphere_height) as f32,
                 g as f32,
-                phase,
+                phase as f32,
             ],
             rayleigh_scattering: spectrum_w(medium.rayleigh.scattering, 0.0),
             mie_scattering: spectrum_w(medium.mie.scattering, 0.0),
@@ -153,7 +155,7 @@ impl AtmosphereParamsUniforms {
     }
 }
 
-/// Mirrors `AtmosphereSun` in `atmosphere/view.wgsl`.
+/// Mirrors `AtmosphereSun` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct AtmosphereSunUniform {
@@ -163,7 +165,7 @@ pub struct AtmosphereSunUniform {
     pub irradiance: [f32; 4],
 }
 
-/// Mirrors `AtmosphereView` in `atmosphere/view.wgsl`.
+/// Mirrors `AtmosphereView` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct AtmosphereViewUniforms {

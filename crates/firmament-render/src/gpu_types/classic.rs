@@ -11,6 +11,8 @@ use firmament_core::classic::lighting::{Material, SpecularModel};
 use firmament_core::classic::scene::{MAX_CLASSIC_LIGHTS, ObjectLighting, SceneFog, SceneObject, Shading};
 use glam::{DMat3, DMat4, DVec3};
 
+use super::codes;
+
 /// Mirrors `ClassicLight` in `shaders/classic_lighting.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -55,11 +57,11 @@ pub struct ClassicFrameUniforms {
     pub scene_ambient: [f32; 4],
     /// Light count, local viewer, two-sided, separate specular.
     pub model_flags: [u32; 4],
-    /// Shading (0 Gouraud or flat, 1 Phong, 2 unlit), specular model (0 Blinn, 1 Phong),
-    /// radiance (1: no clamping to [0, 1], objects under a physical sky).
+    /// Shading (a `SHADING_*` of [`codes`]), specular model (a `SPECULAR_*`), radiance (1: no
+    /// clamping to [0, 1], objects under a physical sky).
     pub mode: [u32; 4],
-    /// Fog equation (0 off, 1 linear, 2 exp, 3 exp2, 4 height), coordinate (0 eye-plane depth,
-    /// 1 distance, 2 the vertex's own), sun in-scattering (1 on, height fog).
+    /// Fog equation (a `FOG_*` of [`codes`]), coordinate (a `FOG_COORDINATE_*`), sun
+    /// in-scattering (1 on, height fog).
     pub fog_mode: [u32; 4],
     /// Linear/exp/exp2: start, end, density. Height: extinction at the camera (1/m), falloff (1/m).
     pub fog_params: [f32; 4],
@@ -130,7 +132,7 @@ impl ClassicFrameUniforms {
             ..Self::zeroed()
         };
         match lighting.equations() {
-            None => uniforms.mode = [2, 0, 0, 0],
+            None => uniforms.mode = [codes::SHADING_UNLIT, 0, 0, 0],
             Some(classic) => {
                 for (slot, scene_light) in uniforms.lights.iter_mut().zip(&classic.lights) {
                     let l = scene_light.in_eye_space(view);
@@ -164,12 +166,12 @@ impl ClassicFrameUniforms {
                 ];
                 uniforms.mode = [
                     match classic.shading {
-                        Shading::Flat | Shading::Gouraud => 0,
-                        Shading::Phong => 1,
+                        Shading::Flat | Shading::Gouraud => codes::SHADING_GOURAUD,
+                        Shading::Phong => codes::SHADING_PHONG,
                     },
                     match classic.specular {
-                        SpecularModel::Blinn => 0,
-                        SpecularModel::Phong => 1,
+                        SpecularModel::Blinn => codes::SPECULAR_BLINN,
+                        SpecularModel::Phong => codes::SPECULAR_PHONG,
                     },
                     u32::from(!lighting.clamps()),
                     0,
@@ -177,17 +179,17 @@ impl ClassicFrameUniforms {
             }
         }
         match fog {
-            SceneFog::None => {}
+            SceneFog::None => uniforms.fog_mode = [codes::FOG_NONE, 0, 0, 0],
             SceneFog::Classic(f) => {
                 let equation = match f.mode {
-                    FogMode::Linear { .. } => 1,
-                    FogMode::Exp { .. } => 2,
-                    FogMode::Exp2 { .. } => 3,
+                    FogMode::Linear { .. } => codes::FOG_LINEAR,
+                    FogMode::Exp { .. } => codes::FOG_EXP,
+                    FogMode::Exp2 { .. } => codes::FOG_EXP2,
                 };
                 let coordinate = match f.coordinate {
-                    FogCoordinate::EyePlaneDepth => 0,
-                    FogCoordinate::EyeDistance => 1,
-                    FogCoordinate::Vertex => 2,
+                    FogCoordinate::EyePlaneDepth => codes::FOG_COORDINATE_EYE_PLANE_DEPTH,
+                    FogCoordinate::EyeDistance => codes::FOG_COORDINATE_EYE_DISTANCE,
+                    FogCoordinate::Vertex => codes::FOG_COORDINATE_VERTEX,
                 };
                 uniforms.fog_mode = [equation, coordinate, 0, 0];
                 uniforms.fog_params = match f.mode {
@@ -198,7 +200,7 @@ impl ClassicFrameUniforms {
             }
             SceneFog::Height { fog, color, sun } => {
                 let at_camera = fog.density * (-fog.falloff * (camera_height - fog.base_height)).exp();
-                uniforms.fog_mode = [4, 0, u32::from(sun.is_some()), 0];
+                uniforms.fog_mode = [codes::FOG_HEIGHT, 0, u32::from(sun.is_some()), 0];
                 uniforms.fog_params = [at_camera as f32, fog.falloff as f32, 0.0, 0.0];
                 uniforms.fog_color = v4(*color);
                 if let Some(sun) = sun {

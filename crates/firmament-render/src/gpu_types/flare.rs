@@ -12,9 +12,10 @@ use firmament_core::flare::{FlareElement, FlareShape, FlareSource, LensFlare, So
 use firmament_core::{Camera, DepthConvention};
 use glam::{DVec2, DVec3, Mat4};
 
+use super::codes;
 use super::planet_view::PlanetView;
 
-/// Mirrors `FlareFrame` in `shaders/flare_occlusion.wgsl` and `shaders/flare.wgsl`.
+/// Mirrors `FlareFrame` in `shaders/flare/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct FlareFrameUniforms {
@@ -29,12 +30,12 @@ pub struct FlareFrameUniforms {
     /// tan of half the horizontal and vertical field of view; seconds since the last frame
     /// (0: a still, visibility taken at once); screen aspect (width / height).
     pub view: [f32; 4],
-    /// Fade-in and fade-out rates (visibility per second, 0 = at once); 1 for a standard-Z depth
-    /// buffer (0 reversed-Z); unused.
+    /// Fade-in and fade-out rates (visibility per second, 0 = at once); the depth buffer's
+    /// convention (a `DEPTH_*` of [`codes`]); unused.
     pub fade: [f32; 4],
 }
 
-/// Mirrors `FlareSource` in `shaders/flare_occlusion.wgsl`.
+/// Mirrors `FlareSource` in `shaders/flare/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct FlareSourceGpu {
@@ -54,7 +55,7 @@ pub struct FlareInstance {
     /// Colour to add at full visibility (linear RGB over the exposure); `w` = the source's
     /// fade at the screen edge.
     pub color: [f32; 4],
-    /// Shape (0 glow, 1 streaks, 2 halo, 3 ghost, 4 image), then its parameters: streaks
+    /// Shape (a `FLARE_*` of [`codes`]), then its parameters: streaks
     /// `points`, rotation (radians), sharpness; halo thickness; ghost sides, rotation, softness;
     /// image layer, rotation.
     pub shape: [f32; 4],
@@ -67,9 +68,9 @@ impl FlareFrameUniforms {
     /// reversed-Z's).
     pub fn for_depth_convention(mut self, convention: DepthConvention) -> Self {
         self.fade[2] = match convention {
-            DepthConvention::Standard => 1.0,
-            _ => 0.0,
-        };
+            DepthConvention::Standard => codes::DEPTH_STANDARD,
+            _ => codes::DEPTH_REVERSED,
+        } as f32;
         self
     }
 
@@ -155,19 +156,21 @@ impl FlareInstance {
     /// the exposure, at full visibility), faded by the source's `edge_fade`.
     pub fn new(element: &FlareElement, center: DVec2, color: DVec3, edge_fade: f64, index: u32) -> Self {
         let shape = match element.shape {
-            FlareShape::Glow => [0.0, 0.0, 0.0, 0.0],
+            FlareShape::Glow => [codes::FLARE_GLOW as f32, 0.0, 0.0, 0.0],
             FlareShape::Streaks {
                 points,
                 rotation,
                 sharpness,
-            } => [1.0, points as f32, rotation.to_radians() as f32, sharpness as f32],
-            FlareShape::Halo { thickness } => [2.0, thickness as f32, 0.0, 0.0],
+            } => [codes::FLARE_STREAKS as f32, points as f32, rotation.to_radians() as f32, sharpness as f32],
+            FlareShape::Halo { thickness } => [codes::FLARE_HALO as f32, thickness as f32, 0.0, 0.0],
             FlareShape::Ghost {
                 sides,
                 rotation,
                 softness,
-            } => [3.0, sides as f32, rotation.to_radians() as f32, softness as f32],
-            FlareShape::Image { image, rotation } => [4.0, image as f32, rotation.to_radians() as f32, 0.0],
+            } => [codes::FLARE_GHOST as f32, sides as f32, rotation.to_radians() as f32, softness as f32],
+            FlareShape::Image { image, rotation } => {
+                [codes::FLARE_IMAGE as f32, image as f32, rotation.to_radians() as f32, 0.0]
+            }
         };
         Self {
             placement: [

@@ -15,6 +15,7 @@ use glam::{DMat4, Mat4};
 
 pub mod atmosphere;
 pub mod classic;
+pub mod codes;
 pub mod flare;
 pub mod night_sky;
 mod planet_view;
@@ -67,7 +68,8 @@ pub struct GradientSkyUniforms {
     pub sun_disc: [f32; 4],
     /// Glow radiance at the centre, rgb; `w` = glow falloff, radians.
     pub sun_glow: [f32; 4],
-    /// zenith_start, horizon_half_width, ground_start (radians), blend (0 linear, 1 smooth).
+    /// zenith_start, horizon_half_width, ground_start (radians), blend (a `GRADIENT_BLEND_*` of
+    /// [`codes`]).
     pub shape: [f32; 4],
     /// upper_exponent, lower_exponent, sun horizon fade (radians), unused.
     pub exponents: [f32; 4],
@@ -80,9 +82,9 @@ impl GradientSkyUniforms {
         let s = &sky.shape;
         let sun = &sky.sun;
         let blend = match s.blend {
-            Blend::Linear => 0.0,
-            Blend::Smooth => 1.0,
-        };
+            Blend::Linear => codes::GRADIENT_BLEND_LINEAR,
+            Blend::Smooth => codes::GRADIENT_BLEND_SMOOTH,
+        } as f32;
         Self {
             clip_to_world: clip_to_world_direction(camera).to_cols_array_2d(),
             zenith: rgbw(b.zenith, 0.0),
@@ -118,10 +120,10 @@ impl GradientSkyUniforms {
 pub struct TonemapUniforms {
     /// Exposure multiplier.
     pub exposure: f32,
-    /// 0 none, 1 ACES fitted, 2 PBR Neutral.
+    /// The tone curve: a `TONE_CURVE_*` of [`codes`].
     pub curve: u32,
-    /// 0 none, 1 linear → sRGB in the shader, 2 sRGB → linear (cancels an `*Srgb` output's
-    /// encoding for [`Encoding::None`]).
+    /// What the shader does about the sRGB encoding: a `TRANSFER_*` of [`codes`] (decoding
+    /// cancels an `*Srgb` output's encoding for [`Encoding::None`]).
     pub transfer: u32,
     /// Padding to 16 bytes.
     pub _pad: u32,
@@ -133,14 +135,14 @@ impl TonemapUniforms {
         Self {
             exposure: display.exposure.multiplier as f32,
             curve: match display.tone_curve {
-                ToneCurve::None => 0,
-                ToneCurve::AcesFitted => 1,
-                ToneCurve::PbrNeutral => 2,
+                ToneCurve::None => codes::TONE_CURVE_NONE,
+                ToneCurve::AcesFitted => codes::TONE_CURVE_ACES_FITTED,
+                ToneCurve::PbrNeutral => codes::TONE_CURVE_PBR_NEUTRAL,
             },
             transfer: match (display.encoding, output_format.is_srgb()) {
-                (Encoding::Srgb, false) => 1,
-                (Encoding::None, true) => 2,
-                (Encoding::Srgb, true) | (Encoding::None, false) => 0,
+                (Encoding::Srgb, false) => codes::TRANSFER_ENCODE_SRGB,
+                (Encoding::None, true) => codes::TRANSFER_DECODE_SRGB,
+                (Encoding::Srgb, true) | (Encoding::None, false) => codes::TRANSFER_NONE,
             },
             _pad: 0,
         }

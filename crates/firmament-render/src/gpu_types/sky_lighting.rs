@@ -82,7 +82,7 @@ pub fn sh_irradiance(sh: &[DVec3; SKY_SH_COEFFICIENTS], n: DVec3) -> DVec3 {
 }
 
 /// One sun as the lighting buffer holds it (mirrors `SkyLightingSun` in
-/// `atmosphere/sky_lighting.wgsl` and `FirmamentSun` in `include/firmament_lighting.wgsl`).
+/// `atmosphere/bindings.wgsl` and `FirmamentSun` in `include/firmament_lighting.wgsl`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Pod, Zeroable)]
 pub struct SkyLightingSunGpu {
@@ -94,7 +94,7 @@ pub struct SkyLightingSunGpu {
 }
 
 /// The per-frame lighting buffer (416 bytes; mirrors `SkyLighting` in
-/// `atmosphere/sky_lighting.wgsl` and `FirmamentSkyLighting` in `include/firmament_lighting.wgsl`).
+/// `atmosphere/bindings.wgsl` and `FirmamentSkyLighting` in `include/firmament_lighting.wgsl`).
 /// See the module docs for frames, units and the spherical-harmonic convention.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Pod, Zeroable)]
@@ -147,7 +147,7 @@ impl SkyLightingGpu {
     }
 }
 
-/// Mirrors `SkyLightingParams` in `atmosphere/sky_lighting.wgsl`.
+/// Mirrors `SkyLightingParams` in `atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct SkyLightingParamsUniforms {

@@ -19,6 +19,25 @@ use crate::targets::HDR_FORMAT;
 /// Most element quads in a frame.
 const MAX_INSTANCES: usize = MAX_FLARE_SOURCES * MAX_FLARE_ELEMENTS;
 
+/// Binding numbers of both pipelines: those `shaders/flare/bindings.wgsl` declares (a test
+/// compares the two).
+mod binding {
+    /// The frame uniforms (both passes).
+    pub(super) const FRAME: u32 = 0;
+    /// The sources (occlusion).
+    pub(super) const SOURCES: u32 = 1;
+    /// The visibility buffer, written (occlusion).
+    pub(super) const VISIBILITY: u32 = 2;
+    /// The depth buffer (occlusion).
+    pub(super) const DEPTH: u32 = 3;
+    /// The visibility buffer, read (elements).
+    pub(super) const ELEMENT_VISIBILITY: u32 = 4;
+    /// The element images (elements).
+    pub(super) const IMAGES: u32 = 5;
+    /// Their sampler (elements).
+    pub(super) const IMAGE_SAMPLER: u32 = 6;
+}
+
 /// Lens flares of a frame's suns and lights.
 #[derive(Debug)]
 pub struct FlarePass {
@@ -82,19 +101,19 @@ fn draw_bind_group(
         layout,
         entries: &[
             wgpu::BindGroupEntry {
-                binding: 0,
+                binding: binding::FRAME,
                 resource: frame_uniforms.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 1,
+                binding: binding::ELEMENT_VISIBILITY,
                 resource: visibility.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: 2,
+                binding: binding::IMAGES,
                 resource: wgpu::BindingResource::TextureView(images),
             },
             wgpu::BindGroupEntry {
-                binding: 3,
+                binding: binding::IMAGE_SAMPLER,
                 resource: wgpu::BindingResource::Sampler(sampler),
             },
         ],
@@ -133,11 +152,11 @@ impl FlarePass {
         let occlusion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass occlusion bind group layout"),
             entries: &[
-                uniform_entry_in(0, S::COMPUTE),
-                storage_entry(1, S::COMPUTE, true),
-                storage_entry(2, S::COMPUTE, false),
+                uniform_entry_in(binding::FRAME, S::COMPUTE),
+                storage_entry(binding::SOURCES, S::COMPUTE, true),
+                storage_entry(binding::VISIBILITY, S::COMPUTE, false),
                 wgpu::BindGroupLayoutEntry {
-                    binding: 3,
+                    binding: binding::DEPTH,
                     visibility: S::COMPUTE,
                     ty: wgpu::BindingType::Texture {
                         // Read as unfilterable float: GLSL has no textureLoad of depth textures.
@@ -151,7 +170,7 @@ impl FlarePass {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("firmament FlarePass occlusion shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::FLARE_OCCLUSION.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders::FLARE_OCCLUSION.source().into()),
         });
         let occlusion = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("firmament FlarePass occlusion pipeline"),
@@ -169,10 +188,10 @@ impl FlarePass {
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass element bind group layout"),
             entries: &[
-                uniform_entry(0),
-                storage_entry(1, S::FRAGMENT, true),
+                uniform_entry(binding::FRAME),
+                storage_entry(binding::ELEMENT_VISIBILITY, S::FRAGMENT, true),
                 wgpu::BindGroupLayoutEntry {
-                    binding: 2,
+                    binding: binding::IMAGES,
                     visibility: S::FRAGMENT,
                     ty: wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: true },
@@ -182,7 +201,7 @@ impl FlarePass {
                     count: None,
                 },
                 wgpu::BindGroupLayoutEntry {
-                    binding: 3,
+                    binding: binding::IMAGE_SAMPLER,
                     visibility: S::FRAGMENT,
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
@@ -191,7 +210,7 @@ impl FlarePass {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("firmament FlarePass element shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::FLARE.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders::FLARE.source().into()),
         });
         let draw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("firmament FlarePass element pipeline"),
@@ -278,19 +297,19 @@ impl FlarePass {
             layout: &self.occlusion_layout,
             entries: &[
                 wgpu::BindGroupEntry {
-                    binding: 0,
+                    binding: binding::FRAME,
                     resource: self.frame_uniforms.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 1,
+                    binding: binding::SOURCES,
                     resource: self.sources.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 2,
+                    binding: binding::VISIBILITY,
                     resource: self.visibility.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: 3,
+                    binding: binding::DEPTH,
                     resource: wgpu::BindingResource::TextureView(depth),
                 },
             ],
@@ -437,5 +456,27 @@ impl FlarePass {
     /// How many sources the last `prepare` kept.
     pub fn source_count(&self) -> u32 {
         self.source_count
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::binding;
+
+    #[test]
+    fn the_binding_numbers_are_those_of_the_wgsl() {
+        let mut rust: Vec<(String, u32)> = [
+            ("frame", binding::FRAME),
+            ("sources", binding::SOURCES),
+            ("visibility", binding::VISIBILITY),
+            ("depth_buffer", binding::DEPTH),
+            ("element_visibility", binding::ELEMENT_VISIBILITY),
+            ("images", binding::IMAGES),
+            ("image_sampler", binding::IMAGE_SAMPLER),
+        ]
+        .map(|(name, number)| (name.to_owned(), number))
+        .into();
+        rust.sort();
+        assert_eq!(crate::shaders::declared_bindings("flare/bindings"), rust);
     }
 }

@@ -111,7 +111,7 @@ pub(crate) fn begin_load_pass<'e>(
 
 /// Begins a render pass that clears `depth` to `depth_value` (reversed-Z) and, if given, a colour
 /// view to its colour.
-pub(crate) fn begin_clear_pass<'e>(
+pub fn begin_clear_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
     color: Option<(&wgpu::TextureView, wgpu::Color)>,

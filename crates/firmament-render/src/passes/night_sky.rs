@@ -88,7 +88,7 @@ impl NightSkyPass {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("firmament NightSkyPass shader"),
-            source: wgpu::ShaderSource::Wgsl(shaders::NIGHT_SKY.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders::NIGHT_SKY.source().into()),
         });
         let star_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<StarInstance>() as u64,

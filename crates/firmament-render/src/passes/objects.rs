@@ -97,7 +97,7 @@ impl ObjectPass {
         };
         let (pipeline, layout) = PassPipeline {
             owner: "ObjectPass",
-            source: shaders::CLASSIC_LIGHTING,
+            source: &shaders::CLASSIC_LIGHTING,
             entries: &[uniform_entry(0), uniform_entry(1), texture_entry, sampler_entry],
             color,
             depth_stencil: Some(wgpu::DepthStencilState {

@@ -40,7 +40,7 @@ impl SeedSkyPass {
     /// (drawn at its far plane, tested against it).
     pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
         Self {
-            sky: FarPlaneDraw::new(device, "SeedSkyPass", shaders::SEED_SKY, target, Some(SEED_BLEND)),
+            sky: FarPlaneDraw::new(device, "SeedSkyPass", &shaders::SEED_SKY, target, Some(SEED_BLEND)),
         }
     }
 

@@ -28,7 +28,7 @@ impl GradientSkyPass {
     /// (drawn at its far plane, tested against it).
     pub fn for_target(device: &wgpu::Device, target: SkyTarget) -> Self {
         Self {
-            sky: FarPlaneDraw::new(device, "GradientSkyPass", shaders::SKY_GRADIENT, target, None),
+            sky: FarPlaneDraw::new(device, "GradientSkyPass", &shaders::SKY_GRADIENT, target, None),
         }
     }
 

@@ -22,7 +22,7 @@ impl TonemapPass {
     pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> Self {
         let (pipeline, layout) = PassPipeline {
             owner: "TonemapPass",
-            source: shaders::TONEMAP,
+            source: &shaders::TONEMAP,
             entries: &[
                 uniform_entry(0),
                 wgpu::BindGroupLayoutEntry {

@@ -5,11 +5,14 @@
 // vector from the point to the light. Colours are GL RGBA, clamped to [0, 1] where GL clamps.
 // The f64 references are `firmament_core::classic::{lighting::Lighting::shade, fog}`; keep them in
 // step. Depth is firmament's reversed-Z: the projection maps near to 1.
-// Shading (`frame.mode.x`): 0 = Gouraud (lit per vertex, colours interpolated), 1 = Phong (lit per
-// fragment), 2 = unlit (the front diffuse colour). Flat shading is Gouraud over a mesh whose
-// vertices carry their triangle's provoking (GL: last) vertex as `shade_*` (see `GpuMesh`), so
-// all three light the same point and no flat interpolation qualifier (WGSL's takes the first
-// vertex) is involved.
+// Shading (`frame.mode.x`): SHADING_GOURAUD (lit per vertex, colours interpolated),
+// SHADING_PHONG (lit per fragment), SHADING_UNLIT (the front diffuse colour). Flat shading is
+// Gouraud over a mesh whose vertices carry their triangle's provoking (GL: last) vertex as
+// `shade_*` (see `GpuMesh`), so all three light the same point and no flat interpolation
+// qualifier (WGSL's takes the first vertex) is involved.
+
+#import generated/constants
+
 const MAX_LIGHTS: u32 = 8u;
 
 struct ClassicLight {
@@ -35,13 +38,13 @@ struct ClassicFrame {
     scene_ambient: vec4<f32>,
     // x = light count, y = local viewer, z = two-sided, w = separate specular
     model_flags: vec4<u32>,
-    // x = shading (0 Gouraud/flat, 1 Phong, 2 unlit), y = specular model (0 Blinn, 1 Phong),
-    // z = 1: radiance under a physical sky, never clamped to [0, 1]
+    // x = shading (SHADING_*), y = specular model (SPECULAR_*), z = 1: radiance under a physical
+    // sky, never clamped to [0, 1]
     mode: vec4<u32>,
-    // Fog: x = equation (0 off, 1 linear, 2 exp, 3 exp2 — GL 2.1 §3.10; 4 height fog),
-    // y = coordinate (0 eye-plane depth |z_eye|, 1 eye distance, 2 the vertex's own fog
-    // coordinate, GL_FOG_COORD), computed per vertex and interpolated; the factor is computed per
-    // fragment, as GL implementations do. z = 1: height fog in-scatters `fog_sun`.
+    // Fog: x = equation (FOG_*: GL 2.1 §3.10's, or height fog), y = coordinate (FOG_COORDINATE_*:
+    // eye-plane depth |z_eye|, eye distance, or the vertex's own fog coordinate, GL_FOG_COORD),
+    // computed per vertex and interpolated; the factor is computed per fragment, as GL
+    // implementations do. z = 1: height fog in-scatters `fog_sun`.
     fog_mode: vec4<u32>,
     // Linear/exp/exp2: x = start, y = end, z = density.
     // Height fog: x = extinction at the camera (1/m), y = falloff (1/m).
@@ -143,7 +146,7 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
         color = color + factor * (m.ambient * light.ambient + n_dot_l * m.diffuse * light.diffuse);
         if n_dot_l != 0.0 {
             var s: f32;
-            if frame.mode.y == 0u {
+            if frame.mode.y == SPECULAR_BLINN {
                 s = max(dot(n, normalize(to_light + eye)), 0.0);
             } else {
                 s = max(dot(reflect(-to_light, n), eye), 0.0);
@@ -176,12 +179,16 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.eye_position = eye.xyz / eye.w;
     out.eye_normal = object.normal_matrix * in.normal;
     out.tex_coord = in.tex_coord;
-    if frame.fog_mode.y == 2u {
+    if frame.fog_mode.y == FOG_COORDINATE_VERTEX {
         out.fog_coordinate = select(object.fog_coord.x, in.fog_coord, object.flags.y != 0u);
     } else {
-        out.fog_coordinate = select(abs(out.eye_position.z), length(out.eye_position), frame.fog_mode.y == 1u);
+        out.fog_coordinate = select(
+            abs(out.eye_position.z),
+            length(out.eye_position),
+            frame.fog_mode.y == FOG_COORDINATE_EYE_DISTANCE,
+        );
     }
-    if frame.mode.x == 0u {
+    if frame.mode.x == SHADING_GOURAUD {
         let shade_eye = object.model_view * vec4<f32>(in.shade_position, 1.0);
         let p = shade_eye.xyz / shade_eye.w;
         let n = object.normal_matrix * in.shade_normal;
@@ -205,10 +212,10 @@ fn vs_main(in: VertexIn) -> VertexOut {
 fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let back = frame.model_flags.z != 0u && !front_facing;
     var lit: Lit;
-    if frame.mode.x == 0u {
+    if frame.mode.x == SHADING_GOURAUD {
         lit.primary = select(in.front_primary, in.back_primary, back);
         lit.secondary = select(in.front_secondary, in.back_secondary, back);
-    } else if frame.mode.x == 1u {
+    } else if frame.mode.x == SHADING_PHONG {
         lit = shade(in.eye_position, in.eye_normal, back);
     } else {
         // Lighting off: the current colour, clamped; no secondary colour.
@@ -236,18 +243,18 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
 // the fog colour plus the sun's lobe `FogSun::inscattered`.
 fn apply_fog(color: vec4<f32>, c: f32, eye_position: vec3<f32>) -> vec4<f32> {
     let mode = frame.fog_mode.x;
-    if mode == 0u {
+    if mode == FOG_NONE {
         return color;
     }
     let start = frame.fog_params.x;
     let end = frame.fog_params.y;
     let density = frame.fog_params.z;
     var f: f32;
-    if mode == 1u {
+    if mode == FOG_LINEAR {
         f = select((end - c) / (end - start), select(0.0, 1.0, c < end), end == start);
-    } else if mode == 2u {
+    } else if mode == FOG_EXP {
         f = exp(-density * c);
-    } else if mode == 3u {
+    } else if mode == FOG_EXP2 {
         f = exp(-(density * c) * (density * c));
     } else {
         let length_m = length(eye_position);
@@ -259,7 +266,7 @@ fn apply_fog(color: vec4<f32>, c: f32, eye_position: vec3<f32>) -> vec4<f32> {
     }
     f = clamp(f, 0.0, 1.0);
     var fog_color = frame.fog_color.rgb;
-    if mode == 4u && frame.fog_mode.z != 0u {
+    if mode == FOG_HEIGHT && frame.fog_mode.z != 0u {
         let lobe = pow(max(dot(normalize(eye_position), frame.fog_sun.xyz), 0.0), frame.fog_sun.w);
         fog_color = fog_color + frame.fog_sun_color.rgb * lobe;
     }

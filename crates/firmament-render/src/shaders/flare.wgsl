@@ -3,22 +3,20 @@
 // procedurally so no texture files are needed — or, for image elements, pictures from a 2D array
 // texture (one layer per image file, RGB × alpha as stored, like NeHe's sprites).
 //
-// Conventions: NDC as in flare_common.wgsl; an element's `uv` runs over [-1, 1]^2 of its quad,
+// Conventions: NDC as in flare/bindings.wgsl; an element's `uv` runs over [-1, 1]^2 of its quad,
 // r = |uv| = 1 at its radius. A radius is in units of half the screen height, divided by the
 // aspect in x so elements stay round (times `stretch`). The colour is scaled by the source's
 // visibility, written by flare_occlusion.wgsl earlier in the same frame.
 
-@group(0) @binding(0) var<uniform> frame: FlareFrame;
-@group(0) @binding(1) var<storage, read> visibility: array<f32>;
-@group(0) @binding(2) var images: texture_2d_array<f32>;
-@group(0) @binding(3) var image_sampler: sampler;
+#import flare/bindings
+#import generated/constants
 
 struct InstanceIn {
     // xy = centre (NDC), z = radius, w = horizontal stretch
     @location(0) placement: vec4<f32>,
     // rgb = colour at full visibility, a = the source's edge fade
     @location(1) color: vec4<f32>,
-    // x = shape (0 glow, 1 streaks, 2 halo, 3 ghost, 4 image), yzw = its parameters
+    // x = shape (FLARE_*, generated/constants), yzw = its parameters
     @location(2) shape: vec4<f32>,
     // x = source index
     @location(3) source: vec4<u32>,
@@ -79,24 +77,24 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let kind = u32(in.shape.x + 0.5);
     let picture = image_texel(in.uv, in.shape.y, in.shape.z);
     var f = 0.0;
-    if kind == 0u {
+    if kind == FLARE_GLOW {
         let g = max(1.0 - r, 0.0);
         f = g * g;
-    } else if kind == 1u {
+    } else if kind == FLARE_STREAKS {
         let a = atan2(in.uv.y, in.uv.x) - in.shape.z;
         let rays = pow(abs(cos(0.5 * in.shape.y * a)), in.shape.w);
         let g = max(1.0 - r, 0.0);
         f = rays * g * g;
-    } else if kind == 2u {
+    } else if kind == FLARE_HALO {
         let half_width = 0.5 * in.shape.y;
         let t = (r - (1.0 - half_width)) / half_width;
         f = max(1.0 - t * t, 0.0);
-    } else if kind == 3u {
+    } else if kind == FLARE_GHOST {
         let e = ghost_edge(in.uv, in.shape.y, in.shape.z);
         f = 1.0 - smoothstep(1.0 - in.shape.w, 1.0, e);
     }
-    let seen = visibility[in.source] * in.color.a;
-    if kind == 4u {
+    let seen = element_visibility[in.source] * in.color.a;
+    if kind == FLARE_IMAGE {
         return vec4<f32>(in.color.rgb * picture * seen, 0.0);
     }
     return vec4<f32>(in.color.rgb * (f * seen), 0.0);

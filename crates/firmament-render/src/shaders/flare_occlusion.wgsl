@@ -1,26 +1,18 @@
 // flare_occlusion.wgsl — how much of each lens-flare source can be seen, on the GPU, with no
 // read-back (NeHe lesson 44's to-do; Unity's SRP lens flare samples a disc the same way).
 //
-// One invocation per source: `counts.y` points of Vogel's golden-angle spiral over its disc
-// (r = sqrt((k + 1/2)/n), theta = k * golden angle: `firmament_core::flare::sample_pattern`), each
-// hidden when the depth buffer holds something nearer than the source, or when the planet lies
-// in front of it along that view ray (a sun setting behind the limb). Samples off the screen
-// count as seen (the edge fade handles those sources). The visible share, moved towards at the
-// fade rates (`firmament_core::flare::smoothed_visibility`), is written to `visibility`, where
-// the flare pass reads it in the same frame.
+// Conventions: as flare/bindings.wgsl. One invocation per source: `counts.y` points of Vogel's
+// golden-angle spiral over its disc (r = sqrt((k + 1/2)/n), theta = k * golden angle:
+// `firmament_core::flare::sample_pattern`), each hidden when the depth buffer holds something
+// nearer than the source, or when the planet lies in front of it along that view ray (a sun
+// setting behind the limb). Samples off the screen count as seen (the edge fade handles those
+// sources). The visible share, moved towards at the fade rates
+// (`firmament_core::flare::smoothed_visibility`), is written to `visibility`, where the flare
+// pass reads it in the same frame.
 
-struct FlareSource {
-    // xy = disc centre (NDC), zw = disc radii (NDC x, y).
-    disc: vec4<f32>,
-    // x = the source's depth in the buffer's convention (the far plane's for a sun), y = its
-    // distance (m).
-    depth: vec4<f32>,
-}
-
-@group(0) @binding(0) var<uniform> frame: FlareFrame;
-@group(0) @binding(1) var<storage, read> sources: array<FlareSource>;
-@group(0) @binding(2) var<storage, read_write> visibility: array<f32>;
-@group(0) @binding(3) var depth_buffer: texture_2d<f32>; // a depth view, read as unfilterable float
+#import common/ellipsoid
+#import flare/bindings
+#import generated/constants
 
 const GOLDEN_ANGLE: f32 = 2.3999632;
 
@@ -53,7 +45,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         let pixel = vec2<f32>((p.x * 0.5 + 0.5) * size.x, (0.5 - p.y * 0.5) * size.y);
         if !hidden && all(pixel >= vec2<f32>(0.0)) && all(pixel < size) {
             let depth = textureLoad(depth_buffer, vec2<i32>(pixel), 0).x;
-            hidden = select((depth > source.depth.x), (depth < source.depth.x), (frame.fade.z > 0.5));
+            hidden = select((depth > source.depth.x), (depth < source.depth.x), (u32(frame.fade.z) == DEPTH_STANDARD));
         }
         if !hidden {
             seen = seen + 1u;

@@ -3,7 +3,6 @@
 // seed document 000_643abe256ac7a513.txt (lines 285–476, uniforms 477–495, CPU side 498–553),
 // mirroring firmament_core::atmosphere::seed::SeedAtmosphere::color step for step (the f64
 // reference the GPU test compares with).
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, common/view_ray.wgsl.
 //
 // Conventions
 // - Planet frame (the seed's "ellipsoid space"): origin at the planet centre, x and y in the
@@ -25,6 +24,10 @@
 // f64; a far camera (beyond 10 top radii) starts each ray at its closest approach to the planet
 // centre, found from the small offset between pixel and centre on the image plane (as
 // atmosphere/sky.wgsl does), and every ray parameter is measured from there.
+
+#import common/fullscreen
+#import common/ellipsoid
+#import common/view_ray
 
 struct SeedStar {
     position: vec4<f32>,  // centre, planet frame (m); w = radius / √0.75 (m), or −1: no disc

@@ -1,11 +1,13 @@
 // sky_gradient.wgsl — the keyframed gradient sky of seed 002, with a sun disc and glow.
-// Includes: common/fullscreen.wgsl (prepended by the Rust side).
 //
 // Conventions: world frame is local East-North-Up (+z up); `dir` is a unit world-space view
 // direction; `elevation` is asin(dir.z) in radians; every colour is linear RGB radiance. The f64
 // reference is `firmament_core::gradient_sky::GradientSkyState::radiance`; keep the two in step.
 // Drawn at the far plane (reversed-Z depth 0) with depth writes off, so anything already drawn
 // stays in front.
+
+#import common/fullscreen
+#import generated/constants
 
 struct GradientSky {
     // Clip space → camera-relative world position (inverse of projection × view rotation).
@@ -19,7 +21,7 @@ struct GradientSky {
     sun_disc: vec4<f32>,      // rgb disc radiance; w = edge softness (fraction of radius)
     sun_glow: vec4<f32>,      // rgb glow radiance at the centre; w = glow falloff angle (rad)
     // x = zenith_start, y = horizon_half_width, z = ground_start (all elevations, rad);
-    // w = blend (0 linear, 1 smooth)
+    // w = blend (GRADIENT_BLEND_*)
     shape: vec4<f32>,
     // x = upper_exponent, y = lower_exponent, z = sun horizon fade half-width (rad), w unused
     exponents: vec4<f32>,
@@ -34,7 +36,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 
 fn shape_weight(t: f32) -> f32 {
     let c = clamp(t, 0.0, 1.0);
-    return select(c, c * c * (3.0 - 2.0 * c), sky.shape.w > 0.5);
+    return select(c, c * c * (3.0 - 2.0 * c), u32(sky.shape.w) == GRADIENT_BLEND_SMOOTH);
 }
 
 fn band_color(elevation: f32) -> vec3<f32> {

@@ -1,16 +1,18 @@
 // tonemap.wgsl — HDR radiance → display: exposure, tone curve, sRGB encoding.
-// Includes: common/fullscreen.wgsl (prepended by the Rust side).
 //
 // Conventions: the input texture holds linear scene radiance (Rgba16Float), read texel for texel
 // (same size as the output). Curves are the f64 references in `firmament_core::display`; keep the
-// two in step. `transfer`: 1 applies the sRGB encoding here (the output format does not);
-// 2 applies its inverse so that an `*Srgb` output's own encoding cancels (display encoding
-// "none": the stored bytes are round(255·v)); 0 leaves values as they are.
+// two in step. `transfer` (TRANSFER_*): encode applies the sRGB encoding here (the output format
+// does not); decode applies its inverse so that an `*Srgb` output's own encoding cancels (display
+// encoding "none": the stored bytes are round(255·v)); none leaves values as they are.
+
+#import common/fullscreen
+#import generated/constants
 
 struct Tonemap {
     exposure: f32,
-    curve: u32,       // 0 none (clamp), 1 ACES fitted (Hill), 2 Khronos PBR Neutral
-    transfer: u32, // 0 none, 1 linear → sRGB, 2 sRGB → linear
+    curve: u32,    // TONE_CURVE_*
+    transfer: u32, // TRANSFER_*
     _pad: u32,
 }
 
@@ -76,16 +78,16 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let texel = vec2<i32>(floor(in.clip.xy));
     let radiance = textureLoad(hdr, texel, 0).rgb * params.exposure;
     var c = radiance;
-    if params.curve == 1u {
+    if params.curve == TONE_CURVE_ACES_FITTED {
         c = aces_fitted(radiance);
-    } else if params.curve == 2u {
+    } else if params.curve == TONE_CURVE_PBR_NEUTRAL {
         c = pbr_neutral(radiance);
     }
     // NaN-safe clamp: max/min with a NaN operand may return either, so test explicitly.
     c = select(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(0.0), c != c);
-    if params.transfer == 1u {
+    if params.transfer == TRANSFER_ENCODE_SRGB {
         c = linear_to_srgb(c);
-    } else if params.transfer == 2u {
+    } else if params.transfer == TRANSFER_DECODE_SRGB {
         c = srgb_to_linear(c);
     }
     return vec4<f32>(c, 1.0);

@@ -12,7 +12,7 @@ use super::stages::{
 };
 use std::num::NonZeroU64;
 
-use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
+use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms, codes};
 use crate::passes::{PassPipeline, load_color_attachment};
 use crate::shaders;
 
@@ -59,8 +59,9 @@ pub fn aerial_perspective_layout_entries(first_binding: u32) -> [wgpu::BindGroup
 }
 
 /// What a user's shader binds to read the aerial-perspective volume
-/// (`shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`), from
-/// [`AtmospherePass::aerial_perspective_bindings`](super::AtmospherePass::aerial_perspective_bindings).
+/// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`](crate::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL)), from
+/// [`Renderer::aerial_perspective_bindings`](crate::Renderer::aerial_perspective_bindings) (or the
+/// atmosphere pass's own).
 /// The objects live as long as the pass; their contents are the frame's once the volume was
 /// encoded (`record_aerial_perspective_volume` or `record_aerial_perspective`).
 #[derive(Debug, Clone, Copy)]
@@ -101,11 +102,11 @@ impl<'a> AerialPerspectiveBindings<'a> {
     }
 }
 
-/// The draws that apply the volume, in order, with their blending.
-const APPLY_DRAWS: [(&str, f64, wgpu::BlendComponent); 2] = [
+/// The draws that apply the volume, in order: owner, `OUTPUT` and blending.
+const APPLY_DRAWS: [(&str, u32, wgpu::BlendComponent); 2] = [
     (
         "AtmospherePass aerial perspective (transmittance)",
-        0.0,
+        codes::AERIAL_OUTPUT_TRANSMITTANCE,
         wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::Zero,
             dst_factor: wgpu::BlendFactor::Src,
@@ -114,7 +115,7 @@ const APPLY_DRAWS: [(&str, f64, wgpu::BlendComponent); 2] = [
     ),
     (
         "AtmospherePass aerial perspective (scattering)",
-        1.0,
+        codes::AERIAL_OUTPUT_SCATTERING,
         wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::One,
             dst_factor: wgpu::BlendFactor::One,
@@ -197,7 +198,7 @@ impl AerialPerspectiveStages {
         let volume = ComputeStage::new(
             device,
             "AtmospherePass aerial-perspective volume",
-            shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
+            &shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
             &volume_entries,
             &volume_resources,
         );
@@ -214,13 +215,13 @@ impl AerialPerspectiveStages {
             .map(|&(owner, output, component)| {
                 PassPipeline {
                     owner,
-                    source: shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
+                    source: &shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
                     entries: &apply_entries,
                     color,
                     depth_stencil: None,
                     vertex_buffers: &[],
                     primitive: wgpu::PrimitiveState::default(),
-                    constants: &[("OUTPUT", output)],
+                    constants: &[("OUTPUT", f64::from(output))],
                 }
                 .build_blended(
                     device,

@@ -12,6 +12,8 @@
 
 use firmament_core::frame::MAX_SUNS;
 
+use crate::gpu_types::AtmosphereParamsUniforms;
+
 /// Transmittance LUT size (texels): x_mu × x_r.
 pub const TRANSMITTANCE_SIZE: (u32, u32) = (256, 64);
 /// Transmittance LUT format: half floats would take half of the 0.1 % error budget. Written by a
@@ -181,5 +183,57 @@ impl AtmosphereLuts {
                 wgpu::TextureUsages::STORAGE_BINDING,
             ),
         }
+    }
+}
+
+/// The textures and the medium uniform the build stages write and read.
+#[derive(Debug)]
+pub(super) struct MediumLuts {
+    pub(super) transmittance: Lut,
+    pub(super) multiscattering: [Lut; MULTISCATTERING_MOMENTS],
+    pub(super) irradiance: Lut,
+    /// The medium being built (an `AtmosphereParamsUniforms`).
+    pub(super) params: wgpu::Buffer,
+}
+
+impl MediumLuts {
+    pub(super) fn new(device: &wgpu::Device) -> Self {
+        let (transmittance, multiscattering, irradiance) = medium_luts(device, " (building)");
+        Self {
+            transmittance,
+            multiscattering,
+            irradiance,
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("firmament AtmospherePass params (building)"),
+                size: std::mem::size_of::<AtmosphereParamsUniforms>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+
+    /// The views of the multiple-scattering moments, in binding order.
+    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
+        moment_views(&self.multiscattering)
+    }
+
+    /// Encodes the copy of the finished set into `live` and of the medium into `live_params`.
+    pub(super) fn copy_into(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        live: &AtmosphereLuts,
+        live_params: &wgpu::Buffer,
+    ) {
+        let pairs = std::iter::once((&self.transmittance, &live.transmittance))
+            .chain(self.multiscattering.iter().zip(&live.multiscattering))
+            .chain(std::iter::once((&self.irradiance, &live.irradiance)));
+        for (from, to) in pairs {
+            encoder.copy_texture_to_texture(
+                from.texture.as_image_copy(),
+                to.texture.as_image_copy(),
+                from.texture.size(),
+            );
+        }
+        encoder.copy_buffer_to_buffer(&self.params, 0, live_params, 0, self.params.size());
     }
 }

@@ -39,7 +39,7 @@ mod stages;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 
-use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms};
+use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms, codes};
 use crate::passes::SkyTarget;
 use crate::passes::{PassPipeline, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer};
 use crate::shaders;
@@ -51,7 +51,8 @@ use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORM
 pub use multiscattering::MULTISCATTERING_ITERATIONS;
 use multiscattering::MultiscatteringStages;
 pub use rebuild::MEDIUM_BUILD_STEPS;
-use rebuild::{BuildStep, MediumLuts, Rebuild};
+use luts::MediumLuts;
+use rebuild::{BuildStep, Rebuild};
 pub use sky_lighting::sky_lighting_layout_entry;
 use sky_lighting::{SkyLightingResources, SkyLightingStage};
 use stages::{
@@ -69,15 +70,25 @@ pub enum SkyMethod {
     March,
 }
 
-/// The sky pass's variants (the `SKY_MODE` override of `atmosphere/sky.wgsl`).
+/// The sky pass's variants (the `SKY_MODE` override of `atmosphere/sky.wgsl`), in the order of
+/// [`AtmospherePass`]'s sky pipelines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum SkyMode {
-    Lut = 0,
-    March = 1,
-    Blend = 2,
+    Lut,
+    March,
+    Blend,
 }
 
 impl SkyMode {
+    /// Its `SKY_MODE`.
+    fn code(self) -> u32 {
+        match self {
+            Self::Lut => codes::SKY_MODE_LUT,
+            Self::March => codes::SKY_MODE_MARCH,
+            Self::Blend => codes::SKY_MODE_BLEND,
+        }
+    }
+
     fn owner(self) -> &'static str {
         match self {
             Self::Lut => "AtmospherePass sky (sky-view LUT)",
@@ -157,7 +168,7 @@ impl AtmospherePass {
         let transmittance = ComputeStage::new(
             device,
             "AtmospherePass transmittance LUT",
-            shaders::ATMOSPHERE_TRANSMITTANCE_LUT,
+            &shaders::ATMOSPHERE_TRANSMITTANCE_LUT,
             &[
                 uniform_entry(binding::PARAMS),
                 storage_entry(binding::TRANSMITTANCE_OUT, TRANSMITTANCE_FORMAT),
@@ -222,7 +233,7 @@ impl AtmospherePass {
             device,
             lut_pipeline(
                 "AtmospherePass sky-view LUT",
-                shaders::ATMOSPHERE_SKY_VIEW_LUT,
+                &shaders::ATMOSPHERE_SKY_VIEW_LUT,
                 &sky_view_entries,
                 SKY_VIEW_FORMAT,
             ),
@@ -244,7 +255,7 @@ impl AtmospherePass {
             device,
             lut_pipeline(
                 "AtmospherePass sky irradiance LUT",
-                shaders::ATMOSPHERE_IRRADIANCE_LUT,
+                &shaders::ATMOSPHERE_IRRADIANCE_LUT,
                 &irradiance_entries,
                 IRRADIANCE_FORMAT,
             ),
@@ -257,13 +268,13 @@ impl AtmospherePass {
                 device,
                 PassPipeline {
                     owner: mode.owner(),
-                    source: shaders::ATMOSPHERE_SKY,
+                    source: &shaders::ATMOSPHERE_SKY,
                     entries: &view_entries,
                     color,
                     depth_stencil: Some(far_plane_depth_state(depth, convention)),
                     vertex_buffers: &[],
                     primitive: wgpu::PrimitiveState::default(),
-                    constants: &[("SKY_MODE", f64::from(mode as u32)), far_depth_constant(convention)],
+                    constants: &[("SKY_MODE", f64::from(mode.code())), far_depth_constant(convention)],
                 },
                 &view_resources,
             )
@@ -455,7 +466,7 @@ impl AtmospherePass {
     }
 
     /// The application alone, from the volume last encoded (for benchmarks).
-    pub(crate) fn record_aerial_perspective_apply(
+    pub fn record_aerial_perspective_apply(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         color: &wgpu::TextureView,

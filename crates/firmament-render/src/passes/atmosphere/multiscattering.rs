@@ -1,16 +1,17 @@
 //! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`):
 //! each iterate reads the previous moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) and ground sky
 //! irradiance E and writes the next, ping-ponging between two sets of textures so that the last
-//! iterate lands in the build set's moments ([`MediumLuts`], copied into
+//! iterate lands in the build set's moments ([`MediumLuts`](super::luts::MediumLuts), copied into
 //! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done).
 
 use super::luts::{
     LOG_FLOOR, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE, moment_views,
 };
-use super::rebuild::MediumLuts;
+use super::luts::MediumLuts;
 use super::stages::{
     Stage, bind_group, binding, moment_entries, moment_resources, sampler_entry, texture_entry, uniform_entry,
 };
+use crate::gpu_types::codes;
 use crate::passes::PassPipeline;
 use crate::shaders;
 
@@ -79,19 +80,22 @@ impl MultiscatteringStages {
         ];
         entries.extend(moment_entries(binding::PREVIOUS_MULTISCATTERING_MOMENTS));
         let pipelines = [
-            ("AtmospherePass multiple-scattering LUT", 0.0),
-            ("AtmospherePass multiple-scattering ground irradiance", 1.0),
+            ("AtmospherePass multiple-scattering LUT", codes::MULTISCATTERING_OUTPUT_MOMENTS),
+            (
+                "AtmospherePass multiple-scattering ground irradiance",
+                codes::MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE,
+            ),
         ]
         .map(|(owner, output)| {
             PassPipeline {
                 owner,
-                source: shaders::ATMOSPHERE_MULTISCATTERING_LUT,
+                source: &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
                 entries: &entries,
                 color: MULTISCATTERING_FORMAT,
                 depth_stencil: None,
                 vertex_buffers: &[],
                 primitive: wgpu::PrimitiveState::default(),
-                constants: &[("OUTPUT", output)],
+                constants: &[("OUTPUT", f64::from(output))],
             }
             .build_with_targets(device, None, MULTISCATTERING_MOMENTS)
         });

@@ -12,9 +12,7 @@ use std::ops::Range;
 
 use firmament_core::atmosphere::Atmosphere;
 
-use super::luts::{AtmosphereLuts, Lut, MULTISCATTERING_MOMENTS, medium_luts, moment_views};
 use super::multiscattering::MULTISCATTERING_ITERATIONS;
-use crate::gpu_types::AtmosphereParamsUniforms;
 
 /// Steps of one build: the transmittance LUT (and the iteration's zero), each multiple-scattering
 /// iterate, the sky irradiance LUT (and the copy into the live set).
@@ -38,58 +36,6 @@ impl BuildStep {
             s if s <= MULTISCATTERING_ITERATIONS + 1 => Self::Iterate(s - 1),
             _ => Self::IrradianceAndSwap,
         }
-    }
-}
-
-/// The textures and the medium uniform the build stages write and read.
-#[derive(Debug)]
-pub(super) struct MediumLuts {
-    pub(super) transmittance: Lut,
-    pub(super) multiscattering: [Lut; MULTISCATTERING_MOMENTS],
-    pub(super) irradiance: Lut,
-    /// The medium being built (an `AtmosphereParamsUniforms`).
-    pub(super) params: wgpu::Buffer,
-}
-
-impl MediumLuts {
-    pub(super) fn new(device: &wgpu::Device) -> Self {
-        let (transmittance, multiscattering, irradiance) = medium_luts(device, " (building)");
-        Self {
-            transmittance,
-            multiscattering,
-            irradiance,
-            params: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("firmament AtmospherePass params (building)"),
-                size: std::mem::size_of::<AtmosphereParamsUniforms>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            }),
-        }
-    }
-
-    /// The views of the multiple-scattering moments, in binding order.
-    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
-        moment_views(&self.multiscattering)
-    }
-
-    /// Encodes the copy of the finished set into `live` and of the medium into `live_params`.
-    pub(super) fn copy_into(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        live: &AtmosphereLuts,
-        live_params: &wgpu::Buffer,
-    ) {
-        let pairs = std::iter::once((&self.transmittance, &live.transmittance))
-            .chain(self.multiscattering.iter().zip(&live.multiscattering))
-            .chain(std::iter::once((&self.irradiance, &live.irradiance)));
-        for (from, to) in pairs {
-            encoder.copy_texture_to_texture(
-                from.texture.as_image_copy(),
-                to.texture.as_image_copy(),
-                from.texture.size(),
-            );
-        }
-        encoder.copy_buffer_to_buffer(&self.params, 0, live_params, 0, self.params.size());
     }
 }
 

@@ -75,7 +75,7 @@ impl SkyLightingStage {
         let stage = ComputeStage::new(
             device,
             "AtmospherePass sky lighting",
-            shaders::ATMOSPHERE_SKY_LIGHTING,
+            &shaders::ATMOSPHERE_SKY_LIGHTING,
             &entries,
             &[
                 (binding::PARAMS, resources.params.as_entire_binding()),

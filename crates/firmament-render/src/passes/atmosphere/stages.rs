@@ -3,7 +3,8 @@
 
 use crate::passes::PassPipeline;
 
-/// Binding numbers shared by every atmosphere shader.
+/// Binding numbers shared by every atmosphere shader: those `shaders/atmosphere/bindings.wgsl`
+/// declares (a test compares the two).
 pub(super) mod binding {
     pub(in crate::passes::atmosphere) const PARAMS: u32 = 0;
     pub(in crate::passes::atmosphere) const VIEW: u32 = 1;
@@ -240,4 +241,49 @@ pub(super) fn moment_resources<'a>(
         i += 1;
         (b, wgpu::BindingResource::TextureView(view))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::binding;
+
+    /// Every binding of [`binding`] by the name of its WGSL global.
+    fn rust_bindings() -> Vec<(String, u32)> {
+        let mut all: Vec<(String, u32)> = [
+            ("atmosphere", binding::PARAMS),
+            ("view", binding::VIEW),
+            ("transmittance_lut", binding::TRANSMITTANCE),
+            ("sky_view_lut", binding::SKY_VIEW),
+            ("lut_sampler", binding::SAMPLER),
+            ("transmittance_out", binding::TRANSMITTANCE_OUT),
+            ("irradiance_lut", binding::IRRADIANCE),
+            ("aerial_scattering_out", binding::AERIAL_SCATTERING_OUT),
+            ("aerial_transmittance_out", binding::AERIAL_TRANSMITTANCE_OUT),
+            ("aerial_scattering", binding::AERIAL_SCATTERING),
+            ("aerial_transmittance", binding::AERIAL_TRANSMITTANCE),
+            ("scene_depth", binding::SCENE_DEPTH),
+            ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
+            ("lighting", binding::SKY_LIGHTING_PARAMS),
+            ("sky_lighting", binding::SKY_LIGHTING_OUT),
+        ]
+        .map(|(name, number)| (name.to_owned(), number))
+        .into();
+        let moments = ["", "_zz", "_xx", "_xz", "_x", "_z", "_band3"];
+        for (moment, (current, previous)) in moments.iter().zip(
+            binding::MULTISCATTERING_MOMENTS
+                .into_iter()
+                .zip(binding::PREVIOUS_MULTISCATTERING_MOMENTS),
+        ) {
+            all.push((format!("multiscattering{moment}_lut"), current));
+            all.push((format!("previous_multiscattering{moment}"), previous));
+        }
+        all
+    }
+
+    #[test]
+    fn the_binding_numbers_are_those_of_the_wgsl() {
+        let mut rust = rust_bindings();
+        rust.sort();
+        assert_eq!(crate::shaders::declared_bindings("atmosphere/bindings"), rust);
+    }
 }

@@ -1,13 +1,13 @@
-// atmosphere/aerial_lookup.wgsl — shared include: the lookup into the aerial-perspective volume
-// (its slice atlases, see aerial_perspective_volume.wgsl), used by firmament's own application
-// pass (aerial_perspective.wgsl) and by users' shaders (include/firmament_aerial_perspective.wgsl),
-// so both read the volume the same way. Needs nothing; every name starts with `firmament_` or
-// `FIRMAMENT_`.
+// atmosphere/aerial_lookup.wgsl — shared: the lookup into the aerial-perspective volume (its
+// slice atlases, see aerial_perspective_volume.wgsl), used by firmament's own application pass
+// (aerial_perspective.wgsl) and by users' shaders (include/firmament_aerial_perspective.wgsl), so
+// both read the volume the same way.
 //
-// The volume covers the view frustum: x, y as the screen (u right, v down), z the distance
-// travelled through the air from where the pixel's ray enters it, `range · w²` for w in [0, 1].
-// Slice k holds the light scattered towards the camera over the first `range · ((k + ½)/N)²`
-// metres (spectral radiance) and the transmittance over them.
+// Conventions: imports nothing, and every name starts with `firmament_` or `FIRMAMENT_` (it goes
+// into users' shaders). The volume covers the view frustum: x, y as the screen (u right, v down),
+// z the distance travelled through the air from where the pixel's ray enters it, `range · w²` for
+// w in [0, 1]. Slice k holds the light scattered towards the camera over the first
+// `range · ((k + ½)/N)²` metres (spectral radiance) and the transmittance over them.
 
 // Columns, rows and slices of the volume (the compute pass's AERIAL_PERSPECTIVE_SIZE).
 const FIRMAMENT_AERIAL_PERSPECTIVE_SIZE: vec3<u32> = vec3<u32>(32u, 32u, 32u);

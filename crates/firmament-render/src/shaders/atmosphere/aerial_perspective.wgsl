@@ -1,23 +1,25 @@
 // atmosphere/aerial_perspective.wgsl — applies the aerial-perspective volume to whatever the depth
-// buffer holds: colour · T + S, per channel. Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl,
-// atmosphere/common.wgsl, luts.wgsl, view.wgsl,
-// aerial_lookup.wgsl (the volume lookup, shared with users' shaders).
+// buffer holds: colour · T + S, per channel.
+//
+// Conventions: as atmosphere/view.wgsl. Scattered light as linear sRGB (Y in cd/m²); the
+// per-wavelength transmittance is applied to the sRGB channel of the same name (680 nm → R,
+// 550 nm → G, 440 nm → B).
 //
 // Without dual-source blending one draw cannot multiply by a colour and add another, so the pass
 // draws twice with fixed-function blending (`OUTPUT` picks the draw): first the transmittance,
 // blended `dst · src`, then the scattered light, blended `dst + src`. Pixels at the far plane (the
 // sky, which already holds its own scattering) are discarded. So is everything when the camera is
-// far away (`view.center.w`): f32 distances there are no better than the planet's size.
-//
-// Units: scattered light as linear sRGB (Y in cd/m²); the per-wavelength transmittance is applied
-// to the sRGB channel of the same name (680 nm → R, 550 nm → G, 440 nm → B).
+// far away (`view.center.w`): f32 distances there are no better than the planet's size. The
+// volume lookup (aerial_lookup.wgsl) is the one users' shaders get.
 
-@group(0) @binding(10) var aerial_scattering: texture_2d<f32>;
-@group(0) @binding(11) var aerial_transmittance: texture_2d<f32>;
-@group(0) @binding(12) var scene_depth: texture_2d<f32>; // a depth view, read as unfilterable float
+#import common/fullscreen
+#import atmosphere/bindings
+#import atmosphere/view
+#import atmosphere/aerial_lookup
+#import generated/constants
 
-// 0: the transmittance draw, 1: the scattered-light draw.
-override OUTPUT: u32 = 0u;
+// An AERIAL_OUTPUT_*: the transmittance draw or the scattered-light draw.
+override OUTPUT: u32 = AERIAL_OUTPUT_TRANSMITTANCE;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
@@ -41,7 +43,7 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let through_air = clamp(t, span.x, span.y) - span.x;
     let screen_uv = in.clip.xy / vec2<f32>(textureDimensions(scene_depth));
     let coordinates = firmament_aerial_coordinates(screen_uv, through_air, view.aerial.x);
-    if OUTPUT == 0u {
+    if OUTPUT == AERIAL_OUTPUT_TRANSMITTANCE {
         return vec4<f32>(firmament_aerial_transmittance_at(aerial_transmittance, lut_sampler, coordinates), 1.0);
     }
     let scattered = firmament_aerial_scattering_at(aerial_scattering, lut_sampler, coordinates);

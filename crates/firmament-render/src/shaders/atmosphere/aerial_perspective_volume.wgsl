@@ -1,17 +1,19 @@
 // atmosphere/aerial_perspective_volume.wgsl — Hillaire 2020's aerial-perspective volume, a
-// compute pass. Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
+// compute pass.
 //
-// One invocation per froxel column: it marches the column's view ray through the air once and
-// stores, at each slice, the scattered light so far (spectral radiance, all suns) and the
-// transmittance so far — O(N) per column instead of O(N²). Slices and their distances: see
-// `AERIAL_PERSPECTIVE_SIZE` in view.wgsl. Two midpoint samples per slice. A column that passes
-// under the ground goes on through ground-level air (`aerial_span`, `aerial_sample_point`).
+// Conventions: as atmosphere/view.wgsl. One invocation per froxel column: it marches the column's
+// view ray through the air once and stores, at each slice, the scattered light so far (spectral
+// radiance, all suns) and the transmittance so far — O(N) per column instead of O(N²). Slices and
+// their distances: see `AERIAL_PERSPECTIVE_SIZE` in view.wgsl. Two midpoint samples per slice. A
+// column that passes under the ground goes on through ground-level air (`aerial_span`,
+// `aerial_sample_point`).
 //
 // The volume is a 2D atlas of its slices side by side (slice k at x ∈ [32k, 32k + 32)): GL
 // binds a 3D storage texture one layer at a time, so a 3D volume would only get its first slice.
 
-@group(0) @binding(8) var aerial_scattering_out: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/view
 
 const SAMPLES_PER_SLICE: u32 = 2u;
 

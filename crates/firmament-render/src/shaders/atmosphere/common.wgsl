@@ -1,5 +1,5 @@
-// atmosphere/common.wgsl — shared include of every atmosphere pass: the medium, the phase
-// functions, altitudes and the LUT parameterisations. Needs common/ellipsoid.wgsl.
+// atmosphere/common.wgsl — shared by every atmosphere pass: the medium, the phase functions,
+// altitudes and the LUT parameterisations.
 //
 // Conventions (those of firmament_core::atmosphere):
 // - Planet frame: metres, centred on the planet, axes along the ellipsoid's semi-axes.
@@ -13,31 +13,10 @@
 //   touches the ellipsoid where the sample is; see passes/atmosphere/mod.rs for the error).
 // The f64 reference is firmament_core::atmosphere::reference; keep the models in step.
 
+#import atmosphere/bindings
+#import generated/constants
+
 const PI: f32 = 3.14159265358979;
-
-struct DensityProfile {
-    layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
-    layer1: vec4<f32>, // the same terms above width
-    width: vec4<f32>,  // x = top of layer 0 (m); yzw unused
-}
-
-struct AtmosphereParams {
-    radii: vec4<f32>,               // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
-    lut: vec4<f32>,                 // x, y = bottom and top radius of the LUT sphere (m); z = mie g;
-                                    // w = mie phase (0 Cornette–Shanks, 1 Henyey–Greenstein)
-    rayleigh_scattering: vec4<f32>, // rgb m⁻¹ at density 1
-    mie_scattering: vec4<f32>,
-    mie_extinction: vec4<f32>,
-    absorption: vec4<f32>,
-    ground_albedo: vec4<f32>,       // rgb, dimensionless
-    mie_legendre: vec4<f32>,        // the Mie phase's Legendre coefficients a_1 … a_4 (a_0 = 1)
-    mie_forward_peak: vec4<f32>,    // x = f, the delta-M forward peak (see Coefficients); yzw unused
-    rayleigh_density: DensityProfile,
-    mie_density: DensityProfile,
-    absorber_density: DensityProfile,
-}
-
-@group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;
 
 fn layer_density(layer: vec4<f32>, h: f32) -> f32 {
     return clamp(layer.x * exp(layer.y * h) + layer.z * h + layer.w, 0.0, 1.0);
@@ -90,7 +69,7 @@ fn mie_phase(nu: f32) -> f32 {
     let denominator = 1.0 + g * g - 2.0 * g * nu;
     let hg = (1.0 - g * g) / (4.0 * PI * denominator * sqrt(denominator));
     let cs = 3.0 / (8.0 * PI) * (1.0 - g * g) * (1.0 + nu * nu) / ((2.0 + g * g) * denominator * sqrt(denominator));
-    return select(cs, hg, atmosphere.lut.w > 0.5);
+    return select(cs, hg, u32(atmosphere.lut.w) == MIE_PHASE_HENYEY_GREENSTEIN);
 }
 
 // σ_s·p for light travelling along the sun direction scattered into the view: nu = dot(view, sun).

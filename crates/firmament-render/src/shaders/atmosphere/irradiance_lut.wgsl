@@ -1,15 +1,19 @@
 // atmosphere/irradiance_lut.wgsl — sky irradiance on a horizontal surface, per unit sun
 // irradiance (the ground's sky light; Bruneton 2017's irradiance texture, computed in one pass
 // from single scattering plus Hillaire's multiple-scattering term).
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
-// Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
-// on the LUT sphere (IRRADIANCE_LUT_SIZE).
-// For each it integrates the sky's radiance over the upper hemisphere (cos θ-weighted), with
-// DIRECTIONS_SQRT² directions of STEPS samples. Light reflected by the ground below is left out
-// (second order in the albedo). rgb = ln(irradiance / sun irradiance), as `encode_log` stores
-// it: below the horizon it falls ~e^70 per unit of mu_s like Ψ, 4-fold a texel apart with the sun
-// 6° down, where filtering it linearly made the twilight ground up to 25 % too bright; a = 1.
+// Conventions: as atmosphere/common.wgsl. Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the
+// horizon), h = v · atmosphere height, on the LUT sphere (IRRADIANCE_LUT_SIZE). For each it
+// integrates the sky's radiance over the upper hemisphere (cos θ-weighted), with DIRECTIONS_SQRT²
+// directions of STEPS samples. Light reflected by the ground below is left out (second order in
+// the albedo). rgb = ln(irradiance / sun irradiance), as `encode_log` stores it: below the horizon
+// it falls ~e^70 per unit of mu_s like Ψ, 4-fold a texel apart with the sun 6° down, where
+// filtering it linearly made the twilight ground up to 25 % too bright; a = 1.
+
+#import common/fullscreen
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
 
 const DIRECTIONS_SQRT: i32 = 16;
 const STEPS: i32 = 16;

@@ -1,20 +1,12 @@
-// atmosphere/luts.wgsl — shared include: the precomputed tables and their lookups.
-// Needs atmosphere/common.wgsl. Conventions as there; the LUT layouts are documented in
-// passes/atmosphere/luts.rs.
+// atmosphere/luts.wgsl — shared: the precomputed tables and their lookups.
 //
-// The transmittance LUT is Rgba32Float (0.1 % accuracy needs more than half floats), which is not
-// filterable everywhere, so it is read with textureLoad and filtered here.
+// Conventions: as atmosphere/common.wgsl; the LUT layouts are documented in
+// passes/atmosphere/luts.rs. The transmittance LUT is Rgba32Float (0.1 % accuracy needs more
+// than half floats), which is not filterable everywhere, so it is read with textureLoad and
+// filtered here.
 
-@group(0) @binding(2) var transmittance_lut: texture_2d<f32>;
-@group(0) @binding(3) var multiscattering_lut: texture_2d<f32>;
-@group(0) @binding(5) var lut_sampler: sampler;
-@group(0) @binding(7) var irradiance_lut: texture_2d<f32>;
-@group(0) @binding(15) var multiscattering_zz_lut: texture_2d<f32>;
-@group(0) @binding(17) var multiscattering_xx_lut: texture_2d<f32>;
-@group(0) @binding(18) var multiscattering_xz_lut: texture_2d<f32>;
-@group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
-@group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
-@group(0) @binding(27) var multiscattering_band3_lut: texture_2d<f32>;
+#import atmosphere/bindings
+#import atmosphere/common
 
 fn load_bilinear(lut: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(textureDimensions(lut));

@@ -1,13 +1,13 @@
 // atmosphere/multiscattering_lut.wgsl — the multiple-scattering LUT: Hillaire 2020's Ψ_ms ("A
 // Scalable and Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020, section 5.2),
 // solved by fixed-point iteration instead of his geometric series.
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, atmosphere/luts.wgsl.
 //
-// Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the horizon), h = v · atmosphere height,
-// on the LUT sphere. Ψ(h, mu_s) is the mean, over all directions, of the radiance of every order
-// ≥ 1 arriving at the point for a unit sun: the light of order ≥ 2 that the point scatters is then
-// σ_s · Ψ (Hillaire's assumption: that light is scattered isotropically). Each iteration marches
-// DIRECTIONS_SQRT² rays of STEPS samples from the point, with the sources
+// Conventions: as atmosphere/common.wgsl. Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the
+// horizon), h = v · atmosphere height, on the LUT sphere. Ψ(h, mu_s) is the mean, over all
+// directions, of the radiance of every order ≥ 1 arriving at the point for a unit sun: the light
+// of order ≥ 2 that the point scatters is then σ_s · Ψ (Hillaire's assumption: that light is
+// scattered isotropically). Each iteration marches DIRECTIONS_SQRT² rays of STEPS samples from the
+// point, with the sources
 //   σ_s · phase(ν) · T_sun        (sunlight scattered once, with the true phase) and
 //   σ_s · Ψ_prev(h', mu_s')       (light scattered again, from the previous iterate),
 // plus the ground at each ray's end lit by the sun and by the previous iterate's sky irradiance
@@ -15,20 +15,18 @@
 // Hillaire's 1/(1 − f_ms) series instead assumes every point sees the same light, which is low
 // near the ground, where the sky near the horizon is brightest (measured in docs/ATMOSPHERE.md).
 //
-// `OUTPUT` picks the targets: 0 = the moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) over
-// MULTISCATTERING_LUT_SIZE; 1 = (E, unused…), E the sky irradiance on the ground per unit sun, one
-// row over mu_s (the same u mapping), needed by the next iterate's ground. Ψ and E are stored as
-// their logarithms, the other moments over Ψ (see `Moments` in luts.wgsl); the iteration starts
-// from targets cleared to (LOG_FLOOR, 0, …), i.e. zero.
+// `OUTPUT` picks the targets: MULTISCATTERING_OUTPUT_MOMENTS = the moments (Ψ, zz, xx, xz, x, z,
+// bands 3 and 4) over MULTISCATTERING_LUT_SIZE; MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE = (E,
+// unused…), E the sky irradiance on the ground per unit sun, one row over mu_s (the same u
+// mapping), needed by the next iterate's ground. Ψ and E are stored as their logarithms, the
+// other moments over Ψ (see `Moments` in luts.wgsl); the iteration starts from targets cleared to
+// (LOG_FLOOR, 0, …), i.e. zero.
 
-@group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
-@group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
-@group(0) @binding(16) var previous_multiscattering_zz: texture_2d<f32>;
-@group(0) @binding(19) var previous_multiscattering_xx: texture_2d<f32>;
-@group(0) @binding(20) var previous_multiscattering_xz: texture_2d<f32>;
-@group(0) @binding(23) var previous_multiscattering_x: texture_2d<f32>;
-@group(0) @binding(24) var previous_multiscattering_z: texture_2d<f32>;
-@group(0) @binding(28) var previous_multiscattering_band3: texture_2d<f32>;
+#import common/fullscreen
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
+#import generated/constants
 
 struct Targets {
     @location(0) psi: vec4<f32>,
@@ -40,7 +38,8 @@ struct Targets {
     @location(6) band3: vec4<f32>,
 }
 
-override OUTPUT: u32 = 0u;
+// A MULTISCATTERING_OUTPUT_*: which targets the draw writes.
+override OUTPUT: u32 = MULTISCATTERING_OUTPUT_MOMENTS;
 
 const DIRECTIONS_SQRT: i32 = 12;
 const STEPS: i32 = 20;
@@ -70,7 +69,7 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     let uv = in.clip.xy / MULTISCATTERING_LUT_SIZE;
     let mu_s_h = uv_to_mu_s_h(uv, MULTISCATTERING_LUT_SIZE);
     let mu_s = mu_s_h.x;
-    let h = select(mu_s_h.y, 0.0, OUTPUT == 1u);
+    let h = select(mu_s_h.y, 0.0, OUTPUT == MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE);
     let r = atmosphere.lut.x + h;
     let origin = vec3<f32>(0.0, 0.0, r);
     let sun = vec3<f32>(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
@@ -155,7 +154,7 @@ fn fs_main(in: FullscreenVertex) -> Targets {
     }
     let n = f32(DIRECTIONS_SQRT * DIRECTIONS_SQRT);
     var out: Targets;
-    if OUTPUT == 1u {
+    if OUTPUT == MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE {
         // ∫ L cos⁺ dω over the sphere, by uniform sampling: 4π/n per direction.
         out.psi = vec4<f32>(encode_log(irradiance * (4.0 * PI / n)), 1.0);
         return out;

@@ -1,16 +1,25 @@
 // atmosphere/sky.wgsl — the atmosphere seen by the camera: sky, lit ground and sun discs, as
 // linear sRGB radiance (Y in cd/m²) into the HDR target, drawn at the far plane behind whatever
 // is already in the depth buffer.
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl,
-// sky_view.wgsl.
 //
-// Inside the atmosphere each pixel sums the sky-view LUT tiles of the suns; above it each pixel
-// marches its own ray (Hillaire 2020 does the same); across the top of the atmosphere the two
-// are blended by `view.local_up.w`, so crossing it does not pop. `SKY_MODE` picks the path.
+// Conventions: as atmosphere/view.wgsl. Inside the atmosphere each pixel sums the sky-view LUT
+// tiles of the suns; above it each pixel marches its own ray (Hillaire 2020 does the same);
+// across the top of the atmosphere the two are blended by `view.local_up.w`, so crossing it does
+// not pop. `SKY_MODE` picks the path.
 
-// 0: sky-view LUT only, 1: per-pixel march only, 2: blend by `view.local_up.w`. A pipeline
-// constant, so each pipeline holds only the path it takes.
-override SKY_MODE: u32 = 2u;
+#import common/fullscreen
+#import common/ellipsoid
+#import common/view_ray
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
+#import atmosphere/view
+#import atmosphere/sky_view
+#import generated/constants
+
+// A SKY_MODE_* (the LUT, the march, or both blended by `view.local_up.w`). A pipeline constant,
+// so each pipeline holds only the path it takes.
+override SKY_MODE: u32 = SKY_MODE_BLEND;
 
 const MARCH_STEPS: i32 = 64;
 
@@ -82,13 +91,13 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let discs = sun_discs(ray.direction);
     let on_a_disc = any(discs > vec3<f32>(0.0));
     var radiance: vec3<f32>;
-    if SKY_MODE == 0u {
+    if SKY_MODE == SKY_MODE_LUT {
         radiance = lut_radiance(ray.direction);
         // The transmittance only matters on a disc: most pixels skip its lookups.
         if on_a_disc {
             radiance += discs * lut_transmittance(ray.direction);
         }
-    } else if SKY_MODE == 1u {
+    } else if SKY_MODE == SKY_MODE_MARCH {
         let marched = marched_sky(ray);
         radiance = marched.radiance + discs * marched.transmittance;
     } else {

@@ -1,9 +1,8 @@
 // atmosphere/sky_lighting.wgsl — the light the sky and the suns give at the camera, for users'
 // own materials: one dispatch of one workgroup into a buffer that
 // shaders/include/firmament_lighting.wgsl reads (see passes/atmosphere/sky_lighting.rs).
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, common/view_ray.wgsl,
-// atmosphere/common.wgsl, luts.wgsl, view.wgsl, sky_view.wgsl.
 //
+// Conventions: as atmosphere/view.wgsl; output directions in the world frame.
 // - Sky: the radiance the sky pass draws from the sky-view LUT (`lut_radiance`: every sun's tile,
 //   sky and lit ground, no sun discs) at the centres of GRID_AZIMUTH × GRID_ROWS equal-area cells
 //   around the camera's local up (rows uniform in cos θ, so every cell spans 4π / cells sr),
@@ -14,24 +13,11 @@
 // - Suns: each one's world direction and its irradiance at the camera through the atmosphere,
 //   E·T, converted by the same matrix (linear sRGB with Y in lux).
 
-struct SkyLightingParams {
-    planet_to_world: mat4x4<f32>, // rotation: planet frame → world frame
-    flags: vec4<f32>,             // x = 1: no sky light (the camera is far away); yzw unused
-}
-
-struct SkyLightingSun {
-    direction: vec4<f32>, // xyz unit direction to the sun, world frame; w = angular radius (rad)
-    color: vec4<f32>,     // rgb E·T at the camera, linear sRGB (Y in lux); w = 0
-}
-
-struct SkyLighting {
-    sun_count: vec4<u32>,              // x = number of suns; yzw = 0
-    suns: array<SkyLightingSun, 8>,    // the first sun_count.x are set, the others zero
-    sky_sh: array<vec4<f32>, 9>,       // rgb L_lm at index l(l + 1) + m, linear sRGB (Y in cd/m²)
-}
-
-@group(0) @binding(25) var<uniform> lighting: SkyLightingParams;
-@group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
+#import atmosphere/view
+#import atmosphere/sky_view
 
 const GRID_AZIMUTH: u32 = 256u;
 const GRID_ROWS: u32 = 128u;

@@ -1,8 +1,10 @@
-// atmosphere/sky_view.wgsl — shared include: reading the sky-view LUT (sky_view_lut.wgsl writes
-// it), for the sky pass and the sky-lighting stage. Needs atmosphere/common.wgsl, luts.wgsl and
-// view.wgsl.
+// atmosphere/sky_view.wgsl — shared: reading the sky-view LUT (sky_view_lut.wgsl writes it), for
+// the sky pass and the sky-lighting stage.
+//
+// Conventions: as atmosphere/view.wgsl; radiance spectral (W·m⁻²·sr⁻¹·nm⁻¹).
 
-@group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
+#import atmosphere/bindings
+#import atmosphere/view
 
 // The spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) reaching the camera from direction d (planet frame):
 // every sun's tile at d, each times the power of two it was stored over (its alpha). Sky and lit

@@ -1,12 +1,17 @@
 // atmosphere/sky_view_lut.wgsl — Hillaire 2020's sky-view LUT, one tile per sun.
-// Includes: common/fullscreen.wgsl, common/ellipsoid.wgsl, atmosphere/common.wgsl, luts.wgsl, view.wgsl.
 //
-// The target is SKY_VIEW_LUT_SIZE.x · MAX_SUNS wide: tile i (x in [i·W, (i+1)·W)) holds the light
-// scattered towards the camera from sun i alone (all orders, and the ground that sun lights),
-// over (azimuth relative to the sun, non-linear zenith angle) — see `sky_view_uv`. Only the
-// first `sun_count` tiles are drawn (the viewport is narrowed on the Rust side). rgb = spectral
-// radiance over 2^a, a = `sky_view_exponent(sun)` (so dim suns and deep twilight keep their
-// precision).
+// Conventions: as atmosphere/view.wgsl. The target is SKY_VIEW_LUT_SIZE.x · MAX_SUNS wide: tile i
+// (x in [i·W, (i+1)·W)) holds the light scattered towards the camera from sun i alone (all
+// orders, and the ground that sun lights), over (azimuth relative to the sun, non-linear zenith
+// angle) — see `sky_view_uv`. Only the first `sun_count` tiles are drawn (the viewport is
+// narrowed on the Rust side). rgb = spectral radiance over 2^a, a = `sky_view_exponent(sun)` (so
+// dim suns and deep twilight keep their precision).
+
+#import common/fullscreen
+#import common/ellipsoid
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/view
 
 const STEPS: i32 = 32;
 

@@ -1,10 +1,13 @@
 // atmosphere/transmittance_lut.wgsl — the transmittance LUT: for each (r, mu) of the LUT sphere,
-// exp(−optical depth) to the top of the atmosphere (Bruneton 2017, ComputeTransmittanceToTopAtmosphereBoundary).
-// Includes: common/fullscreen.wgsl (unused), common/ellipsoid.wgsl, atmosphere/common.wgsl. A compute pass (GL cannot
-// render to Rgba32Float, but can store to it): one invocation per texel of TRANSMITTANCE_LUT_SIZE;
-// rgb = transmittance per wavelength, a = 1.
+// exp(−optical depth) to the top of the atmosphere (Bruneton 2017,
+// ComputeTransmittanceToTopAtmosphereBoundary).
+//
+// Conventions: as atmosphere/common.wgsl. A compute pass (GL cannot render to Rgba32Float, but
+// can store to it): one invocation per texel of TRANSMITTANCE_LUT_SIZE; rgb = transmittance per
+// wavelength, a = 1.
 
-@group(0) @binding(6) var transmittance_out: texture_storage_2d<rgba32float, write>;
+#import atmosphere/bindings
+#import atmosphere/common
 
 // The trapezoid rule with this many intervals: the integrand is smooth, so the error is far
 // below the LUT's 0.1 % budget (measured against the f64 reference by the GPU tests).

@@ -1,42 +1,18 @@
-// atmosphere/view.wgsl — shared include of the view-dependent atmosphere passes: the camera, the
-// suns, the sky-view LUT mapping and the ray march. Needs common/view_ray.wgsl,
-// atmosphere/common.wgsl and luts.wgsl.
+// atmosphere/view.wgsl — shared by the view-dependent atmosphere passes: the camera, the suns,
+// the sky-view LUT mapping and the ray march.
 //
 // Conventions: as atmosphere/common.wgsl; every position and direction is in the planet frame,
 // positions relative to the planet centre. The camera position is f32 (its altitude and its
 // ellipsoid terms come exactly from f64); a camera far away never appears in a position at all
 // (see common/view_ray.wgsl).
 
-const MAX_SUNS: u32 = 8u;
+#import common/ellipsoid
+#import common/view_ray
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
+
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
-
-struct AtmosphereSun {
-    direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad), < 0: no disc drawn
-    irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
-}
-
-struct AtmosphereView {
-    view_to_planet: mat4x4<f32>, // rotation: view-space direction → planet frame
-    camera: vec4<f32>,           // xyz camera position (m); w = its altitude (m)
-    // x, y = |o/a|² − 1 of the camera against the surface and the top; z, w = tan of half the
-    // horizontal and vertical fields of view
-    camera_shape: vec4<f32>,
-    // xy = planet centre's view-space x, y divided by its depth; z = that depth (m); w = 1 to march
-    // from each ray's closest approach to the centre (camera far away), 0 from the camera
-    center: vec4<f32>,
-    local_up: vec4<f32>,         // xyz geodetic up at the camera; w = 0 sky-view LUT … 1 ray march
-    to_srgb0: vec4<f32>,         // columns of spectral radiance → linear sRGB (Y in cd/m²)
-    to_srgb1: vec4<f32>,
-    to_srgb2: vec4<f32>,
-    // x = range of the aerial-perspective volume (m); y, z = the projection's A, B (view depth =
-    // B / (depth + A) for a depth-buffer value); w = the far plane's depth (0 reversed-Z, 1
-    // standard)
-    aerial: vec4<f32>,
-    sun_count: vec4<u32>,        // x = number of suns; yzw unused
-    suns: array<AtmosphereSun, 8>,
-}
-
-@group(0) @binding(1) var<uniform> view: AtmosphereView;
 
 const SKY_VIEW_LUT_SIZE: vec2<f32> = vec2<f32>(192.0, 108.0);
 

@@ -1,4 +1,4 @@
-// common/ellipsoid.wgsl — shared include: ray/ellipsoid intersection.
+// common/ellipsoid.wgsl — shared: ray/ellipsoid intersection.
 //
 // Conventions: any frame whose axes are the ellipsoid's (the planet frame), metres; `a` the
 // semi-axes; `c` = |o/a|² − 1 of the ray origin o (negative inside, positive outside).

@@ -1,4 +1,4 @@
-// fullscreen.wgsl — shared include: one triangle that covers the whole viewport.
+// common/fullscreen.wgsl — shared: one triangle that covers the whole viewport.
 //
 // Conventions: `ndc` is normalised device coordinates, x right and y up, both in [-1, 1] on
 // screen. Clip-space depth follows firmament's reversed-Z: 1 at the near plane, 0 at infinity,

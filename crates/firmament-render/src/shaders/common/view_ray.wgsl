@@ -1,9 +1,11 @@
-// common/view_ray.wgsl — shared include: a pixel's view ray in the planet frame, precise from the
-// street to 100 AU. Needs common/ellipsoid.wgsl.
+// common/view_ray.wgsl — shared: a pixel's view ray in the planet frame, precise from the street
+// to 100 AU.
 //
 // Conventions: planet frame, metres; `ndc` the pixel in normalised device coordinates. The four
 // fields of `PlanetView` are the first four of both passes' view uniforms (Rust:
 // `gpu_types::planet_view`), passed in by each pass's own `view_ray`.
+
+#import common/ellipsoid
 
 struct PlanetView {
     view_to_planet: mat4x4<f32>, // rotation: view-space direction → planet frame

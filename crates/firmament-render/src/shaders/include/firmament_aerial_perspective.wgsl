@@ -1,21 +1,25 @@
-// firmament_aerial_perspective.wgsl — firmament's aerial perspective for your own shaders: the air
-// between the camera and your surface, `colour · T + S` per channel, from the froxel volume the
-// atmosphere pass builds at the camera each frame (the one its own geometry is fogged with).
+// include/firmament_aerial_perspective.wgsl — firmament's aerial perspective for your own
+// shaders: the air between the camera and your surface, `colour · T + S` per channel, from the
+// froxel volume the atmosphere pass builds at the camera each frame (the one its own geometry is
+// fogged with).
 //
-// Use: put this file before your shader's code (`firmament_render::shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`
-// declares its five bindings at @group(1) @binding(1) … @binding(5), after firmament_lighting.wgsl's
-// @binding(0); `firmament_render::shaders::firmament_aerial_perspective_wgsl(group, first_binding)`
-// gives the same text at `first_binding` … `first_binding + 4` of your own group). Its bind group
-// layout entries are `firmament_render::aerial_perspective_layout_entries(first_binding)` and the
-// resources `AtmospherePass::aerial_perspective_bindings().bind_group_entries(first_binding)`
-// (or `Renderer::aerial_perspective_bindings()`). Every name here starts with `firmament_`,
-// `Firmament` or `FIRMAMENT_` (the lookup in atmosphere/aerial_lookup.wgsl comes first).
+// Use: put this text before your shader's code (`firmament_render::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`
+// is this file after the lookup it imports; it declares five bindings at @group(1) @binding(1) …
+// @binding(5), after firmament_lighting.wgsl's @binding(0);
+// `firmament_render::firmament_aerial_perspective_wgsl(group, first_binding)` gives the same text
+// at `first_binding` … `first_binding + 4` of your own group). Its bind group layout entries are
+// `firmament_render::aerial_perspective_layout_entries(first_binding)` and the resources
+// `AtmospherePass::aerial_perspective_bindings().bind_group_entries(first_binding)` (or
+// `Renderer::aerial_perspective_bindings()`). Every name here starts with `firmament_`,
+// `Firmament` or `FIRMAMENT_`.
 //
 // The volume is built by the atmosphere pass's `record_aerial_perspective_volume` (or
 // `record_aerial_perspective`) after its `record_luts`: use it in commands encoded after those.
-// Frames and units: colours linear sRGB with Y in cd/m² (the sky's units); the transmittance at
-// 680/550/440 nm multiplies R/G/B. No aerial perspective from a camera beyond 10 atmosphere top
-// radii (the colour is returned as it is), as for firmament's own geometry.
+// Conventions (frames and units): colours linear sRGB with Y in cd/m² (the sky's units); the
+// transmittance at 680/550/440 nm multiplies R/G/B. No aerial perspective from a camera beyond 10
+// atmosphere top radii (the colour is returned as it is), as for firmament's own geometry.
+
+#import atmosphere/aerial_lookup
 
 // The atmosphere pass's per-frame view (its first members; Rust `gpu_types::AtmosphereViewUniforms`).
 struct FirmamentAerialView {

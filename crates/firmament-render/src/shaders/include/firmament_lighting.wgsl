@@ -1,16 +1,16 @@
-// firmament_lighting.wgsl — firmament's per-frame lighting for your own shaders: each sun's
+// include/firmament_lighting.wgsl — firmament's per-frame lighting for your own shaders: each sun's
 // direction and colour at the camera, and the sky's irradiance as spherical harmonics.
 //
-// Use: put this file before your shader's code (`firmament_render::shaders::FIRMAMENT_LIGHTING_WGSL`
-// binds the buffer at @group(1) @binding(0); `firmament_render::shaders::firmament_lighting_wgsl(group,
-// binding)` gives the same text at your own group and binding). Bind the atmosphere pass's
+// Use: put this file before your shader's code (`firmament_render::FIRMAMENT_LIGHTING_WGSL` binds
+// the buffer at @group(1) @binding(0); `firmament_render::firmament_lighting_wgsl(group, binding)`
+// gives the same text at your own group and binding). Bind the atmosphere pass's
 // `sky_lighting_buffer()` there as a uniform buffer; its bind group layout entry is
-// `firmament_render::passes::atmosphere::sky_lighting_layout_entry(binding)` (a uniform buffer of
-// 416 bytes seen by the vertex, fragment and compute stages). Every name here starts with
+// `firmament_render::sky_lighting_layout_entry(binding)` (a uniform buffer of 416 bytes seen by
+// the vertex, fragment and compute stages). It imports nothing, and every name here starts with
 // `firmament_`, `Firmament` or `FIRMAMENT_`.
 //
 // The values are the camera's, written each frame by the atmosphere pass's `record_luts` (so use
-// them in commands encoded after it). Frames and units:
+// them in commands encoded after it). Conventions (frames and units):
 // - Directions are unit vectors in the world frame (the frame of firmament's camera and suns).
 // - Colours are linear sRGB whose Y is the photometric quantity: the sky's radiance in cd/m², an
 //   irradiance in lux (lm/m² = cd·sr/m²) — the units of the sky firmament draws, so one exposure

@@ -1,0 +1,135 @@
+//! The codes Rust writes into uniforms and pipeline constants where a shader branches on them,
+//! listed once for both sides: [`wgsl`] writes them as WGSL constants of the same names (the
+//! shader module `generated/constants`), so a shader says `frame.mode.x == SHADING_PHONG` and
+//! neither side can drift. Every code is a `u32`; where a uniform carries one in an `f32` (exact
+//! for these small integers), the shader compares `u32(value)`.
+
+/// Declares the codes as Rust constants and lists them, with their docs, for [`wgsl`].
+macro_rules! codes {
+    ($($(#[doc = $doc:literal])+ $name:ident = $value:literal;)*) => {
+        $(
+            $(#[doc = $doc])+
+            pub const $name: u32 = $value;
+        )*
+
+        /// Every code: its name, value and doc lines.
+        const ALL: &[(&str, u32, &[&str])] = &[$((stringify!($name), $name, &[$($doc),+])),*];
+    };
+}
+
+codes! {
+    /// Tone curve (`TonemapUniforms::curve`): none, values clamped to [0, 1].
+    TONE_CURVE_NONE = 0;
+    /// Tone curve: Stephen Hill's ACES fit.
+    TONE_CURVE_ACES_FITTED = 1;
+    /// Tone curve: Khronos PBR Neutral.
+    TONE_CURVE_PBR_NEUTRAL = 2;
+    /// Transfer (`TonemapUniforms::transfer`): values written as they are.
+    TRANSFER_NONE = 0;
+    /// Transfer: the sRGB encoding applied in the shader (the output format does not).
+    TRANSFER_ENCODE_SRGB = 1;
+    /// Transfer: the sRGB encoding's inverse, so that an `*Srgb` output's own encoding cancels.
+    TRANSFER_DECODE_SRGB = 2;
+
+    /// Gradient sky band blend (`GradientSkyUniforms::shape.w`, in an `f32`): linear.
+    GRADIENT_BLEND_LINEAR = 0;
+    /// Gradient sky band blend: smoothstep.
+    GRADIENT_BLEND_SMOOTH = 1;
+
+    /// Classic shading (`ClassicFrameUniforms::mode.x`): Gouraud, lit per vertex (flat shading
+    /// too, over a mesh whose vertices carry their triangle's provoking vertex).
+    SHADING_GOURAUD = 0;
+    /// Classic shading: Phong, lit per fragment.
+    SHADING_PHONG = 1;
+    /// Classic shading: unlit, the front diffuse colour (GL lighting off).
+    SHADING_UNLIT = 2;
+    /// Classic specular model (`ClassicFrameUniforms::mode.y`): Blinn's half vector.
+    SPECULAR_BLINN = 0;
+    /// Classic specular model: Phong's reflection vector.
+    SPECULAR_PHONG = 1;
+    /// Fog equation (`ClassicFrameUniforms::fog_mode.x`): no fog.
+    FOG_NONE = 0;
+    /// Fog equation: GL's linear fog (GL 2.1 eq. 3.18).
+    FOG_LINEAR = 1;
+    /// Fog equation: GL's `GL_EXP` (eq. 3.16).
+    FOG_EXP = 2;
+    /// Fog equation: GL's `GL_EXP2` (eq. 3.17).
+    FOG_EXP2 = 3;
+    /// Fog equation: height fog, exponential in height.
+    FOG_HEIGHT = 4;
+    /// Fog coordinate (`ClassicFrameUniforms::fog_mode.y`): the eye-plane depth |z_eye|.
+    FOG_COORDINATE_EYE_PLANE_DEPTH = 0;
+    /// Fog coordinate: the distance from the eye.
+    FOG_COORDINATE_EYE_DISTANCE = 1;
+    /// Fog coordinate: the vertex's own (`GL_FOG_COORD`), else the object's current one.
+    FOG_COORDINATE_VERTEX = 2;
+
+    /// Flare element shape (`FlareInstance::shape.x`, in an `f32`): a glow.
+    FLARE_GLOW = 0;
+    /// Flare element shape: streaks.
+    FLARE_STREAKS = 1;
+    /// Flare element shape: a halo ring.
+    FLARE_HALO = 2;
+    /// Flare element shape: an aperture ghost (a regular polygon or a disc).
+    FLARE_GHOST = 3;
+    /// Flare element shape: a picture from the element image array.
+    FLARE_IMAGE = 4;
+    /// Depth convention (`FlareFrameUniforms::fade.z`, in an `f32`): reversed-Z, near 1 and far 0.
+    DEPTH_REVERSED = 0;
+    /// Depth convention: standard, near 0 and far 1.
+    DEPTH_STANDARD = 1;
+
+    /// Mie phase function (`AtmosphereParamsUniforms::lut.w`, in an `f32`): Cornette–Shanks.
+    MIE_PHASE_CORNETTE_SHANKS = 0;
+    /// Mie phase function: Henyey–Greenstein.
+    MIE_PHASE_HENYEY_GREENSTEIN = 1;
+    /// Sky pass variant (`SKY_MODE` of `atmosphere/sky.wgsl`): the sky-view LUT only.
+    SKY_MODE_LUT = 0;
+    /// Sky pass variant: a ray march per pixel only.
+    SKY_MODE_MARCH = 1;
+    /// Sky pass variant: both, blended by `view.local_up.w` (across the top of the atmosphere).
+    SKY_MODE_BLEND = 2;
+    /// Multiple-scattering draw (`OUTPUT` of `atmosphere/multiscattering_lut.wgsl`): the moments.
+    MULTISCATTERING_OUTPUT_MOMENTS = 0;
+    /// Multiple-scattering draw: the ground's sky irradiance row.
+    MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE = 1;
+    /// Aerial-perspective draw (`OUTPUT` of `atmosphere/aerial_perspective.wgsl`): the
+    /// transmittance, blended `dst · src`.
+    AERIAL_OUTPUT_TRANSMITTANCE = 0;
+    /// Aerial-perspective draw: the scattered light, blended `dst + src`.
+    AERIAL_OUTPUT_SCATTERING = 1;
+}
+
+/// The WGSL of the shader module `generated/constants`: every code as a `const` of its Rust name,
+/// its doc as a comment.
+pub fn wgsl() -> String {
+    let mut text = String::from(
+        "// generated/constants — written by Rust (firmament-render's `gpu_types/codes.rs`), not read\n\
+         // from a file: the codes Rust writes into uniforms and pipeline constants, by name.\n",
+    );
+    for (name, value, doc) in ALL {
+        text.push('\n');
+        for line in *doc {
+            text.push_str(&format!("//{line}\n"));
+        }
+        text.push_str(&format!("const {name}: u32 = {value}u;\n"));
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_wgsl_declares_every_code_once() {
+        let text = wgsl();
+        for (name, value, _) in ALL {
+            assert_eq!(
+                text.matches(&format!("const {name}: u32 = {value}u;\n")).count(),
+                1,
+                "{name}"
+            );
+        }
+    }
+}

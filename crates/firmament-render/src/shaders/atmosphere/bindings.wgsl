@@ -1,0 +1,125 @@
+// atmosphere/bindings.wgsl — the atmosphere passes' interface with Rust: the uniform and storage
+// structs (mirrored by `gpu_types/atmosphere.rs` and `gpu_types/sky_lighting.rs`, checked by the
+// layout tests in `shaders/mod.rs`) and every group-0 binding of every atmosphere pipeline, in one
+// place (mirrored by the `binding` module of `passes/atmosphere/stages.rs`, checked by its tests).
+//
+// Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
+// Each pipeline's layout holds only the bindings its entry points use; the others are declared
+// here unused, which WGSL and wgpu allow. A new binding takes the next free number here and in
+// `stages.rs`.
+
+// How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
+const MAX_SUNS: u32 = 8u;
+
+struct DensityProfile {
+    layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
+    layer1: vec4<f32>, // the same terms above width
+    width: vec4<f32>,  // x = top of layer 0 (m); yzw unused
+}
+
+// The medium: everything the LUTs depend on.
+struct AtmosphereParams {
+    radii: vec4<f32>,               // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
+    lut: vec4<f32>,                 // x, y = bottom and top radius of the LUT sphere (m); z = mie g;
+                                    // w = mie phase (MIE_PHASE_*, generated/constants)
+    rayleigh_scattering: vec4<f32>, // rgb m⁻¹ at density 1
+    mie_scattering: vec4<f32>,
+    mie_extinction: vec4<f32>,
+    absorption: vec4<f32>,
+    ground_albedo: vec4<f32>,       // rgb, dimensionless
+    mie_legendre: vec4<f32>,        // the Mie phase's Legendre coefficients a_1 … a_4 (a_0 = 1)
+    mie_forward_peak: vec4<f32>,    // x = f, the delta-M forward peak (see Coefficients); yzw unused
+    rayleigh_density: DensityProfile,
+    mie_density: DensityProfile,
+    absorber_density: DensityProfile,
+}
+
+struct AtmosphereSun {
+    direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad), < 0: no disc drawn
+    irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
+}
+
+// The camera and the suns, per frame.
+struct AtmosphereView {
+    view_to_planet: mat4x4<f32>, // rotation: view-space direction → planet frame
+    camera: vec4<f32>,           // xyz camera position (m); w = its altitude (m)
+    // x, y = |o/a|² − 1 of the camera against the surface and the top; z, w = tan of half the
+    // horizontal and vertical fields of view
+    camera_shape: vec4<f32>,
+    // xy = planet centre's view-space x, y divided by its depth; z = that depth (m); w = 1 to march
+    // from each ray's closest approach to the centre (camera far away), 0 from the camera
+    center: vec4<f32>,
+    local_up: vec4<f32>,         // xyz geodetic up at the camera; w = 0 sky-view LUT … 1 ray march
+    to_srgb0: vec4<f32>,         // columns of spectral radiance → linear sRGB (Y in cd/m²)
+    to_srgb1: vec4<f32>,
+    to_srgb2: vec4<f32>,
+    // x = range of the aerial-perspective volume (m); y, z = the projection's A, B (view depth =
+    // B / (depth + A) for a depth-buffer value); w = the far plane's depth (0 reversed-Z, 1
+    // standard)
+    aerial: vec4<f32>,
+    sun_count: vec4<u32>,        // x = number of suns; yzw unused
+    suns: array<AtmosphereSun, MAX_SUNS>,
+}
+
+// The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).
+struct SkyLightingParams {
+    planet_to_world: mat4x4<f32>, // rotation: planet frame → world frame
+    flags: vec4<f32>,             // x = 1: no sky light (the camera is far away); yzw unused
+}
+
+struct SkyLightingSun {
+    direction: vec4<f32>, // xyz unit direction to the sun, world frame; w = angular radius (rad)
+    color: vec4<f32>,     // rgb E·T at the camera, linear sRGB (Y in lux); w = 0
+}
+
+// What the sky-lighting stage writes, read by users' shaders (include/firmament_lighting.wgsl
+// mirrors it as FirmamentSkyLighting).
+struct SkyLighting {
+    sun_count: vec4<u32>,                   // x = number of suns; yzw = 0
+    suns: array<SkyLightingSun, MAX_SUNS>,  // the first sun_count.x are set, the others zero
+    sky_sh: array<vec4<f32>, 9>,            // rgb L_lm at index l(l + 1) + m, linear sRGB (Y in cd/m²)
+}
+
+// ---- Uniforms ----
+@group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;
+@group(0) @binding(1) var<uniform> view: AtmosphereView;
+@group(0) @binding(25) var<uniform> lighting: SkyLightingParams;
+
+// ---- The LUTs, read (layouts: passes/atmosphere/luts.rs) ----
+// Rgba32Float, not filterable everywhere: read with textureLoad (`load_bilinear` in luts.wgsl).
+@group(0) @binding(2) var transmittance_lut: texture_2d<f32>;
+@group(0) @binding(7) var irradiance_lut: texture_2d<f32>;
+@group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
+// The multiple-scattering moments, in `Moments` order (luts.wgsl).
+@group(0) @binding(3) var multiscattering_lut: texture_2d<f32>;
+@group(0) @binding(15) var multiscattering_zz_lut: texture_2d<f32>;
+@group(0) @binding(17) var multiscattering_xx_lut: texture_2d<f32>;
+@group(0) @binding(18) var multiscattering_xz_lut: texture_2d<f32>;
+@group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
+@group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
+@group(0) @binding(27) var multiscattering_band3_lut: texture_2d<f32>;
+// The previous iterate's moments and ground irradiance row, while the multiple-scattering LUTs
+// are built (multiscattering_lut.wgsl).
+@group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
+@group(0) @binding(16) var previous_multiscattering_zz: texture_2d<f32>;
+@group(0) @binding(19) var previous_multiscattering_xx: texture_2d<f32>;
+@group(0) @binding(20) var previous_multiscattering_xz: texture_2d<f32>;
+@group(0) @binding(23) var previous_multiscattering_x: texture_2d<f32>;
+@group(0) @binding(24) var previous_multiscattering_z: texture_2d<f32>;
+@group(0) @binding(28) var previous_multiscattering_band3: texture_2d<f32>;
+@group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
+// The aerial-perspective volume's slice atlases (aerial_perspective_volume.wgsl).
+@group(0) @binding(10) var aerial_scattering: texture_2d<f32>;
+@group(0) @binding(11) var aerial_transmittance: texture_2d<f32>;
+// Linear, clamp to edge.
+@group(0) @binding(5) var lut_sampler: sampler;
+
+// ---- Other inputs ----
+// The scene's depth buffer, a depth view read as unfilterable float (aerial_perspective.wgsl).
+@group(0) @binding(12) var scene_depth: texture_2d<f32>;
+
+// ---- Outputs of the compute stages ----
+@group(0) @binding(6) var transmittance_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(8) var aerial_scattering_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
