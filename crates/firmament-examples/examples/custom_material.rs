@@ -18,7 +18,7 @@ use std::path::Path;
 
 use firmament_core::Camera;
 use firmament_core::color::{LinearRgb, linear_to_srgb};
-use firmament_render::readback::{decode_f16, read_texture};
+use firmament_render::headless::{decode_f16, read_texture};
 use firmament_render::wgpu::util::DeviceExt;
 use firmament_render::{DEPTH_FORMAT, DepthConvention, EmbedTarget, GpuContext, HDR_FORMAT, Renderer, wgpu};
 use glam::DVec3;

@@ -105,7 +105,7 @@ impl GpuContext {
             label: Some("firmament device"),
             // Optional: GPU timestamps for `firmament bench`, where the adapter has them.
             required_features: crate::requirements::required_features()
-                | (adapter.features() & crate::bench::TIMESTAMP_FEATURES),
+                | (adapter.features() & crate::requirements::TIMESTAMP_FEATURES),
             required_limits: adapter.limits(),
             ..Default::default()
         }))

@@ -4,7 +4,7 @@ use firmament_core::Frame;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
-use crate::readback::read_texture;
+pub use crate::readback::{decode_f16, read_texture};
 use crate::renderer::Renderer;
 
 /// Format of the display image: 8-bit RGBA, sRGB-encoded by the hardware.

@@ -2,7 +2,7 @@
 //! from a [`firmament_core::Frame`] into a `wgpu` texture view.
 //!
 //! It owns every GPU object and is the only place where the `f64` core becomes `f32`
-//! ([`gpu_types`]). Each pass is a struct in [`passes`] that builds its pipeline once in `new`,
+//! (`gpu_types/`). Each pass is a struct in `passes/` that builds its pipeline once in `new`,
 //! uploads per-frame data in `prepare` and only encodes commands in `record`; every pass draws
 //! into any `&wgpu::TextureView`, so the CLI, the viewer and the tests share one path.
 //!
@@ -50,7 +50,7 @@
 //! - **Units**: SI, as in [`firmament_core`]: metres, radians, seconds (scene files speak degrees
 //!   and `HH:MM` for people). The HDR target holds linear radiance — cd/m² in linear sRGB for the
 //!   physical atmosphere, display units for the gradient and seed skies — clamped to
-//!   [`targets::HDR_MAX`].
+//!   [`HDR_MAX`].
 //! - **Frames**: right-handed, +Z up. The world is East-North-Up (`x` east, `y` north, `z` up);
 //!   the planet frame is planet-centred with `z` through the north pole; view space is OpenGL's
 //!   (the camera looks down −z, +y up on screen).
@@ -74,7 +74,7 @@
 //!   [`Renderer::prepare`] and [`Renderer::record`] into your command encoder and any view of
 //!   that format and the prepared size. It writes every pixel of the view: the finished,
 //!   tone-mapped image (firmament's own objects included). An output format the output pass
-//!   cannot draw into ([`targets::check_output_format`]) is refused by `prepare` with
+//!   cannot draw into ([`check_output_format`]) is refused by `prepare` with
 //!   [`RenderError::OutputFormat`].
 //! - **Images in memory**: [`headless::HeadlessRenderer`] (8-bit display or linear HDR).
 //! - **Your frame: your HDR target, depth buffer and depth convention**:
@@ -114,19 +114,47 @@
 //!   [`RenderError::Gpu`]. Everything firmament can check beforehand it checks, and returns as
 //!   an error.
 
-pub mod bench;
-pub mod context;
-pub mod error;
-pub mod gpu_types;
+mod context;
+mod error;
 pub mod headless;
-pub mod pass_timing;
-pub mod passes;
-pub mod probe;
-pub mod readback;
-pub mod renderer;
-pub mod requirements;
-pub mod shaders;
-pub mod targets;
+mod renderer;
+mod requirements;
+mod targets;
+
+/// Declares the modules behind the public API: private, or public with the `internals` feature,
+/// for firmament's own tests and tools (the CLI's benchmarks and probes). No compatibility promise
+/// is made for them; an embedder needs only the names re-exported below.
+macro_rules! internal_modules {
+    ($($(#[$doc:meta])* $name:ident;)*) => {
+        $(
+            $(#[$doc])*
+            #[cfg(feature = "internals")]
+            pub mod $name;
+            $(#[$doc])*
+            #[cfg(not(feature = "internals"))]
+            #[allow(
+                unreachable_pub,
+                dead_code,
+                unused_imports,
+                reason = "public, and used, only by the crate's own tests and tools with the internals feature"
+            )]
+            mod $name;
+        )*
+    };
+}
+
+internal_modules! {
+    /// The one place the `f64` core becomes `f32` GPU data, camera- or planet-relative.
+    gpu_types;
+    /// Timestamp queries around a frame's phases: the viewer's panel and the benchmarks.
+    pass_timing;
+    /// One module per pass: `new` builds pipelines, `prepare` uploads, `record` encodes.
+    passes;
+    /// Texture and buffer read-back.
+    readback;
+    /// The WGSL sources and their composition.
+    shaders;
+}
 
 /// The wgpu this crate is built against: use it for your own device so that versions cannot drift.
 pub use wgpu;
@@ -135,12 +163,19 @@ pub use context::{Backend, GpuContext};
 pub use error::{LimitShortfall, RenderError};
 pub use firmament_core::DepthConvention;
 pub use gpu_types::SkyLightingGpu;
-pub use pass_timing::{PassTime, PassTimes, pass_timing_supported};
+pub use pass_timing::{
+    PHASE_AERIAL_PERSPECTIVE, PHASE_FLARES, PHASE_LUTS, PHASE_SKY_AND_OBJECTS, PHASE_TONEMAP, PHASES, PassTime,
+    PassTimes, pass_timing_supported,
+};
 pub use passes::atmosphere::{AerialPerspectiveBindings, aerial_perspective_layout_entries, sky_lighting_layout_entry};
 pub use renderer::Renderer;
-pub use requirements::{check_device, required_features, required_limits};
+pub use requirements::{TIMESTAMP_FEATURES, check_device, required_features, required_limits};
 pub use shaders::{
-    FIRMAMENT_AERIAL_PERSPECTIVE_WGSL, FIRMAMENT_LIGHTING_WGSL, firmament_aerial_perspective_wgsl,
-    firmament_lighting_wgsl,
+    FIRMAMENT_AERIAL_PERSPECTIVE_FIRST_BINDING, FIRMAMENT_AERIAL_PERSPECTIVE_GROUP, FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
+    FIRMAMENT_LIGHTING_BINDING, FIRMAMENT_LIGHTING_GROUP, FIRMAMENT_LIGHTING_WGSL, Shader,
+    firmament_aerial_perspective_wgsl, firmament_lighting_wgsl,
 };
-pub use targets::{DEPTH_FORMAT, EMBED_COLOR_FORMATS, EMBED_DEPTH_FORMATS, EmbedTarget, FrameTargets, HDR_FORMAT};
+pub use targets::{
+    DEPTH_FORMAT, EMBED_COLOR_FORMATS, EMBED_DEPTH_FORMATS, EmbedTarget, FrameTargets, HDR_FORMAT, HDR_MAX,
+    check_output_format,
+};

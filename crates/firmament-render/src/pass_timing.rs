@@ -3,7 +3,7 @@
 //!
 //! Off by default. [`Renderer::enable_pass_timing`](crate::Renderer::enable_pass_timing) turns it
 //! on where the device has timestamp queries inside command encoders
-//! ([`bench::TIMESTAMP_FEATURES`](crate::bench::TIMESTAMP_FEATURES), which
+//! ([`TIMESTAMP_FEATURES`], which
 //! [`GpuContext::from_adapter`](crate::GpuContext::from_adapter) requests whenever the adapter
 //! offers them; [`pass_timing_supported`] says whether a device has them). Elsewhere — llvmpipe's
 //! GL, for one — it stays off and nothing changes.
@@ -23,8 +23,8 @@
 use std::sync::atomic::{AtomicU8, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use crate::bench::TIMESTAMP_FEATURES;
 use crate::context::GpuContext;
+use crate::requirements::TIMESTAMP_FEATURES;
 
 /// The atmosphere's look-up tables (sky-view LUT, and the medium LUTs when the medium changed).
 /// Only in frames whose sky is a physical atmosphere.
@@ -58,8 +58,8 @@ const BYTES: u64 = QUERIES as u64 * wgpu::QUERY_SIZE as u64;
 /// Read-back buffers: frames whose times can be in flight at once.
 const RING: usize = 3;
 
-/// Whether `device` can time passes ([`bench::TIMESTAMP_FEATURES`](crate::bench::TIMESTAMP_FEATURES):
-/// timestamp queries written between the commands of an encoder).
+/// Whether `device` can time passes ([`TIMESTAMP_FEATURES`]: timestamp queries written between
+/// the commands of an encoder).
 pub fn pass_timing_supported(device: &wgpu::Device) -> bool {
     device.features().contains(TIMESTAMP_FEATURES)
 }
@@ -151,7 +151,7 @@ struct RingState {
 /// The GPU objects of pass timing: a timestamp query set, the buffer it resolves into and the
 /// ring of read-back buffers.
 #[derive(Debug)]
-pub(crate) struct PassTimer {
+pub struct PassTimer {
     device: wgpu::Device,
     queries: wgpu::QuerySet,
     resolved: wgpu::Buffer,
@@ -171,7 +171,7 @@ fn readback_buffer(device: &wgpu::Device) -> wgpu::Buffer {
 
 impl PassTimer {
     /// The query set and buffers, or `None` when the device cannot write timestamps in encoders.
-    pub(crate) fn new(ctx: &GpuContext) -> Option<Self> {
+    pub fn new(ctx: &GpuContext) -> Option<Self> {
         let device = &ctx.device;
         if !pass_timing_supported(device) {
             return None;
@@ -212,12 +212,36 @@ impl PassTimer {
     }
 
     /// The newest finished frame's times, after a non-blocking poll of the device.
-    pub(crate) fn pass_times(&self, ctx: &GpuContext) -> Option<PassTimes> {
+    pub fn pass_times(&self, ctx: &GpuContext) -> Option<PassTimes> {
         // An error is device loss: the results stop coming, nothing more to do here.
         let _ = ctx.device.poll(wgpu::PollType::Poll);
         let mut state = self.lock();
         self.harvest(&mut state);
         state.latest.as_ref().map(|(_, times)| times.clone())
+    }
+
+    /// Blocks until the times of `frame` (from [`FrameTiming::finish`], its encoder submitted)
+    /// are back: for benchmarks, which wait for each frame anyway. `None` when its read-back
+    /// failed or a newer frame's times came back first.
+    pub fn wait_for_frame(&self, ctx: &GpuContext, frame: u64) -> Option<PassTimes> {
+        loop {
+            // An error is device loss: the mapping fails and the loop ends below.
+            let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+            let mut state = self.lock();
+            self.harvest(&mut state);
+            if let Some((latest, times)) = &state.latest
+                && *latest >= frame
+            {
+                return (*latest == frame).then(|| times.clone());
+            }
+            let pending = state
+                .slots
+                .iter()
+                .any(|slot| slot.in_flight.as_ref().is_some_and(|in_flight| in_flight.frame == frame));
+            if !pending {
+                return None;
+            }
+        }
     }
 
     /// Reads every mapped buffer of the ring, keeps the newest frame's times and frees the
@@ -272,14 +296,14 @@ impl PassTimer {
 /// The timing of one `record`: [`begin`](Self::begin), [`mark`](Self::mark) the end of each
 /// phase, [`finish`](Self::finish). Does nothing when timing is off or the ring is full.
 #[derive(Debug)]
-pub(crate) struct FrameTiming<'a> {
+pub struct FrameTiming<'a> {
     timer: Option<&'a PassTimer>,
     phases: Vec<&'static str>,
 }
 
 impl<'a> FrameTiming<'a> {
     /// Writes the first timestamp when `timer` is on and a read-back buffer is free.
-    pub(crate) fn begin(timer: Option<&'a PassTimer>, encoder: &mut wgpu::CommandEncoder) -> Self {
+    pub fn begin(timer: Option<&'a PassTimer>, encoder: &mut wgpu::CommandEncoder) -> Self {
         let timer = timer.filter(|timer| {
             let mut state = timer.lock();
             timer.harvest(&mut state);
@@ -295,7 +319,7 @@ impl<'a> FrameTiming<'a> {
     }
 
     /// Ends the phase `name` with a timestamp.
-    pub(crate) fn mark(&mut self, encoder: &mut wgpu::CommandEncoder, name: &'static str) {
+    pub fn mark(&mut self, encoder: &mut wgpu::CommandEncoder, name: &'static str) {
         if let Some(timer) = self.timer
             && self.phases.len() < PHASES.len()
         {
@@ -305,18 +329,15 @@ impl<'a> FrameTiming<'a> {
     }
 
     /// Resolves the frame's timestamps into a free read-back buffer, to be mapped when the
-    /// encoder is submitted.
-    pub(crate) fn finish(self, encoder: &mut wgpu::CommandEncoder) {
-        let Some(timer) = self.timer else {
-            return;
-        };
+    /// encoder is submitted; the frame's number for [`PassTimer::wait_for_frame`], `None` when
+    /// the frame is not timed.
+    pub fn finish(self, encoder: &mut wgpu::CommandEncoder) -> Option<u64> {
+        let timer = self.timer?;
         let mut state = timer.lock();
         state.frames += 1;
         let frame = state.frames;
         // Free at `begin`; taken since only by another thread recording at the same time.
-        let Some(slot) = state.slots.iter_mut().find(|slot| slot.in_flight.is_none()) else {
-            return;
-        };
+        let slot = state.slots.iter_mut().find(|slot| slot.in_flight.is_none())?;
         let queries = self.phases.len() as u32 + 1;
         let bytes = u64::from(queries) * u64::from(wgpu::QUERY_SIZE);
         encoder.resolve_query_set(&timer.queries, 0..queries, &timer.resolved, 0);
@@ -335,6 +356,7 @@ impl<'a> FrameTiming<'a> {
             frame,
             status,
         });
+        Some(frame)
     }
 }
 

@@ -290,7 +290,7 @@ impl Renderer {
         target: &EmbedTarget<'_>,
     ) -> Result<(), RenderError> {
         let (width, height) = target.check(ctx)?;
-        let key = target.key();
+        let key = sky_target(target);
         let interval = self.flare_interval;
         let passes = self
             .embedded
@@ -334,14 +334,14 @@ impl Renderer {
     pub fn record_into(&self, encoder: &mut wgpu::CommandEncoder, target: &EmbedTarget<'_>) -> Result<(), RenderError> {
         let size = target.check_with(self.features)?;
         let output = target.output.map(|view| view.texture().format());
-        if self.active != Some(target.key()) || size != self.embedded_size || output != self.embedded_output {
+        if self.active != Some(sky_target(target)) || size != self.embedded_size || output != self.embedded_output {
             return Err(RenderError::InvalidTarget(format!(
                 "record_into a {:?} target of {}x{} ({:?}, {:?} depth, output {:?}): prepare_into it first",
-                target.key().color,
+                sky_target(target).color,
                 size.0,
                 size.1,
                 target.convention,
-                target.key().depth,
+                sky_target(target).depth,
                 output
             )));
         }
@@ -394,13 +394,13 @@ impl Renderer {
     /// Spreads rebuilds of the atmosphere's medium LUTs (after a change of planet or medium) over
     /// successive frames of the renderer's own targets, the sky drawing from the previous medium
     /// meanwhile (a viewer's panel stays responsive); off by default — stills build in the frame
-    /// of the change. See [`AtmospherePass::set_incremental_rebuild`].
+    /// of the change.
     pub fn set_incremental_lut_rebuild(&mut self, incremental: bool) {
         self.own.atmosphere.set_incremental_rebuild(incremental);
     }
 
     /// The complete builds of the atmosphere's medium LUTs the renderer's own targets encoded
-    /// ([`AtmospherePass::medium_builds`]), and whether one is under way.
+    /// since it was made, and whether one is under way.
     pub fn medium_lut_builds(&self) -> (u64, bool) {
         (self.own.atmosphere.medium_builds(), self.own.atmosphere.rebuilding())
     }
@@ -461,9 +461,9 @@ impl Renderer {
     }
 
     /// Turns on per-pass GPU timing of [`record`](Self::record) and
-    /// [`record_into`](Self::record_into) ([`crate::pass_timing`]): builds a timestamp query set
+    /// [`record_into`](Self::record_into) ([`PassTimes`](crate::PassTimes)): builds a timestamp query set
     /// and a few small read-back buffers. `true` when timing is on (it already was, or the device
-    /// has [`TIMESTAMP_FEATURES`](crate::bench::TIMESTAMP_FEATURES)); `false`, and timing stays
+    /// has [`TIMESTAMP_FEATURES`](crate::TIMESTAMP_FEATURES)); `false`, and timing stays
     /// off, where the device has no timestamps inside encoders
     /// ([`pass_timing_supported`](crate::pass_timing_supported)). Timing changes no pixel.
     pub fn enable_pass_timing(&mut self, ctx: &GpuContext) -> bool {
@@ -501,4 +501,13 @@ impl Renderer {
     pub fn targets(&self) -> Option<&FrameTargets> {
         self.targets.as_ref()
     }
+}
+
+/// What the sky pipelines for `target` depend on: its colour format, depth format and convention.
+fn sky_target(target: &EmbedTarget<'_>) -> SkyTarget {
+    SkyTarget::new(
+        target.color.texture().format(),
+        target.depth.texture().format(),
+        target.convention,
+    )
 }

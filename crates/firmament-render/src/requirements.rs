@@ -9,11 +9,16 @@ use crate::error::{LimitShortfall, RenderError};
 ///
 /// Every pass runs on core WebGPU features (the transmittance LUT is `Rgba32Float`, written by a
 /// compute pass and read unfiltered, so not even `FLOAT32_FILTERABLE`). Optional: GPU
-/// timestamps ([`TIMESTAMP_FEATURES`](crate::bench::TIMESTAMP_FEATURES)), used by the
-/// benchmarks only when the device has them.
+/// timestamps ([`TIMESTAMP_FEATURES`]), used by pass timing and the benchmarks only when the
+/// device has them.
 pub fn required_features() -> wgpu::Features {
     wgpu::Features::empty()
 }
+
+/// The optional device features GPU timestamps need: queries written between the commands of an
+/// encoder ([`Renderer::enable_pass_timing`](crate::Renderer::enable_pass_timing)).
+pub const TIMESTAMP_FEATURES: wgpu::Features =
+    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
 
 /// The device limits firmament needs: `wgpu::Limits::downlevel_defaults()` with each limit that
 /// firmament's passes consume set to exactly what they use — so that [`check_device`] refuses a

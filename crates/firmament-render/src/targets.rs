@@ -14,7 +14,7 @@ pub const HDR_MAX: f32 = 65504.0;
 /// Format of the depth target. firmament uses reversed-Z: clear to 0, near is 1, test `Greater`.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// The depth buffer's clear value under reversed-Z: the far plane (infinity).
-pub const DEPTH_CLEAR: f32 = 0.0;
+pub(crate) const DEPTH_CLEAR: f32 = 0.0;
 
 /// HDR colour and depth targets of one size.
 #[derive(Debug)]
@@ -168,15 +168,6 @@ impl<'a> EmbedTarget<'a> {
     pub fn size(&self) -> (u32, u32) {
         let t = self.color.texture();
         (t.width(), t.height())
-    }
-
-    /// What the pipelines depend on: colour format, depth format, convention.
-    pub(crate) fn key(&self) -> crate::passes::SkyTarget {
-        crate::passes::SkyTarget::new(
-            self.color.texture().format(),
-            self.depth.texture().format(),
-            self.convention,
-        )
     }
 
     /// Checks the rules above on `ctx`'s device; the target's size.

@@ -2,10 +2,13 @@
 //! times (`--objects`), the lens-flare passes' (`--flares`), or a whole frame on the CLI's path
 //! against the embedded path (`--embedded`), on this machine's adapter.
 
+/// The measurements themselves, on the renderer's passes (its `internals`).
+mod measure;
+
 use anyhow::{Context, Result, bail};
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
-use firmament_render::bench::{
+use measure::{
     AtmosphereBench, EmbeddingBench, FlareBench, ObjectBench, bench_atmosphere, bench_embedding, bench_flares,
     bench_objects, sphere_grid,
 };

@@ -1,13 +1,16 @@
 //! `firmament sky-sample`: one view ray through the atmosphere, by the reference and the GPU.
 
+/// The GPU path's answer for one view ray, read from the atmosphere pass's LUTs.
+mod probe;
+
 use anyhow::{Context, Result, bail};
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Spectrum, presets};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::Ray;
 use firmament_render::GpuContext;
-use firmament_render::probe::sample_sky;
 use glam::DVec3;
+use probe::sample_sky;
 
 use crate::cli::SkySampleArgs;
 

@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 use anyhow::{Context, Result, anyhow, bail};
 use firmament_core::Frame;
 use firmament_render::headless::{Image, LDR_FORMAT, ldr_texture};
-use firmament_render::readback::{decode_f16, read_texture};
+use firmament_render::headless::{decode_f16, read_texture};
 use firmament_render::{Backend, GpuContext, Renderer};
 use winit::window::Window;
 

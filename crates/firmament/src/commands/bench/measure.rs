@@ -2,11 +2,16 @@
 //! per-pixel march) and the object pass (Gouraud against Phong shading).
 //!
 //! Each pass is submitted alone and waited for. Where the device has timestamp queries inside
-//! command encoders ([`TIMESTAMP_FEATURES`], requested by [`GpuContext::from_adapter`] whenever
-//! the adapter offers them) the figure is the GPU's own time between two timestamps around the
-//! pass; elsewhere (llvmpipe's GL) it is wall time with full synchronisation, which includes
-//! submission and the wait and so overstates sub-millisecond passes.
-//! [`AtmosphereBench::timing`] says which; compare figures taken side by side in one run.
+//! command encoders ([`pass_timing_supported`]; [`GpuContext::from_adapter`] requests them
+//! whenever the adapter offers them) the figure is the GPU's own time between two timestamps
+//! around the pass, taken by the renderer's own recorder ([`PassTimer`]); elsewhere (llvmpipe's
+//! GL) it is wall time with full synchronisation, which includes submission and the wait and so
+//! overstates sub-millisecond passes. [`AtmosphereBench::timing`] says which; compare figures
+//! taken side by side in one run.
+//!
+//! [`pass_timing_supported`]: firmament_render::pass_timing_supported
+//! [`GpuContext::from_adapter`]: firmament_render::GpuContext::from_adapter
+//! [`PassTimer`]: firmament_render::pass_timing::PassTimer
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -16,19 +21,15 @@ use firmament_core::Camera;
 use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading};
 use firmament_core::frame::AtmosphereSky;
 
-use crate::context::GpuContext;
-use crate::error::RenderError;
-use crate::passes::{AtmospherePass, ObjectPass, SkyMethod, begin_clear_pass};
-use crate::readback::{decode_f16, read_texture};
-use crate::targets::FrameTargets;
-
-/// The device features GPU timestamps need: queries written between commands of an encoder.
-pub const TIMESTAMP_FEATURES: wgpu::Features =
-    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+use firmament_render::pass_timing::{FrameTiming, PassTimer, pass_timing_supported};
+use firmament_render::passes::{AtmospherePass, ObjectPass, SkyMethod, begin_clear_pass};
+use firmament_render::readback::{decode_f16, read_texture};
+use firmament_render::wgpu;
+use firmament_render::{FrameTargets, GpuContext, RenderError};
 
 /// How a benchmark figure was measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Timing {
+pub(crate) enum Timing {
     /// The GPU's timestamps around the pass.
     GpuTimestamps,
     /// Wall time from submission until the pass's output could be read (full synchronisation).
@@ -37,7 +38,7 @@ pub enum Timing {
 
 impl Timing {
     /// A short description for reports.
-    pub fn describe(self) -> &'static str {
+    pub(crate) fn describe(self) -> &'static str {
         match self {
             Self::GpuTimestamps => "GPU timestamps",
             Self::WallTime => "wall time with full synchronisation",
@@ -48,38 +49,41 @@ impl Timing {
 /// Median milliseconds per pass, and how far the LUT path is from the brute-force march.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct AtmosphereBench {
+pub(crate) struct AtmosphereBench {
     /// Adapter name and backend.
-    pub adapter: String,
+    pub(crate) adapter: String,
     /// Image size, pixels.
-    pub width: u32,
+    pub(crate) width: u32,
     /// Image height, pixels.
-    pub height: u32,
+    pub(crate) height: u32,
     /// Frames timed per figure (the median is reported).
-    pub frames: u32,
+    pub(crate) frames: u32,
     /// Number of suns in the scene.
-    pub suns: usize,
+    pub(crate) suns: usize,
     /// How the times were measured.
-    pub timing: Timing,
+    pub(crate) timing: Timing,
     /// Transmittance, multiple-scattering and irradiance LUTs (rebuilt when the medium changes).
-    pub medium_luts_ms: f64,
+    pub(crate) medium_luts_ms: f64,
     /// The sky-view LUT tiles.
-    pub sky_view_lut_ms: f64,
+    pub(crate) sky_view_lut_ms: f64,
     /// The sky pass reading the sky-view LUT.
-    pub sky_ms: f64,
+    pub(crate) sky_ms: f64,
     /// The aerial-perspective volume (froxels).
-    pub aerial_volume_ms: f64,
+    pub(crate) aerial_volume_ms: f64,
     /// Applying aerial perspective to a depth buffer covered by geometry everywhere (the worst
     /// case: no pixel is skipped).
-    pub aerial_apply_ms: f64,
+    pub(crate) aerial_apply_ms: f64,
     /// A whole LUT-path frame: sky-view LUT and sky.
-    pub lut_frame_ms: f64,
+    pub(crate) lut_frame_ms: f64,
     /// A brute-force frame: every pixel marches its ray.
-    pub march_frame_ms: f64,
+    pub(crate) march_frame_ms: f64,
     /// Median and largest relative difference between the two images (largest channel
     /// difference over the march's largest channel, pixels above 1 cd/m²).
-    pub difference: (f64, f64),
+    pub(crate) difference: (f64, f64),
 }
+
+/// The phase name benchmarks time with the renderer's pass timer.
+const BENCH_PHASE: &str = "bench";
 
 /// Median wall time of `frames` submissions of `encode`, each ending with a copy of one texel of
 /// `written` (a texture the work writes) that is then mapped: GL fences give up after 2³¹ ns, but
@@ -99,20 +103,16 @@ fn median_ms(
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
-    let timestamps = (timing(ctx) == Timing::GpuTimestamps).then(|| Timestamps::new(ctx));
+    let timer = PassTimer::new(ctx);
     let mut times: Vec<f64> = (0..frames.max(1))
         .map(|_| {
             let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("firmament bench encoder"),
             });
-            if let Some(t) = &timestamps {
-                encoder.write_timestamp(&t.queries, 0);
-            }
+            let mut timing = FrameTiming::begin(timer.as_ref(), &mut encoder);
             encode(&mut encoder);
-            if let Some(t) = &timestamps {
-                encoder.write_timestamp(&t.queries, 1);
-                t.resolve(&mut encoder);
-            }
+            timing.mark(&mut encoder, BENCH_PHASE);
+            let frame = timing.finish(&mut encoder);
             encoder.copy_texture_to_buffer(
                 written.as_image_copy(),
                 wgpu::TexelCopyBufferInfo {
@@ -144,7 +144,12 @@ fn median_ms(
             }
             let elapsed = start.elapsed().as_secs_f64() * 1e3;
             staging.unmap();
-            timestamps.as_ref().and_then(|t| t.read_ms(ctx)).unwrap_or(elapsed)
+            timer
+                .as_ref()
+                .zip(frame)
+                .and_then(|(timer, frame)| timer.wait_for_frame(ctx, frame))
+                .and_then(|times| times.get(BENCH_PHASE))
+                .unwrap_or(elapsed)
         })
         .collect();
     times.sort_by(f64::total_cmp);
@@ -158,70 +163,10 @@ fn clear_depth(encoder: &mut wgpu::CommandEncoder, targets: &FrameTargets, depth
 
 /// How this device's benchmarks are timed.
 fn timing(ctx: &GpuContext) -> Timing {
-    if ctx.device.features().contains(TIMESTAMP_FEATURES) {
+    if pass_timing_supported(&ctx.device) {
         Timing::GpuTimestamps
     } else {
         Timing::WallTime
-    }
-}
-
-/// A pair of timestamp queries and the buffers that bring them back.
-struct Timestamps {
-    queries: wgpu::QuerySet,
-    resolved: wgpu::Buffer,
-    readback: wgpu::Buffer,
-}
-
-impl Timestamps {
-    const BYTES: u64 = 2 * std::mem::size_of::<u64>() as u64;
-
-    fn new(ctx: &GpuContext) -> Self {
-        let buffer = |label, usage| {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: Self::BYTES,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        Self {
-            queries: ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("firmament bench timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2,
-            }),
-            resolved: buffer(
-                "firmament bench timestamps resolved",
-                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            ),
-            readback: buffer(
-                "firmament bench timestamps readback",
-                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            ),
-        }
-    }
-
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.resolve_query_set(&self.queries, 0..2, &self.resolved, 0);
-        encoder.copy_buffer_to_buffer(&self.resolved, 0, &self.readback, 0, Self::BYTES);
-    }
-
-    /// Milliseconds between the two timestamps of the last submission (already finished).
-    fn read_ms(&self, ctx: &GpuContext) -> Option<f64> {
-        let slice = self.readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| ());
-        ctx.device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
-        let ticks = slice.get_mapped_range().ok().map(|bytes| {
-            let at = |i: usize| {
-                bytes[i * 8..(i + 1) * 8]
-                    .iter()
-                    .rev()
-                    .fold(0u64, |v, b| v << 8 | u64::from(*b))
-            };
-            at(1).saturating_sub(at(0))
-        });
-        self.readback.unmap();
-        Some(ticks? as f64 * f64::from(ctx.queue.get_timestamp_period()) * 1e-6)
     }
 }
 
@@ -230,7 +175,7 @@ fn hdr_pixels(ctx: &GpuContext, targets: &FrameTargets) -> Result<Vec<f32>, Rend
 }
 
 /// Times the atmosphere pass on `sky` seen by `camera` at `width` × `height`.
-pub fn bench_atmosphere(
+pub(crate) fn bench_atmosphere(
     ctx: &GpuContext,
     sky: &AtmosphereSky,
     camera: &Camera,
@@ -312,33 +257,33 @@ pub fn bench_atmosphere(
 /// shading (classic lighting, all lights on).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct ObjectBench {
+pub(crate) struct ObjectBench {
     /// Adapter name and backend.
-    pub adapter: String,
+    pub(crate) adapter: String,
     /// Image size, pixels.
-    pub width: u32,
+    pub(crate) width: u32,
     /// Image height, pixels.
-    pub height: u32,
+    pub(crate) height: u32,
     /// Frames timed per figure (the median is reported).
-    pub frames: u32,
+    pub(crate) frames: u32,
     /// Objects drawn.
-    pub objects: usize,
+    pub(crate) objects: usize,
     /// Triangles drawn, all objects together.
-    pub triangles: usize,
+    pub(crate) triangles: usize,
     /// Lights on.
-    pub lights: usize,
+    pub(crate) lights: usize,
     /// How the times were measured.
-    pub timing: Timing,
+    pub(crate) timing: Timing,
     /// Lit per vertex.
-    pub gouraud_ms: f64,
+    pub(crate) gouraud_ms: f64,
     /// Lit per fragment.
-    pub phong_ms: f64,
+    pub(crate) phong_ms: f64,
 }
 
 /// `count` GLTools spheres of `slices × stacks` (1000 triangles each at 25 × 20) in a square grid
 /// filling the view of the 45° camera at the origin looking down −z, lit by 8 lights of every
 /// kind: the object benchmark's scene (issue 5: 1000 spheres, about 1 M triangles).
-pub fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLayer, Camera), RenderError> {
+pub(crate) fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLayer, Camera), RenderError> {
     use firmament_core::classic::lighting::{Light, LightModel, Material, SpecularModel};
     use firmament_core::classic::scene::{ClassicLighting, LightSpace, SceneFog, SceneLight, SceneObject};
     use glam::{DMat4, DQuat, DVec3, DVec4};
@@ -405,7 +350,7 @@ pub fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(ObjectLaye
 
 /// Times the object pass on `layer` seen by `camera` at `width` × `height`, once with Gouraud
 /// and once with Phong shading (other classic settings as given; unlit layers are timed as is).
-pub fn bench_objects(
+pub(crate) fn bench_objects(
     ctx: &GpuContext,
     layer: &ObjectLayer,
     camera: &Camera,
@@ -451,40 +396,40 @@ pub fn bench_objects(
 /// Median milliseconds of the lens-flare passes for one source count.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
-pub struct FlareTiming {
+pub(crate) struct FlareTiming {
     /// Sources flaring (all on screen, none hidden).
-    pub sources: usize,
+    pub(crate) sources: usize,
     /// The occlusion compute pass alone.
-    pub occlusion_ms: f64,
+    pub(crate) occlusion_ms: f64,
     /// Occlusion and the element pass together.
-    pub total_ms: f64,
+    pub(crate) total_ms: f64,
 }
 
 /// The lens-flare passes timed for 1, 8 and 64 sources (issue 6's benchmark).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct FlareBench {
+pub(crate) struct FlareBench {
     /// Adapter name and backend.
-    pub adapter: String,
+    pub(crate) adapter: String,
     /// Image width, pixels.
-    pub width: u32,
+    pub(crate) width: u32,
     /// Image height, pixels.
-    pub height: u32,
+    pub(crate) height: u32,
     /// Frames timed per figure (the median is reported).
-    pub frames: u32,
+    pub(crate) frames: u32,
     /// Elements per flare (the `classic` preset's).
-    pub elements: usize,
+    pub(crate) elements: usize,
     /// Occlusion samples per source.
-    pub samples: u32,
+    pub(crate) samples: u32,
     /// How the times were measured.
-    pub timing: Timing,
+    pub(crate) timing: Timing,
     /// One row per source count.
-    pub rows: Vec<FlareTiming>,
+    pub(crate) rows: Vec<FlareTiming>,
 }
 
 /// Times the occlusion and element passes with the `classic` flare (16 elements, `samples`
 /// depth samples each) for 1, 8 and 64 point sources spread over the screen of a 45° camera.
-pub fn bench_flares(
+pub(crate) fn bench_flares(
     ctx: &GpuContext,
     width: u32,
     height: u32,
@@ -507,7 +452,7 @@ pub fn bench_flares(
         ..LensFlare::classic()
     };
     let targets = FrameTargets::new(&ctx.device, width, height);
-    let mut pass = crate::passes::FlarePass::new(&ctx.device);
+    let mut pass = firmament_render::passes::FlarePass::new(&ctx.device);
     pass.bind_depth(&ctx.device, &targets.depth_view, width, height);
     let mut rows = Vec::new();
     for count in [1usize, 8, 64] {
@@ -556,46 +501,46 @@ pub fn bench_flares(
 /// ([`bench_embedding`]).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct EmbeddingBench {
+pub(crate) struct EmbeddingBench {
     /// Adapter name and backend.
-    pub adapter: String,
+    pub(crate) adapter: String,
     /// Image width, pixels.
-    pub width: u32,
+    pub(crate) width: u32,
     /// Image height, pixels.
-    pub height: u32,
+    pub(crate) height: u32,
     /// Frames timed per figure (the median is reported).
-    pub frames: u32,
+    pub(crate) frames: u32,
     /// How the times were measured.
-    pub timing: Timing,
-    /// [`Renderer::record`](crate::Renderer::record) into an 8-bit sRGB view: firmament's own
+    pub(crate) timing: Timing,
+    /// [`Renderer::record`](firmament_render::Renderer::record) into an 8-bit sRGB view: firmament's own
     /// targets, cleared, sky, tone mapping.
-    pub cli_ms: f64,
+    pub(crate) cli_ms: f64,
     /// The caller's clear of their HDR target and depth buffer, then
-    /// [`Renderer::record_into`](crate::Renderer::record_into) (linear radiance left for the
+    /// [`Renderer::record_into`](firmament_render::Renderer::record_into) (linear radiance left for the
     /// caller's tone mapping).
-    pub embedded_hdr_ms: f64,
+    pub(crate) embedded_hdr_ms: f64,
     /// The same, finished by firmament's output pass into an 8-bit sRGB view
-    /// ([`EmbedTarget::with_output`](crate::EmbedTarget::with_output)): the CLI frame's
+    /// ([`EmbedTarget::with_output`](firmament_render::EmbedTarget::with_output)): the CLI frame's
     /// counterpart.
-    pub embedded_output_ms: f64,
+    pub(crate) embedded_output_ms: f64,
     /// The same without firmament's aerial perspective
-    /// ([`EmbedTarget::without_aerial_perspective`](crate::EmbedTarget::without_aerial_perspective)):
+    /// ([`EmbedTarget::without_aerial_perspective`](firmament_render::EmbedTarget::without_aerial_perspective)):
     /// the work of a CLI frame without objects.
-    pub embedded_output_no_aerial_ms: f64,
+    pub(crate) embedded_output_no_aerial_ms: f64,
 }
 
 /// Times one frame of `frame` at `width` × `height` on the CLI's path and on the embedded path
 /// (reversed Z, no geometry of the caller's: the same work as the CLI frame of a scene without
 /// objects, plus the aerial perspective the embedded path applies in every atmosphere frame).
-pub fn bench_embedding(
+pub(crate) fn bench_embedding(
     ctx: &GpuContext,
     frame: &firmament_core::Frame,
     width: u32,
     height: u32,
     frames: u32,
 ) -> Result<EmbeddingBench, RenderError> {
-    use crate::headless::{LDR_FORMAT, ldr_texture};
-    use crate::{EmbedTarget, Renderer};
+    use firmament_render::headless::{LDR_FORMAT, ldr_texture};
+    use firmament_render::{EmbedTarget, Renderer};
     ctx.check_image_size(width, height)?;
     let output = ldr_texture(
         &ctx.device,

@@ -10,25 +10,26 @@ use firmament_core::atmosphere::Spectrum;
 use firmament_core::frame::AtmosphereSky;
 use glam::DVec3;
 
-use crate::context::GpuContext;
-use crate::error::RenderError;
-use crate::gpu_types::atmosphere::lut_bottom_radius;
-use crate::passes::AtmospherePass;
-use crate::passes::atmosphere::luts::{IRRADIANCE_SIZE, LOG_FLOOR, TRANSMITTANCE_SIZE};
-use crate::readback::{decode_f16, read_texture};
-use crate::targets::FrameTargets;
+use firmament_render::FrameTargets;
+use firmament_render::GpuContext;
+use firmament_render::RenderError;
+use firmament_render::gpu_types::atmosphere::lut_bottom_radius;
+use firmament_render::passes::AtmospherePass;
+use firmament_render::passes::atmosphere::luts::{IRRADIANCE_SIZE, LOG_FLOOR, TRANSMITTANCE_SIZE};
+use firmament_render::readback::{decode_f16, read_texture};
+use firmament_render::wgpu;
 
 /// The GPU path's answer for one view ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GpuSkySample {
+pub(crate) struct GpuSkySample {
     /// Spectral radiance along the view, W·m⁻²·sr⁻¹·nm⁻¹ (sun discs included).
-    pub radiance: Spectrum,
+    pub(crate) radiance: Spectrum,
     /// Transmittance from the eye along the view to space (0 when the view meets the ground).
-    pub transmittance: Spectrum,
+    pub(crate) transmittance: Spectrum,
     /// Sky irradiance on the horizontal ground below the eye, W·m⁻²·nm⁻¹.
-    pub sky_irradiance: Spectrum,
+    pub(crate) sky_irradiance: Spectrum,
     /// Direct sun irradiance on the horizontal ground below the eye, W·m⁻²·nm⁻¹.
-    pub sun_irradiance: Spectrum,
+    pub(crate) sun_irradiance: Spectrum,
 }
 
 /// A LUT read back as RGBA `f64` texels, sampled bilinearly like `load_bilinear`.
@@ -100,7 +101,7 @@ impl LutSphere {
 
 /// Samples the GPU path for the view ray from world `position` along `view` (unit, world),
 /// with the ground irradiances taken at `ground` (a world point on the surface).
-pub fn sample_sky(
+pub(crate) fn sample_sky(
     ctx: &GpuContext,
     sky: &AtmosphereSky,
     position: DVec3,
