@@ -7,9 +7,7 @@ use std::process::Command;
 use firmament_core::astro::spa::{SpaInput, sun_times};
 use firmament_core::astro::{CivilDateTime, Instant};
 
-mod support;
-
-use support::{firmament, stderr};
+use crate::support::{firmament, stderr};
 
 /// Every path under `dir`, recursively, sorted.
 fn files_in(dir: &Path) -> Vec<PathBuf> {

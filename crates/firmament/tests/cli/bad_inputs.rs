@@ -5,21 +5,19 @@
 //! message on standard error that starts with `error:` and names the key, flag or rule, no panic,
 //! no backtrace, no log of a GPU error, nothing on standard output, and no new file.
 //!
-//! The cases of `cli.rs` (`every_bad_input_fails_cleanly_and_writes_nothing`: a TOML syntax error,
-//! an unknown key, a string for a number, `nan`, a missing scene file, an unknown preset, zero and
-//! huge `--width`/`--height`, a camera under the ground, `--time 25:00`, a `.jpg` output, an output
-//! in a missing folder or under a file, an unknown backend), of `cli_timelapse.rs` (`yesterday`,
-//! `2024-02-30`, `--from` after `--to`, `--frames 0`, an output that is a file), of `cli_sun.rs` and
-//! of `cli_view.rs` are not repeated here; together they make the corpus. None of these needs the
-//! GPU: every one fails before an adapter is asked for.
-
-mod support;
+//! The cases of `commands.rs` (`every_bad_input_fails_cleanly_and_writes_nothing`: a TOML syntax
+//! error, an unknown key, a string for a number, `nan`, a missing scene file, an unknown preset, zero
+//! and huge `--width`/`--height`, a camera under the ground, `--time 25:00`, a `.jpg` output, an
+//! output in a missing folder or under a file, an unknown backend), of `timelapse.rs` (`yesterday`,
+//! `2024-02-30`, `--from` after `--to`, `--frames 0`, an output that is a file), of `sun.rs` and of
+//! `view.rs` are not repeated here; together they make the corpus. None of these needs the GPU:
+//! every one fails before an adapter is asked for.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use support::{firmament, stderr};
+use crate::support::{firmament, stderr};
 
 /// An input file (or folder) a case creates in its folder before running.
 enum Fixture {

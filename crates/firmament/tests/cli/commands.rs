@@ -3,9 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod support;
-
-use support::{firmament, stderr};
+use crate::support::{firmament, stderr};
 
 fn files_in(dir: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)

@@ -3,7 +3,7 @@
 //! nothing drawn for hidden, behind-camera or far off-screen sources, element positions against
 //! NeHe's construction, and a sun half behind the planet's limb.
 
-mod support;
+use crate::support;
 
 use std::sync::Arc;
 

@@ -4,12 +4,10 @@
 //! neither how rayon splits the work nor the order threads finish changes a bit). Sizes are tiny:
 //! CI renders on llvmpipe.
 
-mod support;
-
 use std::path::Path;
 use std::process::Command;
 
-use support::{firmament, stderr};
+use crate::support::{firmament, stderr};
 
 /// The bytes of `file` in `dir` after `firmament ARGS -o FILE` (with `env`) succeeds.
 fn render(dir: &Path, args: &[&str], file: &str, env: &[(&str, &str)]) -> Vec<u8> {

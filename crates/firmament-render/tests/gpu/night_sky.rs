@@ -5,7 +5,7 @@
 //! along each pixel's view ray, lit on the side of the Sun, over the illuminated fraction of the
 //! disc; and the whole sky of a real night.
 
-mod support;
+use crate::support;
 
 use std::sync::Arc;
 

@@ -3,17 +3,13 @@
 //! `GpuContext::headless` path, every preset renders on a device with exactly those limits, and a
 //! device below them is refused with the limit named — never a wgpu validation panic.
 
-use std::sync::{Arc, Mutex, MutexGuard};
+use crate::support;
+
+use std::sync::{Arc, Mutex};
 
 use firmament_core::Frame;
 use firmament_render::headless::HeadlessRenderer;
 use firmament_render::{Backend, GpuContext, RenderError, wgpu};
-
-/// Software rasterizers fight over cores: the tests take turns.
-fn turn() -> MutexGuard<'static, ()> {
-    static TURN: Mutex<()> = Mutex::new(());
-    TURN.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
-}
 
 /// The adapter `GpuContext::headless(Backend::Auto)` picks, found the way an embedder would.
 fn adapter() -> wgpu::Adapter {
@@ -59,7 +55,7 @@ fn preset_frame(name: &str) -> Frame {
 
 #[test]
 fn embedded_device_renders_the_same_bytes_as_the_headless_context() {
-    let _turn = turn();
+    let _gpu = support::gpu();
     let headless = GpuContext::headless(Backend::Auto).expect("GPU tests need an adapter");
     let adapter = adapter();
     let (device, queue) = device(&adapter, firmament_render::required_limits());
@@ -117,7 +113,7 @@ fn embedded_device_renders_the_same_bytes_as_the_headless_context() {
 
 #[test]
 fn every_preset_renders_on_a_device_with_exactly_the_required_limits() {
-    let _turn = turn();
+    let _gpu = support::gpu();
     let (ctx, errors) = device_at_required_limits();
     let mut renderer = HeadlessRenderer::new(&ctx);
     for preset in firmament_scene::PRESETS {
@@ -145,7 +141,7 @@ fn every_preset_renders_on_a_device_with_exactly_the_required_limits() {
 
 #[test]
 fn a_device_below_the_required_limits_is_refused_naming_the_limit() {
-    let _turn = turn();
+    let _gpu = support::gpu();
     let adapter = adapter();
     let required = firmament_render::required_limits();
     let cases = [

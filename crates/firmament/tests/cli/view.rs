@@ -3,13 +3,11 @@
 //! `scripts/setup.sh` (which installs it when it can), then fail with a message saying how to
 //! install it if there is still none.
 
-mod support;
-
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use support::{firmament, stderr};
+use crate::support::{firmament, stderr};
 
 /// A virtual X server on a display of its own, stopped when dropped.
 struct Xvfb {

@@ -1,10 +1,7 @@
-//! Helpers shared by the GPU test binaries.
+//! Helpers shared by the GPU tests: one context and renderer for the whole binary, the device an
+//! embedder makes, and the skies and references several modules need.
 
 /// Clears `targets` to `color` and reversed-Z `depth` in a pass of its own.
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them clear targets"
-)]
 pub(crate) fn clear_targets(
     encoder: &mut wgpu::CommandEncoder,
     targets: &firmament_render::FrameTargets,
@@ -34,21 +31,14 @@ pub(crate) fn clear_targets(
     });
 }
 
-/// A context and headless renderer shared by one test binary.
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them render frames"
-)]
+/// A context and headless renderer shared by the whole test binary.
 pub(crate) struct Gpu {
     pub(crate) ctx: firmament_render::GpuContext,
     pub(crate) renderer: firmament_render::headless::HeadlessRenderer,
 }
 
-/// One context for the whole test binary; tests take turns (software rasterizers fight).
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them render frames"
-)]
+/// One context for the whole test binary; tests take turns (software rasterizers fight). Tests that
+/// make devices of their own hold it too, for their turn.
 pub(crate) fn gpu() -> std::sync::MutexGuard<'static, Gpu> {
     use std::sync::{Mutex, OnceLock};
     static GPU: OnceLock<Mutex<Gpu>> = OnceLock::new();
@@ -64,7 +54,6 @@ pub(crate) fn gpu() -> std::sync::MutexGuard<'static, Gpu> {
 
 /// A device of the caller's own, made the way an embedder makes it: firmament's required features
 /// and limits, nothing optional (no GPU timestamps). `label` names the test.
-#[allow(dead_code, reason = "each test binary compiles this module; not all of them embed")]
 pub(crate) fn user_context(label: &str) -> firmament_render::GpuContext {
     let instance = wgpu::Instance::default();
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
@@ -83,20 +72,12 @@ pub(crate) fn user_context(label: &str) -> firmament_render::GpuContext {
 }
 
 /// A unit direction at `azimuth` (from north, clockwise) and `elevation`, degrees, East-North-Up.
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them place suns or views"
-)]
 pub(crate) fn direction(azimuth: f64, elevation: f64) -> glam::DVec3 {
     firmament_core::camera::direction_from_heading_elevation(azimuth.to_radians(), elevation.to_radians())
 }
 
 /// Earth on Bruneton's sphere, posed so the world is ENU at (0°, 0°), one sun at `sun_azimuth`,
 /// `sun_elevation` degrees.
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them need a street sky"
-)]
 pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core::frame::AtmosphereSky {
     use firmament_core::atmosphere::{Planet, presets};
     let mut atmosphere = presets::earth();
@@ -108,10 +89,6 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
 }
 
 /// The f64 reference for `sky`'s atmosphere and suns with `paths` Monte Carlo paths per radiance.
-#[allow(
-    dead_code,
-    reason = "each test binary compiles this module; not all of them compare with the reference"
-)]
 pub(crate) fn sky_reference(
     sky: &firmament_core::frame::AtmosphereSky,
     paths: usize,

@@ -7,9 +7,7 @@
 //! pixel 9.4e-4, median 2.5e-4 to 4.1e-4 (relative to the pixel's largest channel), in every
 //! view below, the far camera's included.
 
-mod support;
-
-use support::{Gpu, direction, gpu};
+use crate::support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::Planet;
 use firmament_core::atmosphere::seed::{SeedAtmosphere, SeedStar};

@@ -3,11 +3,9 @@
 //! surface at a known normal and distance must come out as
 //! `1/π · (Σ E·T_sun · max(n·l, 0) + E_sky(n)) · T + S`, its lighting exactly what the read-back
 //! lighting buffer gives in `f64`, and T and S as the `f64` reference integrator's
-//! (`Reference::radiance_before`, as in `gpu_aerial_perspective.rs`).
+//! (`Reference::radiance_before`, as in `aerial_perspective.rs`).
 
-mod support;
-
-use support::{direction, gpu, sky_reference, street_sky};
+use crate::support::{direction, gpu, sky_reference, street_sky};
 
 use firmament_core::Camera;
 use firmament_core::geometry::Ray;
@@ -238,7 +236,7 @@ fn a_white_lambertian_surface_is_lit_and_fogged_as_the_reference() {
         100.0 * worst_s
     );
     assert!(worst_lighting < 1e-5, "lighting off by {worst_lighting:e}");
-    // gpu_aerial_perspective.rs's budgets: 6 % for the scattered light (the multiple-scattering
+    // aerial_perspective.rs's budgets: 6 % for the scattered light (the multiple-scattering
     // model's error), 3·10⁻³ for the transmittance; the total inherits them.
     assert!(worst_s < 0.06, "scattered light off by {:.1} %", 100.0 * worst_s);
     assert!(worst_t < 3e-3, "transmittance off by {worst_t}");

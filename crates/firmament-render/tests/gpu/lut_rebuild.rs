@@ -2,7 +2,7 @@
 //! with `Renderer::set_incremental_lut_rebuild` the build is spread over frames that keep drawing
 //! the previous medium, and ends in the pixels a build within one frame gives.
 
-mod support;
+use crate::support;
 
 use firmament_core::frame::Sky;
 use firmament_core::{Frame, TimeOfDay};

@@ -2,17 +2,14 @@
 //! test creates, with its own HDR colour target and depth buffer holding a "cube" face drawn by
 //! its own pipeline, in both depth conventions, the sky pixels are the renderer's own HDR
 //! pixels for the same frame, the sky lies behind the face, and the face is fogged as the f64
-//! reference integrator predicts (`Reference::radiance_before`, as in `gpu_aerial_perspective.rs`).
+//! reference integrator predicts (`Reference::radiance_before`, as in `aerial_perspective.rs`).
 //! A scene with a cube, read as `firmament render` reads it, gives the same 8-bit pixels — every
 //! one, the cube's included — through the embedding path (the user's own pipeline drawing the
 //! cube, standard and reversed Z, finite and infinite far plane, firmament's output pass into the
 //! user's view) as through `HeadlessRenderer::render_ldr`, and the cube is fogged as the
 //! reference predicts. Bad targets and output formats give an error naming what is needed.
 
-mod support;
-
-use std::sync::{Mutex, MutexGuard};
-use support::direction;
+use crate::support::{self, direction};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Planet, presets};
@@ -31,12 +28,6 @@ const HEIGHT: u32 = 64;
 const FACE: f64 = 0.4;
 /// Radiance of the face that shows the transmittance, cd/m² (well inside half-float range).
 const BRIGHT: f64 = 30_000.0;
-
-/// Software rasterizers fight over cores: the tests take turns.
-fn turn() -> MutexGuard<'static, ()> {
-    static TURN: Mutex<()> = Mutex::new(());
-    TURN.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
-}
 
 /// Earth on Bruneton's sphere, ENU at (0°, 0°), a sun at 25°, a narrow camera 2 m up looking
 /// along `view` (so every pixel of the face is about as far as its centre).
@@ -309,7 +300,7 @@ fn reference_air(sky: &AtmosphereSky, ray: &Ray, distance: f64) -> (DVec3, DVec3
 
 #[test]
 fn the_sky_goes_behind_the_users_geometry_and_fogs_it_in_both_conventions() {
-    let _turn = turn();
+    let _gpu = support::gpu();
     let ctx = support::user_context("gpu_embed_target user device");
     let view = direction(60.0, 1.0);
     let distance = 4_000.0;
@@ -439,7 +430,7 @@ fn texture_of(
 fn bad_targets_are_refused_with_what_is_needed() {
     use wgpu::TextureFormat as F;
     use wgpu::TextureUsages as U;
-    let _turn = turn();
+    let _gpu = support::gpu();
     let ctx = support::user_context("gpu_embed_target user device");
     let mut renderer = Renderer::new(&ctx, F::Rgba8UnormSrgb);
     let rt = U::RENDER_ATTACHMENT;
@@ -603,7 +594,7 @@ fn bad_targets_are_refused_with_what_is_needed() {
 fn an_output_view_gets_the_pixels_firmament_render_writes() {
     use wgpu::TextureFormat as F;
     use wgpu::TextureUsages as U;
-    let _turn = turn();
+    let _gpu = support::gpu();
     let ctx = support::user_context("gpu_embed_target user device");
     let frame = frame(direction(60.0, 1.0), None);
     // What `firmament render` writes to a PNG for this frame.
@@ -768,7 +759,7 @@ fn an_output_view_gets_the_pixels_firmament_render_writes() {
 /// A scene as `firmament render` reads it: Earth at 45° N, the Sun 25° up behind a camera 300 m up
 /// looking north, and an unlit cube 200 m on a side whose near face is 2 km away, straight ahead.
 /// (Geometry at a street's horizon, between a froxel row above it and one below, is checked
-/// against the reference by `gpu_aerial_perspective`'s
+/// against the reference by `aerial_perspective`'s
 /// `geometry_at_the_horizon_of_a_wide_view_gets_its_air`.)
 const CUBE_SCENE: &str = r#"
 preset = "earth-noon"
@@ -789,7 +780,6 @@ elevation = 25.0
 
 [lighting]
 model = "unlit"
-
 
 [[objects]]
 name = "cube"
@@ -947,7 +937,7 @@ fn embedded_cube(
 
 #[test]
 fn the_users_cube_matches_firmament_render_and_is_fogged_as_the_reference_predicts() {
-    let _turn = turn();
+    let _gpu = support::gpu();
     let ctx = support::user_context("gpu_embed_target user device");
     let (width, height) = CUBE_SIZE;
     let scene = firmament_scene::load(

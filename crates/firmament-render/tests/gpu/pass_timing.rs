@@ -3,7 +3,7 @@
 //! supported — bringing back finite, non-negative times of the phases each frame ran, also after
 //! encoders that were dropped unsubmitted.
 
-mod support;
+use crate::support;
 
 use firmament_core::{DepthConvention, Frame};
 use firmament_render::pass_timing::{

@@ -3,9 +3,7 @@
 //! f64 reference path tracer and against the GPU's own sky, the suns' colours against the
 //! reference transmittance, and a user's shader that includes the WGSL file.
 
-mod support;
-
-use support::{Gpu, direction, gpu};
+use crate::support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};

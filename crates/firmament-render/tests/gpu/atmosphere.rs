@@ -1,9 +1,7 @@
 //! GPU tests of the atmosphere pass against the f64 reference integrator
 //! (`firmament_core::atmosphere::reference`), compared in linear float.
 
-mod support;
-
-use support::{Gpu, direction, gpu};
+use crate::support::{self, Gpu, direction, gpu};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};

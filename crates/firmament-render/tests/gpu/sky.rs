@@ -1,9 +1,7 @@
 //! GPU tests of the sky and tonemap passes against the f64 core, on whatever adapter the machine
 //! has (a software rasterizer on CI). They fail, never skip, when no adapter exists.
 
-mod support;
-
-use support::{Gpu, gpu};
+use crate::support::{self, Gpu, gpu};
 
 use firmament_core::color::{LinearRgb, linear_to_srgb};
 use firmament_core::display::{DisplaySettings, Exposure, ToneCurve};

@@ -1,9 +1,7 @@
 //! GPU tests of the aerial-perspective volume against the f64 reference
 //! (`Reference::radiance_before`: the air in front of an opaque surface), in linear float.
 
-mod support;
-
-use support::{clear_targets, direction, gpu, sky_reference, street_sky};
+use crate::support::{clear_targets, direction, gpu, sky_reference, street_sky};
 
 use firmament_core::Camera;
 use firmament_core::frame::AtmosphereSky;

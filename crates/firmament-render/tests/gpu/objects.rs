@@ -2,8 +2,9 @@
 //! within 1/255 everywhere except silhouettes and the pixels on a discontinuity (a flat-shaded
 //! edge, a texel edge under `GL_NEAREST`), where a rasterizer and a ray may pick different sides.
 
-mod objects;
-mod support;
+mod reference;
+
+use crate::support;
 
 use std::sync::Arc;
 
@@ -21,7 +22,7 @@ use firmament_render::FrameTargets;
 use firmament_render::passes::ObjectPass;
 use firmament_render::readback::read_texture;
 use glam::{DQuat, DVec2, DVec3, DVec4};
-use objects::reference::Reference;
+use reference::Reference;
 
 const SIZE: u32 = 72;
 

@@ -1,0 +1,20 @@
+//! The GPU integration tests of `firmament-render`, in one test binary: one link instead of one
+//! per file, and one device (`support::gpu()`) that every module's tests share and take turns on.
+//! Run one module with `cargo test -p firmament-render --test gpu <module>::`, e.g. `sky::`.
+//! They run on whatever adapter the machine has (Mesa's llvmpipe on CI) and fail, never skip,
+//! when there is none.
+
+mod aerial_perspective;
+mod atmosphere;
+mod embed_target;
+mod embedding;
+mod flare;
+mod lut_rebuild;
+mod night_sky;
+mod objects;
+mod pass_timing;
+mod seed;
+mod sky;
+mod sky_lighting;
+mod support;
+mod user_material;

@@ -1,3 +1,0 @@
-//! Shared pieces of the object-pass tests.
-
-pub(crate) mod reference;

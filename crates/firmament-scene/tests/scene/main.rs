@@ -1,0 +1,13 @@
+//! The integration tests of `firmament-scene`, in one test binary (one link instead of one per
+//! file): one module per subject. Run one with `cargo test -p firmament-scene --test scene
+//! <module>::`, e.g. `flare_scenes::`.
+
+mod assets;
+mod atmosphere_scenes;
+mod builder;
+mod document;
+mod flare_scenes;
+mod object_scenes;
+mod scene_files;
+mod seed_scenes;
+mod time_scenes;
