@@ -108,20 +108,20 @@ impl SceneBuilder {
     /// `camera.heading` (from north, clockwise towards east) and `camera.pitch` (above the
     /// horizon, [-90, 90]), degrees.
     pub fn camera_direction_deg(mut self, heading: f64, pitch: f64) -> Self {
-        self.scene.camera.heading = heading;
-        self.scene.camera.pitch = pitch;
+        self.scene.camera.heading_deg = heading;
+        self.scene.camera.pitch_deg = pitch;
         self
     }
 
     /// `camera.roll`: the image turned clockwise about the view direction, degrees.
     pub fn camera_roll_deg(mut self, roll: f64) -> Self {
-        self.scene.camera.roll = roll;
+        self.scene.camera.roll_deg = roll;
         self
     }
 
     /// `camera.fov_y`: the vertical field of view, degrees, in (0, 180).
     pub fn fov_y_deg(mut self, fov_y: f64) -> Self {
-        self.scene.camera.fov_y = fov_y;
+        self.scene.camera.fov_y_deg = fov_y;
         self
     }
 
@@ -207,8 +207,8 @@ impl SceneBuilder {
     /// `planet.latitude` (geodetic, north, [-90, 90]) and `planet.longitude` (east) of the world
     /// origin, degrees.
     pub fn planet_location_deg(mut self, latitude: f64, longitude: f64) -> Self {
-        self.scene.planet.latitude = latitude;
-        self.scene.planet.longitude = longitude;
+        self.scene.planet.latitude_deg = latitude;
+        self.scene.planet.longitude_deg = longitude;
         self
     }
 
@@ -381,8 +381,8 @@ impl SceneBuilder {
 
     /// `sun.latitude` and `sun.declination`: the gradient sky's sun path, degrees.
     pub fn gradient_sun_path_deg(mut self, latitude: f64, declination: f64) -> Self {
-        self.scene.sun.latitude = latitude;
-        self.scene.sun.declination = declination;
+        self.scene.sun.latitude_deg = latitude;
+        self.scene.sun.declination_deg = declination;
         self
     }
 

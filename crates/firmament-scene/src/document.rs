@@ -1,6 +1,6 @@
 //! [`SceneDocument`]: a scene's fully layered TOML table, edited key by key, built into a
 //! [`Scene`] and saved as a complete scene file. It is what the viewer's panel edits and what its
-//! "save scene" writes; [`crate::load`] goes through it too, so there is one path from text to
+//! "save scene" writes; [`load`] goes through it too, so there is one path from text to
 //! scene.
 
 use std::io::Write as _;
@@ -8,10 +8,46 @@ use std::path::{Path, PathBuf};
 
 use crate::error::SceneError;
 use crate::model::Scene;
-use crate::{SceneSource, layers, model, presets, validate};
+use crate::{layers, model, presets, validate};
 
 /// The first line of every saved scene file.
 const HEADER: &str = "# Written by firmament: a complete scene, every key resolved; it needs no preset.";
+
+/// Where a scene comes from before overrides.
+#[derive(Debug, Clone, Copy)]
+pub enum SceneSource<'a> {
+    /// A built-in preset, by name.
+    Preset(&'a str),
+    /// TOML text read from `origin` (a path, for messages). A `preset` given alongside replaces
+    /// the file's own `preset` key.
+    Text {
+        /// The TOML text.
+        text: &'a str,
+        /// Where it came from, for messages (usually the file path).
+        origin: &'a str,
+    },
+}
+
+/// Builds and validates a scene: `source`, with an optional preset to start from, then
+/// `overrides` (each `key.path=value`, the value in TOML syntax or a bare string). The same as
+/// [`SceneDocument::load`] then [`SceneDocument::scene`].
+pub fn load(source: SceneSource<'_>, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
+    SceneDocument::load(source, preset, overrides)?.scene()
+}
+
+/// Reads a scene file from disk and builds it like [`load`]; relative asset paths resolve against
+/// the file's folder. The same as [`SceneDocument::load_file`] then [`SceneDocument::scene`].
+pub fn load_file(path: &Path, preset: Option<&str>, overrides: &[String]) -> Result<Scene, SceneError> {
+    SceneDocument::load_file(path, preset, overrides)?.scene()
+}
+
+impl Scene {
+    /// The built-in preset `name` as a scene, to change in code (see the crate docs); an unknown
+    /// name is an error with a "did you mean".
+    pub fn preset(name: &str) -> Result<Self, SceneError> {
+        load(SceneSource::Preset(name), None, &[])
+    }
+}
 
 /// Where a [`SceneDocument`] came from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -40,7 +76,7 @@ impl std::fmt::Display for SceneOrigin {
 /// Edit it with [`set`](Self::set) or [`apply_override`](Self::apply_override) (the `--set`
 /// addressing: dotted keys, array indices, one past the end appends), or through
 /// [`table_mut`](Self::table_mut); [`scene`](Self::scene) parses and validates the result exactly
-/// as [`crate::load`] does. [`save`](Self::save) writes the whole table, so the file gives the
+/// as [`load`] does. [`save`](Self::save) writes the whole table, so the file gives the
 /// identical scene on its own, whatever presets it was built from.
 #[derive(Debug, Clone)]
 pub struct SceneDocument {
@@ -73,7 +109,7 @@ impl SceneDocument {
                 )
             }
             SceneSource::Text { text, origin } => (
-                layers::layer_file(text, origin, preset)?,
+                presets::layer_file(text, origin, preset)?,
                 SceneOrigin::Text(origin.to_owned()),
                 folder_of(Path::new(origin)),
             ),
@@ -92,7 +128,7 @@ impl SceneDocument {
             path: shown.clone(),
             reason: source.to_string(),
         })?;
-        let table = layers::layer_file(&text, &shown, preset)?;
+        let table = presets::layer_file(&text, &shown, preset)?;
         Self::with_overrides(table, SceneOrigin::File(path.to_path_buf()), folder_of(path), overrides)
     }
 
@@ -118,7 +154,7 @@ impl SceneDocument {
     ///
     /// # Errors
     /// Unknown keys (with a "did you mean"), wrong types and broken rules, each naming the key
-    /// path, exactly as [`crate::load`] reports them.
+    /// path, exactly as [`load`] reports them.
     pub fn scene(&self) -> Result<Scene, SceneError> {
         let mut scene = model::from_table(self.table.clone())?;
         scene.base_dir.clone_from(&self.base_dir);
@@ -576,4 +612,48 @@ fn new_file_permissions() -> Option<std::fs::Permissions> {
 #[cfg(not(unix))]
 fn new_file_permissions() -> Option<std::fs::Permissions> {
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_builds_and_validates() {
+        for preset in presets::PRESETS {
+            let scene = load(SceneSource::Preset(preset.name), None, &[]);
+            assert!(scene.is_ok(), "{}: {scene:?}", preset.name);
+        }
+    }
+
+    #[test]
+    fn fields_in_degrees_keep_their_file_keys() {
+        let document = SceneDocument::load(SceneSource::Preset("default"), None, &[]).expect("default");
+        let cases: [(&str, &[&str]); 6] = [
+            ("camera", &["heading", "pitch", "roll", "fov_y"]),
+            ("sun", &["latitude", "declination", "angular_radius", "glow_falloff"]),
+            ("sky.gradient", &["zenith_start", "horizon_half_width", "ground_start"]),
+            ("planet", &["latitude", "longitude"]),
+            ("suns.0", &["azimuth", "elevation", "angular_radius"]),
+            ("lights.0", &["spot_cutoff"]),
+        ];
+        for (path, keys) in cases {
+            let known = document.known_keys(path).expect(path);
+            assert!(
+                keys.iter().all(|key| known.iter().any(|k| k == key)),
+                "{path}: {known:?}"
+            );
+            assert!(known.iter().all(|k| !k.ends_with("_deg")), "{path}: {known:?}");
+        }
+        let error = load(
+            SceneSource::Preset("default"),
+            None,
+            &["camera.fov_y_deg=40".to_owned()],
+        )
+        .expect_err("the Rust name is no key");
+        assert_eq!(
+            error.to_string(),
+            "camera.fov_y_deg: unknown key (did you mean `fov_y`?)"
+        );
+    }
 }

@@ -1,7 +1,7 @@
-//! Layering TOML tables: presets under files, `key.path=value` overrides on top.
+//! Layering TOML tables: parsing, merging one over another, and `key.path=value` overrides
+//! (`presets.rs` layers presets under files with these).
 
 use crate::error::SceneError;
-use crate::presets;
 
 /// The most parts a key path may have (`suns.0.elevation` has 3): the nesting limit the `toml`
 /// crate sets for scene files, so that an override cannot build a table nested deeper than a file
@@ -26,30 +26,6 @@ pub(crate) fn merge(base: &mut toml::Table, top: toml::Table) {
             }
         }
     }
-}
-
-/// A scene file's table layered over its preset (`preset_override`, else its own `preset` key,
-/// else `default`).
-pub(crate) fn layer_file(text: &str, origin: &str, preset_override: Option<&str>) -> Result<toml::Table, SceneError> {
-    let own = parse_table(text, origin)?;
-    let named = match own.get("preset") {
-        None => None,
-        Some(toml::Value::String(name)) => Some(name.clone()),
-        Some(other) => {
-            return Err(SceneError::WrongType {
-                key: "preset".to_owned(),
-                message: format!("expected a preset name (a string), found {}", other.type_str()),
-            });
-        }
-    };
-    let name = preset_override
-        .map(str::to_owned)
-        .or(named)
-        .unwrap_or_else(|| "default".to_owned());
-    let mut base = presets::resolved_table(&name)?;
-    merge(&mut base, own);
-    base.insert("preset".to_owned(), toml::Value::String(name));
-    Ok(base)
 }
 
 /// Applies one `key.path=value` override. The value is read as TOML (`3`, `true`, `[1, 2, 3]`,

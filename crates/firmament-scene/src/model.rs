@@ -1,4 +1,8 @@
 //! The scene file's data model: plain serde structs, parsed strictly.
+//!
+//! Fields keep the file's units (degrees, metres, `"HH:MM"`); a field in degrees carries `_deg` in
+//! its Rust name (`fov_y_deg`), since the core it is converted for speaks radians, while its key
+//! in the file stays as it is (`fov_y`, by `#[serde(rename)]`): messages name the file's keys.
 
 mod atmosphere;
 mod flare;
@@ -107,13 +111,17 @@ pub struct CameraSection {
     /// atmosphere the eye must be at a geodetic altitude >= 0 above the planet's (curved) surface.
     pub position: [f64; 3],
     /// Direction of view from north, clockwise towards east, degrees.
-    pub heading: f64,
+    #[serde(rename = "heading")]
+    pub heading_deg: f64,
     /// Angle of view above the horizon, degrees, in [-90, 90].
-    pub pitch: f64,
+    #[serde(rename = "pitch")]
+    pub pitch_deg: f64,
     /// Rotation of the image about the view direction, clockwise, degrees.
-    pub roll: f64,
+    #[serde(rename = "roll")]
+    pub roll_deg: f64,
     /// Vertical field of view, degrees, in (0, 180).
-    pub fov_y: f64,
+    #[serde(rename = "fov_y")]
+    pub fov_y_deg: f64,
     /// Near plane distance, metres, > 0.
     pub near: f64,
     /// Far plane distance, metres, > `near`; absent for an infinite far plane.
@@ -154,17 +162,21 @@ pub struct TimeSection {
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
     /// Observer latitude, degrees, in [-90, 90], north positive.
-    pub latitude: f64,
+    #[serde(rename = "latitude")]
+    pub latitude_deg: f64,
     /// Solar declination, degrees, in [-23.44, 23.44] (0 at the equinoxes).
-    pub declination: f64,
+    #[serde(rename = "declination")]
+    pub declination_deg: f64,
     /// Angular radius of the disc, degrees, in (0, 10] (the real sun: 0.2666).
-    pub angular_radius: f64,
+    #[serde(rename = "angular_radius")]
+    pub angular_radius_deg: f64,
     /// Disc radiance as a multiple of the keyframe's sun colour, >= 0.
     pub disc_intensity: f64,
     /// Glow radiance at the centre as a multiple of the keyframe's sun colour, >= 0.
     pub glow_intensity: f64,
     /// Angle over which the glow falls by a factor e, degrees, in (0, 180].
-    pub glow_falloff: f64,
+    #[serde(rename = "glow_falloff")]
+    pub glow_falloff_deg: f64,
     /// Fraction of the disc's radius over which its edge fades, in (0, 1].
     pub edge_softness: f64,
 }
@@ -214,11 +226,14 @@ pub struct SkySection {
 #[serde(deny_unknown_fields)]
 pub struct GradientSection {
     /// Elevation where the zenith colour begins, degrees, in (`horizon_half_width`, 90].
-    pub zenith_start: f64,
+    #[serde(rename = "zenith_start")]
+    pub zenith_start_deg: f64,
     /// Half-height of the horizon band, degrees, in (0, 90).
-    pub horizon_half_width: f64,
+    #[serde(rename = "horizon_half_width")]
+    pub horizon_half_width_deg: f64,
     /// Elevation where the ground colour begins, degrees, in [-90, -`horizon_half_width`).
-    pub ground_start: f64,
+    #[serde(rename = "ground_start")]
+    pub ground_start_deg: f64,
     /// Exponent shaping the upper gradient, > 0 (< 1 reaches the zenith colour sooner).
     pub upper_exponent: f64,
     /// Exponent shaping the lower gradient, > 0.

@@ -7,9 +7,19 @@ use std::sync::{Mutex, OnceLock};
 use firmament_core::TimeOfDay;
 use firmament_core::classic::mesh::{GLU_CACHE_SIZE, MAX_GLT_SPHERE_DIVISIONS, MAX_QUAD_SUBDIVISIONS};
 
-use crate::MAX_IMAGE_SIDE;
+use crate::checks::{check, in_range, non_negative, positive, time_of_day};
+use crate::convert::{atmosphere, flare, objects};
 use crate::error::SceneError;
 use crate::model::{AtmosphereModelName, MeshEntry, Scene, SkyModelName};
+
+/// Largest image side the scene format accepts, pixels. The GPU's own limit may be lower; the
+/// renderer checks that one.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+
+/// Farthest the camera may be from the world origin, metres (10¹⁵ m, about 6700 AU): far past
+/// the 100 AU firmament is tested to, and short of distances where a planet is a speck below
+/// a pixel and `f64` positions themselves lose the metre.
+pub const MAX_CAMERA_DISTANCE: f64 = 1.0e15;
 
 /// The most `[[objects]]` entries one scene may have (each costs about 20 KB to draw, whatever
 /// its mesh).
@@ -20,49 +30,12 @@ pub(crate) const MAX_OBJECTS: usize = 16_384;
 /// `glt_sphere` of 2896 × 2896). Mesh files are bounded by their loaders.
 pub(crate) const MAX_SHAPE_TRIANGLES: u64 = 1 << 24;
 
-/// Checks `ok`, or fails with `key = value: rule`.
-pub(crate) fn check(ok: bool, key: &str, value: impl std::fmt::Display, rule: &str) -> Result<(), SceneError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(SceneError::invalid(key, value, rule))
+impl Scene {
+    /// Checks every rule of the scene format, as loading a file does: after changing fields in
+    /// code, before drawing. The error names the key, the value and the rule.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        validate(self)
     }
-}
-
-/// Checks that `value` is finite and inside `[lo, hi]`.
-pub(crate) fn in_range(key: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), SceneError> {
-    check(
-        value.is_finite() && (lo..=hi).contains(&value),
-        key,
-        value,
-        &format!("must be in [{lo}, {hi}]{unit}"),
-    )
-}
-
-/// Checks that `value` is finite and > 0.
-pub(crate) fn positive(key: &str, value: f64, unit: &str) -> Result<(), SceneError> {
-    check(
-        value.is_finite() && value > 0.0,
-        key,
-        value,
-        &format!("must be a finite number > 0{unit}"),
-    )
-}
-
-/// Checks that `value` is finite and >= 0.
-pub(crate) fn non_negative(key: &str, value: f64) -> Result<(), SceneError> {
-    check(
-        value.is_finite() && value >= 0.0,
-        key,
-        value,
-        "must be a finite number >= 0",
-    )
-}
-
-/// Parses a time of day, naming `key` in the error.
-pub(crate) fn time(key: &str, text: &str) -> Result<TimeOfDay, SceneError> {
-    text.parse::<TimeOfDay>()
-        .map_err(|e| SceneError::invalid(key, format!("\"{text}\""), e.rule))
 }
 
 /// Checks every rule of the format.
@@ -93,13 +66,13 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         "every component must be a finite number of metres",
     )?;
     check(
-        glam::DVec3::from_array(cam.position).length() <= crate::MAX_CAMERA_DISTANCE,
+        glam::DVec3::from_array(cam.position).length() <= MAX_CAMERA_DISTANCE,
         "camera.position",
         format!("[{e:e}, {n:e}, {u:e}]"),
         &format!(
             "must be within {:e} m (about 6700 AU) of the origin (a fixed limit of the scene format that no key \
              raises; firmament is tested to 100 AU)",
-            crate::MAX_CAMERA_DISTANCE
+            MAX_CAMERA_DISTANCE
         ),
     )?;
     // Over an atmosphere the ground is curved: the altitude rule below replaces this one.
@@ -110,22 +83,22 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         "the camera must be above the ground (up >= 0)",
     )?;
     check(
-        cam.heading.is_finite(),
+        cam.heading_deg.is_finite(),
         "camera.heading",
-        cam.heading,
+        cam.heading_deg,
         "must be a finite number of degrees",
     )?;
-    in_range("camera.pitch", cam.pitch, -90.0, 90.0, " degrees")?;
+    in_range("camera.pitch", cam.pitch_deg, -90.0, 90.0, " degrees")?;
     check(
-        cam.roll.is_finite(),
+        cam.roll_deg.is_finite(),
         "camera.roll",
-        cam.roll,
+        cam.roll_deg,
         "must be a finite number of degrees",
     )?;
     check(
-        cam.fov_y.is_finite() && cam.fov_y > 0.0 && cam.fov_y < 180.0,
+        cam.fov_y_deg.is_finite() && cam.fov_y_deg > 0.0 && cam.fov_y_deg < 180.0,
         "camera.fov_y",
-        cam.fov_y,
+        cam.fov_y_deg,
         "must be in (0, 180) degrees",
     )?;
     positive("camera.near", cam.near, " metres")?;
@@ -138,23 +111,23 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         )?;
     }
 
-    crate::time::validate(scene)?;
+    crate::convert::time::validate(scene)?;
 
     let sun = &scene.sun;
-    in_range("sun.latitude", sun.latitude, -90.0, 90.0, " degrees")?;
-    in_range("sun.declination", sun.declination, -90.0, 90.0, " degrees")?;
+    in_range("sun.latitude", sun.latitude_deg, -90.0, 90.0, " degrees")?;
+    in_range("sun.declination", sun.declination_deg, -90.0, 90.0, " degrees")?;
     check(
-        sun.angular_radius.is_finite() && sun.angular_radius > 0.0 && sun.angular_radius <= 10.0,
+        sun.angular_radius_deg.is_finite() && sun.angular_radius_deg > 0.0 && sun.angular_radius_deg <= 10.0,
         "sun.angular_radius",
-        sun.angular_radius,
+        sun.angular_radius_deg,
         "must be in (0, 10] degrees",
     )?;
     non_negative("sun.disc_intensity", sun.disc_intensity)?;
     non_negative("sun.glow_intensity", sun.glow_intensity)?;
     check(
-        sun.glow_falloff.is_finite() && sun.glow_falloff > 0.0 && sun.glow_falloff <= 180.0,
+        sun.glow_falloff_deg.is_finite() && sun.glow_falloff_deg > 0.0 && sun.glow_falloff_deg <= 180.0,
         "sun.glow_falloff",
-        sun.glow_falloff,
+        sun.glow_falloff_deg,
         "must be in (0, 180] degrees",
     )?;
     check(
@@ -171,21 +144,21 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
 
     let g = &scene.sky.gradient;
     check(
-        g.horizon_half_width.is_finite() && g.horizon_half_width > 0.0 && g.horizon_half_width < 90.0,
+        g.horizon_half_width_deg.is_finite() && g.horizon_half_width_deg > 0.0 && g.horizon_half_width_deg < 90.0,
         "sky.gradient.horizon_half_width",
-        g.horizon_half_width,
+        g.horizon_half_width_deg,
         "must be in (0, 90) degrees",
     )?;
     check(
-        g.zenith_start.is_finite() && g.zenith_start > g.horizon_half_width && g.zenith_start <= 90.0,
+        g.zenith_start_deg.is_finite() && g.zenith_start_deg > g.horizon_half_width_deg && g.zenith_start_deg <= 90.0,
         "sky.gradient.zenith_start",
-        g.zenith_start,
+        g.zenith_start_deg,
         "must be above the horizon band (> horizon_half_width) and at most 90 degrees",
     )?;
     check(
-        g.ground_start.is_finite() && g.ground_start < -g.horizon_half_width && g.ground_start >= -90.0,
+        g.ground_start_deg.is_finite() && g.ground_start_deg < -g.horizon_half_width_deg && g.ground_start_deg >= -90.0,
         "sky.gradient.ground_start",
-        g.ground_start,
+        g.ground_start_deg,
         "must be below the horizon band (< -horizon_half_width) and at least -90 degrees",
     )?;
     positive("sky.gradient.upper_exponent", g.upper_exponent, "")?;
@@ -199,7 +172,7 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     let mut seen: Vec<(TimeOfDay, usize)> = Vec::with_capacity(g.keyframes.len());
     for (i, k) in g.keyframes.iter().enumerate() {
         let key = format!("sky.gradient.keyframes[{i}].time");
-        let t = time(&key, &k.time)?;
+        let t = time_of_day(&key, &k.time)?;
         if let Some((_, first)) = seen.iter().find(|(s, _)| *s == t) {
             return Err(SceneError::invalid(
                 key,
@@ -210,15 +183,15 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         seen.push((t, i));
     }
 
-    let sky = crate::atmosphere::sky(scene)?;
+    let sky = atmosphere::sky(scene)?;
     // The seed's values are checked whenever the scene picks the seed model; its planet (the
     // seed's radii) is then the one the camera must be above.
     let planet = match scene.atmosphere.model {
         AtmosphereModelName::Physical => sky.atmosphere.planet,
-        AtmosphereModelName::Seed => crate::atmosphere::seed_planet(&crate::atmosphere::seed_sky(scene, &sky)?),
+        AtmosphereModelName::Seed => atmosphere::seed_planet(&atmosphere::seed_sky(scene, &sky)?),
     };
     if scene.sky.model == SkyModelName::Atmosphere {
-        crate::atmosphere::camera_above_surface(scene, &planet)?;
+        atmosphere::camera_above_surface(scene, &planet)?;
     }
     let clear = scene.sky.clear_color.rgba();
     check(
@@ -252,8 +225,8 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
             ),
         )?;
     }
-    crate::objects::validate(scene)?;
-    crate::flare::validate(scene)?;
+    objects::validate(scene)?;
+    flare::validate(scene)?;
     log_paths_outside(scene);
     Ok(())
 }
@@ -367,7 +340,7 @@ mod tests {
 
     #[test]
     fn the_camera_stays_within_the_distance_limit() {
-        let mut scene = crate::Scene::preset("earth-orbit").expect("preset");
+        let mut scene = Scene::preset("earth-orbit").expect("preset");
         scene.camera.position = [0.0, 0.0, 1.5e13]; // 100 AU
         assert!(validate(&scene).is_ok());
         scene.camera.position = [0.0, 0.0, 1.0e300];

@@ -38,7 +38,10 @@ use firmament_core::classic::mesh::Mesh;
 use firmament_core::texture::TextureImage;
 use glam::{DMat4, DQuat, DVec3};
 
-use super::{Budget, LoadedMesh, RawMesh, finish_mesh, texture_file};
+use super::limits::Budget;
+use super::mesh::{LoadedMesh, RawMesh, finish_mesh};
+use super::paths::note_outside;
+use super::texture_file;
 
 /// Standard base64, padding optional (exporters differ).
 const BASE64: GeneralPurpose = GeneralPurpose::new(
@@ -311,7 +314,7 @@ pub(super) fn read_uri(
         let rest = rest.strip_prefix("//").unwrap_or(rest);
         Path::new(&percent_decode(rest).map_err(|e| format!("{what}: URI `{uri}`: {e}"))?).to_path_buf()
     };
-    super::note_outside(path, &file, what);
+    note_outside(path, &file, what);
     let bytes = budget.read_file(&file, &format!("the file of {what}"))?;
     Ok((bytes, FormatHint::from_path(&file)))
 }

@@ -25,7 +25,10 @@ use std::sync::Arc;
 use firmament_core::texture::TextureImage;
 use glam::DMat4;
 
-use super::{Budget, LoadedMesh, RawMesh, finish_mesh, texture_file};
+use super::limits::Budget;
+use super::mesh::{LoadedMesh, RawMesh, finish_mesh};
+use super::paths::note_outside;
+use super::texture_file;
 
 /// Triangulated, one index per vertex, no points or lines: `tobj`'s `GPU_LOAD_OPTIONS`
 /// (`single_index`, `triangulate`, `ignore_points`, `ignore_lines`).
@@ -43,7 +46,7 @@ pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec
     let shared = RefCell::new(std::mem::replace(budget, Budget::new()));
     let parsed = tobj::load_obj_buf(&mut Cursor::new(bytes), &OPTIONS, |library| {
         let file = folder.join(library);
-        super::note_outside(path, &file, "material library");
+        note_outside(path, &file, "material library");
         load_library(&file, &problems, &mut shared.borrow_mut())
     });
     *budget = shared.into_inner();
@@ -169,7 +172,7 @@ fn diffuse_map(
     given: &str,
     budget: &mut Budget,
 ) -> Option<TextureImage> {
-    super::note_outside(path, file, "diffuse map");
+    note_outside(path, file, "diffuse map");
     let loaded = budget
         .read_file(file, "image file")
         .and_then(|bytes| texture_file::decode(&bytes, texture_file::FormatHint::from_path(file), budget));

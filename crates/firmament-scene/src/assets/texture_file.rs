@@ -14,7 +14,7 @@ use firmament_core::texture::TextureImage;
 #[cfg(feature = "image-files")]
 use image::{ImageFormat, ImageReader, Limits};
 
-use super::Budget;
+use super::limits::Budget;
 
 /// The format a file's name or a media type suggests, for contents that do not say.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -163,7 +163,7 @@ fn check_side(name: &str, side: u32) -> Result<(), String> {
     if side == 0 {
         Err(format!("the image {name} is 0 pixels"))
     } else if side > MAX_TEXTURE_SIDE {
-        Err(super::over_limit(
+        Err(super::limits::over_limit(
             &format!("the image {name} is {side} pixels"),
             format!("{MAX_TEXTURE_SIDE} pixels on a side"),
             "MAX_TEXTURE_SIDE",

@@ -13,10 +13,10 @@ impl SunEntry {
     pub fn at_deg(azimuth: f64, elevation: f64) -> Self {
         Self {
             name: None,
-            azimuth: Some(azimuth),
-            elevation: Some(elevation),
+            azimuth_deg: Some(azimuth),
+            elevation_deg: Some(elevation),
             position: None,
-            angular_radius: None,
+            angular_radius_deg: None,
             temperature: None,
             color: None,
             irradiance: None,
@@ -37,7 +37,7 @@ impl SunEntry {
     #[must_use]
     pub fn angular_radius_deg(self, radius: f64) -> Self {
         Self {
-            angular_radius: Some(radius),
+            angular_radius_deg: Some(radius),
             ..self
         }
     }
@@ -55,8 +55,8 @@ impl SunEntry {
     /// from the planet's centre to it, above the atmosphere).
     pub fn at_position_m(position: [f64; 3]) -> Self {
         Self {
-            azimuth: None,
-            elevation: None,
+            azimuth_deg: None,
+            elevation_deg: None,
             position: Some(position),
             ..Self::at_deg(0.0, 0.0)
         }
@@ -102,7 +102,7 @@ impl LightEntry {
             specular: None,
             spot_direction: None,
             spot_exponent: None,
-            spot_cutoff: None,
+            spot_cutoff_deg: None,
             attenuation: None,
             flare: false,
             flare_radius: None,
@@ -134,7 +134,7 @@ impl LightEntry {
     pub fn spot_deg(self, direction: [f64; 3], cutoff: f64, exponent: f64) -> Self {
         Self {
             spot_direction: Some(direction),
-            spot_cutoff: Some(cutoff),
+            spot_cutoff_deg: Some(cutoff),
             spot_exponent: Some(exponent),
             ..self
         }

@@ -70,9 +70,11 @@ pub struct PlanetSection {
     pub atmosphere_height: Option<f64>,
     /// Geodetic latitude of the world origin on the surface, degrees north, in [-90, 90]. The
     /// world frame (and `camera.position`) is East-North-Up there.
-    pub latitude: f64,
+    #[serde(rename = "latitude")]
+    pub latitude_deg: f64,
     /// Longitude of the world origin, degrees east, finite.
-    pub longitude: f64,
+    #[serde(rename = "longitude")]
+    pub longitude_deg: f64,
 }
 
 /// The aerosol phase functions a scene can choose.
@@ -184,19 +186,19 @@ pub struct SunEntry {
     #[serde(default)]
     pub name: Option<String>,
     /// Direction from north, clockwise towards east, degrees, in the world (East-North-Up) frame.
-    #[serde(default)]
-    pub azimuth: Option<f64>,
+    #[serde(default, rename = "azimuth")]
+    pub azimuth_deg: Option<f64>,
     /// Elevation above the world frame's horizontal plane, degrees, in [-90, 90].
-    #[serde(default)]
-    pub elevation: Option<f64>,
+    #[serde(default, rename = "elevation")]
+    pub elevation_deg: Option<f64>,
     /// Where the sun is, `[east, north, up]` metres in the world frame; its direction is the one
     /// from the planet's centre to this point, which must lie above the atmosphere.
     #[serde(default)]
     pub position: Option<[f64; 3]>,
     /// Angular radius of the disc, degrees, in (0, 90) (default: the body's sun, e.g. 0.2679°
     /// seen from Earth).
-    #[serde(default)]
-    pub angular_radius: Option<f64>,
+    #[serde(default, rename = "angular_radius")]
+    pub angular_radius_deg: Option<f64>,
     /// Colour as a black-body temperature, kelvin, in [500, 1000000]; not with `color`.
     #[serde(default)]
     pub temperature: Option<f64>,

@@ -70,8 +70,8 @@ pub struct FlareElementEntry {
     #[serde(default)]
     pub points: Option<u32>,
     /// Streaks, ghosts and images: degrees counter-clockwise from +x (default 0).
-    #[serde(default)]
-    pub rotation: Option<f64>,
+    #[serde(default, rename = "rotation")]
+    pub rotation_deg: Option<f64>,
     /// Streaks: angular falloff exponent, >= 1 (default 24).
     #[serde(default)]
     pub sharpness: Option<f64>,

@@ -119,8 +119,8 @@ pub struct LightEntry {
     #[serde(default)]
     pub spot_exponent: Option<f64>,
     /// `GL_SPOT_CUTOFF`, degrees: [0, 90], or 180 for no spot.
-    #[serde(default)]
-    pub spot_cutoff: Option<f64>,
+    #[serde(default, rename = "spot_cutoff")]
+    pub spot_cutoff_deg: Option<f64>,
     /// Constant, linear and quadratic attenuation, each >= 0 (GL's initial `[1, 0, 0]`).
     #[serde(default)]
     pub attenuation: Option<[f64; 3]>,

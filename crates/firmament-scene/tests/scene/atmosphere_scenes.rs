@@ -179,7 +179,7 @@ fn scene_files_replace_the_presets_suns_as_a_whole() {
     let text = "preset = \"binary-sunset\"\n[[suns]]\nazimuth = 10.0\nelevation = 20.0\n";
     let scene = load(SceneSource::Text { text, origin: "t.toml" }, None, &[]).expect("valid");
     assert_eq!(scene.suns.len(), 1);
-    assert_eq!(scene.suns[0].azimuth, Some(10.0));
+    assert_eq!(scene.suns[0].azimuth_deg, Some(10.0));
     assert_eq!(scene.suns[0].temperature, None);
     let scene = preset("earth-sunset", &["suns=[]"]).expect("no suns is valid");
     assert!(sky_of(&scene).suns.is_empty());

@@ -184,7 +184,7 @@ fn the_remaining_setters_and_edit_equal_the_same_scene_file() {
             })
             .spin_deg_per_s([0.0, 0.0, 1.0], 10.0),
         )
-        .edit(|scene| scene.camera.heading = 123.0)
+        .edit(|scene| scene.camera.heading_deg = 123.0)
         .build()
         .expect("a valid scene");
     let parsed = parse(

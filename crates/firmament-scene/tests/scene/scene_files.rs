@@ -35,9 +35,9 @@ fn an_empty_file_is_the_default_scene() {
 fn files_layer_over_their_preset_and_sets_layer_over_files() {
     let scene = from_text("preset = \"noon\"\n[camera]\npitch = 3.0\n").expect("valid");
     assert_eq!(scene.time.time_of_day, "12:30"); // from noon
-    assert_eq!(scene.camera.pitch, 3.0); // from the file
-    assert_eq!(scene.camera.fov_y, 75.0); // from noon
-    assert_eq!(scene.sun.latitude, 45.0); // from default
+    assert_eq!(scene.camera.pitch_deg, 3.0); // from the file
+    assert_eq!(scene.camera.fov_y_deg, 75.0); // from noon
+    assert_eq!(scene.sun.latitude_deg, 45.0); // from default
     let scene = load(
         SceneSource::Text {
             text: "[camera]\npitch = 3.0\n",
@@ -51,7 +51,7 @@ fn files_layer_over_their_preset_and_sets_layer_over_files() {
     )
     .expect("valid");
     assert_eq!(scene.preset.as_deref(), Some("dusk"));
-    assert_eq!(scene.camera.pitch, 7.5);
+    assert_eq!(scene.camera.pitch_deg, 7.5);
     assert_eq!(scene.display.tone_curve, firmament_core::display::ToneCurve::AcesFitted);
 }
 

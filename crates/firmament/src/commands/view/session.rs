@@ -59,8 +59,8 @@ type Pose = (DVec3, f64, f64);
 fn aim(flight: &mut FlightController, camera: &firmament_scene::CameraSection) -> Pose {
     flight.set_pose(
         DVec3::from_array(camera.position),
-        camera.heading.to_radians(),
-        camera.pitch.to_radians(),
+        camera.heading_deg.to_radians(),
+        camera.pitch_deg.to_radians(),
     );
     pose(flight)
 }
@@ -188,8 +188,8 @@ impl Session {
         scene.render.height = height;
         if pose(&self.flight) != self.aimed {
             scene.camera.position = self.flight.position.to_array();
-            scene.camera.heading = self.flight.heading.to_degrees();
-            scene.camera.pitch = self.flight.pitch.to_degrees();
+            scene.camera.heading_deg = self.flight.heading.to_degrees();
+            scene.camera.pitch_deg = self.flight.pitch.to_degrees();
         }
         scene
     }
@@ -346,7 +346,7 @@ mod tests {
         s.doc.set("camera.fov_y", toml::Value::Float(50.0)).expect("set");
         s.document_changed();
         assert!(s.edit_error.is_none());
-        assert_eq!(s.scene().camera.fov_y, 50.0);
+        assert_eq!(s.scene().camera.fov_y_deg, 50.0);
     }
 
     #[test]

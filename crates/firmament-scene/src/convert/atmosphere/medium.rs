@@ -2,10 +2,10 @@
 
 use firmament_core::atmosphere::{DensityLayer, DensityProfile, Medium, MiePhase, Spectrum, Wavelengths};
 
+use crate::checks::{check, non_negative, positive};
 use crate::error::SceneError;
 use crate::model::{AtmosphereSection, Body, MiePhaseName};
 use crate::spectrum::SceneSpectrum;
-use crate::validate::{check, non_negative, positive};
 
 /// The medium and the model wavelengths, every value checked.
 pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium, Wavelengths), SceneError> {

@@ -1,4 +1,21 @@
 //! From a validated scene to the core's [`Frame`]: degrees become radians, times become seconds.
+//!
+//! The scene model (`crate::model`) holds the file's keys in the file's units; this module and its
+//! steps turn them into the core's types, checking each value on the way (each error names the
+//! scene key): `atmosphere` (`[planet]`, `[atmosphere]`, `[[suns]]` → [`AtmosphereSky`], or the
+//! seed's [`SeedSky`]), `time` (`[time]` → the frame's moment and the real sun), `objects`
+//! (`[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]` → the object layer), `flare` (`[flare]` →
+//! the flare layer) and `night` (the stars and the Moon at a real instant).
+
+pub(crate) mod atmosphere;
+pub(crate) mod flare;
+mod night;
+pub(crate) mod objects;
+pub(crate) mod time;
+
+pub use atmosphere::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
+pub use night::MOON_DISPLAY_RADIANCE;
+pub use time::{add_seconds, parse_date_time};
 
 use firmament_core::astro::CivilDateTime;
 use firmament_core::astro::spa::SolarPosition;
@@ -11,15 +28,15 @@ use firmament_core::sky::sun::{SolarPath, SunDisc};
 use firmament_core::{Camera, Frame, TimeOfDay};
 use glam::DVec3;
 
+use self::time::Moment;
+use crate::checks::time_of_day;
 use crate::error::SceneError;
 use crate::model::{AtmosphereModelName, KeyframesBy, Scene, SkyModelName};
-use crate::time::Moment;
-use crate::validate::time;
 
 impl Scene {
     /// The scene's own time of day (`time.time_of_day`).
     pub fn time_of_day(&self) -> Result<TimeOfDay, SceneError> {
-        time("time.time_of_day", &self.time.time_of_day)
+        time_of_day("time.time_of_day", &self.time.time_of_day)
     }
 
     /// The camera, with the aspect ratio of `render.width / render.height`.
@@ -28,11 +45,11 @@ impl Scene {
         Camera {
             position: DVec3::from_array(c.position),
             orientation: orientation_from_heading_pitch_roll(
-                c.heading.to_radians(),
-                c.pitch.to_radians(),
-                c.roll.to_radians(),
+                c.heading_deg.to_radians(),
+                c.pitch_deg.to_radians(),
+                c.roll_deg.to_radians(),
             ),
-            fov_y: c.fov_y.to_radians(),
+            fov_y: c.fov_y_deg.to_radians(),
             aspect: f64::from(self.render.width) / f64::from(self.render.height),
             near: c.near,
             far: c.far,
@@ -43,9 +60,9 @@ impl Scene {
     pub fn gradient_shape(&self) -> GradientShape {
         let g = &self.sky.gradient;
         GradientShape {
-            zenith_start: g.zenith_start.to_radians(),
-            horizon_half_width: g.horizon_half_width.to_radians(),
-            ground_start: g.ground_start.to_radians(),
+            zenith_start: g.zenith_start_deg.to_radians(),
+            horizon_half_width: g.horizon_half_width_deg.to_radians(),
+            ground_start: g.ground_start_deg.to_radians(),
             upper_exponent: g.upper_exponent,
             lower_exponent: g.lower_exponent,
             blend: g.blend,
@@ -61,7 +78,7 @@ impl Scene {
             .enumerate()
             .map(|(i, k)| {
                 Ok(SkyKeyframe {
-                    time: time(&format!("sky.gradient.keyframes[{i}].time"), &k.time)?,
+                    time: time_of_day(&format!("sky.gradient.keyframes[{i}].time"), &k.time)?,
                     bands: SkyBands {
                         zenith: k.zenith.0,
                         upper: k.upper.0,
@@ -80,8 +97,8 @@ impl Scene {
     /// The sun's path over the day.
     pub fn solar_path(&self) -> SolarPath {
         SolarPath {
-            latitude: self.sun.latitude.to_radians(),
-            declination: self.sun.declination.to_radians(),
+            latitude: self.sun.latitude_deg.to_radians(),
+            declination: self.sun.declination_deg.to_radians(),
         }
     }
 
@@ -112,7 +129,7 @@ impl Scene {
 
     /// [`Self::atmosphere_sky`] with the first sun moved to `real_sun` (refracted, as seen).
     fn atmosphere_sky_with(&self, real_sun: Option<&SolarPosition>) -> Result<AtmosphereSky, SceneError> {
-        let mut sky = crate::atmosphere::sky(self)?;
+        let mut sky = atmosphere::sky(self)?;
         if let Some(position) = real_sun {
             let direction = position.direction_enu(true);
             match sky.suns.first_mut() {
@@ -125,7 +142,7 @@ impl Scene {
 
     /// The gradient sky at clock time `clock`, its sun where `real_sun` is when given (else on
     /// `[sun]`'s path), its colours at the keyframes' time for that sun (see
-    /// [`KeyframesBy`](crate::KeyframesBy)).
+    /// [`KeyframesBy`]).
     fn gradient_sky(&self, clock: TimeOfDay, real_sun: Option<&SolarPosition>) -> Result<GradientSkyState, SceneError> {
         let path = self.solar_path();
         let (direction, solar_time) = match real_sun {
@@ -148,10 +165,10 @@ impl Scene {
         let s = &self.sun;
         let sun = SunDisc {
             direction,
-            angular_radius: s.angular_radius.to_radians(),
+            angular_radius: s.angular_radius_deg.to_radians(),
             disc_radiance: bands.sun.scale(s.disc_intensity),
             glow_radiance: bands.sun.scale(s.glow_intensity),
-            glow_falloff: s.glow_falloff.to_radians(),
+            glow_falloff: s.glow_falloff_deg.to_radians(),
             edge_softness: s.edge_softness,
         };
         Ok(GradientSkyState {
@@ -165,7 +182,7 @@ impl Scene {
     /// the body's seed values with `[planet]`'s radii and `[atmosphere.seed]`'s overrides, the
     /// `[[suns]]` as the seed's stars.
     pub fn seed_sky(&self) -> Result<SeedSky, SceneError> {
-        crate::atmosphere::seed_sky(self, &self.atmosphere_sky()?)
+        atmosphere::seed_sky(self, &self.atmosphere_sky()?)
     }
 
     /// The camera's geodetic altitude above the surface of the scene's planet, metres (negative
@@ -181,7 +198,7 @@ impl Scene {
     pub fn atmosphere_planet(&self) -> Result<Planet, SceneError> {
         Ok(match self.atmosphere.model {
             AtmosphereModelName::Physical => self.atmosphere_sky()?.atmosphere.planet,
-            AtmosphereModelName::Seed => crate::atmosphere::seed_planet(&self.seed_sky()?),
+            AtmosphereModelName::Seed => atmosphere::seed_planet(&self.seed_sky()?),
         })
     }
 
@@ -220,11 +237,11 @@ impl Scene {
                 match self.atmosphere.model {
                     AtmosphereModelName::Physical => {
                         if let Some(instant) = &moment.instant {
-                            crate::night::add_moonlight(self, instant, &camera, &mut sky);
+                            night::add_moonlight(self, instant, &camera, &mut sky);
                         }
                         Sky::Atmosphere(sky)
                     }
-                    AtmosphereModelName::Seed => Sky::Seed(crate::atmosphere::seed_sky(self, &sky)?),
+                    AtmosphereModelName::Seed => Sky::Seed(atmosphere::seed_sky(self, &sky)?),
                 }
             }
             SkyModelName::Clear => {
@@ -232,11 +249,11 @@ impl Scene {
                 Sky::Clear(firmament_core::LinearRgb::new(r, g, b))
             }
         };
-        let flares = crate::flare::flare_layer(self, &camera, &sky)?;
-        let objects = crate::objects::object_layer(self, moment.clock, &sky)?;
+        let flares = flare::flare_layer(self, &camera, &sky)?;
+        let objects = objects::object_layer(self, moment.clock, &sky)?;
         let night = moment
             .instant
-            .map(|instant| crate::night::night_layer(self, &instant, &camera, &sky))
+            .map(|instant| night::night_layer(self, &instant, &camera, &sky))
             .unwrap_or_default();
         Ok(Frame {
             camera,

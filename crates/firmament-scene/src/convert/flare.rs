@@ -37,9 +37,9 @@ use firmament_core::texture::TextureImage;
 use firmament_core::{Camera, CoreError};
 use glam::DVec3;
 
+use crate::checks::check;
 use crate::error::SceneError;
 use crate::model::{FlareElementEntry, FlareKindName, LightEntry, Scene};
-use crate::validate::check;
 
 /// A light's `flare_radius` when absent: metres, for a positional light.
 pub(crate) const DEFAULT_POINT_FLARE_RADIUS: f64 = 0.05;
@@ -122,7 +122,7 @@ fn element(i: usize, e: &FlareElementEntry, images: &mut FlareImages<'_>) -> Res
     }
     let given = [
         ("points", e.points.map(f64::from)),
-        ("rotation", e.rotation),
+        ("rotation", e.rotation_deg),
         ("sharpness", e.sharpness),
         ("thickness", e.thickness),
         ("sides", e.sides.map(f64::from)),
@@ -145,7 +145,7 @@ fn element(i: usize, e: &FlareElementEntry, images: &mut FlareImages<'_>) -> Res
         FlareKindName::Glow => FlareShape::Glow,
         FlareKindName::Streaks => FlareShape::Streaks {
             points: e.points.unwrap_or(6),
-            rotation: e.rotation.unwrap_or(0.0),
+            rotation: e.rotation_deg.unwrap_or(0.0),
             sharpness: e.sharpness.unwrap_or(24.0),
         },
         FlareKindName::Halo => FlareShape::Halo {
@@ -153,12 +153,12 @@ fn element(i: usize, e: &FlareElementEntry, images: &mut FlareImages<'_>) -> Res
         },
         FlareKindName::Ghost => FlareShape::Ghost {
             sides: e.sides.unwrap_or(6),
-            rotation: e.rotation.unwrap_or(0.0),
+            rotation: e.rotation_deg.unwrap_or(0.0),
             softness: e.softness.unwrap_or(0.15),
         },
         FlareKindName::Image => FlareShape::Image {
             image: images.index_of(&key("file"), e.file.as_deref().unwrap_or_default())?,
-            rotation: e.rotation.unwrap_or(0.0),
+            rotation: e.rotation_deg.unwrap_or(0.0),
         },
     };
     Ok(FlareElement {
@@ -256,7 +256,7 @@ fn light_sources(scene: &Scene, camera: &Camera) -> Result<Vec<FlareSource>, Sce
     let mut sources = Vec::new();
     for (i, entry) in scene.lights.iter().enumerate() {
         // The light's own rules (position, colours) are checked with the lighting.
-        let light = crate::objects::light(i, entry)?;
+        let light = super::objects::light(i, entry)?;
         let p = light.light.position;
         let radius = light_flare_radius(i, entry, p.w == 0.0)?;
         if !entry.flare {

@@ -15,9 +15,9 @@ use firmament_core::TimeOfDay;
 use firmament_core::astro::spa::{self, SolarPosition, SpaInput};
 use firmament_core::astro::{CivilDateTime, Instant};
 
+use crate::checks::{check, time_of_day};
 use crate::error::SceneError;
 use crate::model::{Body, Scene};
-use crate::validate::{check, time};
 
 /// The forms [`parse_date_time`] takes after a trailing `Z` became `+00:00`, with an offset.
 const WITH_OFFSET: [&str; 2] = ["%Y-%m-%dT%H:%M:%S%.f%#z", "%Y-%m-%dT%H:%M%#z"];
@@ -193,7 +193,7 @@ impl Scene {
             elevation_m: self.camera.position[2].clamp(0.0, 1.0e7),
             pressure_mbar: self.time.pressure,
             temperature_c: self.time.temperature,
-            ..SpaInput::new(*instant, self.planet.latitude, self.planet.longitude)
+            ..SpaInput::new(*instant, self.planet.latitude_deg, self.planet.longitude_deg)
         };
         input.validate().map_err(|e| match e {
             firmament_core::CoreError::Invalid { field, value, rule } => {
@@ -217,7 +217,7 @@ impl Scene {
 /// Checks `[time]`'s values (the date, the air, the star limit) without building a frame.
 pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     let t = &scene.time;
-    time("time.time_of_day", &t.time_of_day)?;
+    time_of_day("time.time_of_day", &t.time_of_day)?;
     check(
         t.pressure.is_finite() && t.pressure > 0.0 && t.pressure <= 5000.0,
         "time.pressure",

@@ -111,7 +111,7 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
         return NightLayer::default();
     }
     let limit = if t.stars { t.star_limit } else { f64::NEG_INFINITY };
-    let (lat, lon) = (scene.planet.latitude, scene.planet.longitude);
+    let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
     let height = camera.position.z.max(0.0);
     let build = |units: f64, transmittance: &dyn Fn(DVec3) -> DVec3| {
         NightLayer::at(instant, lat, lon, height, DMat3::IDENTITY, units, limit, transmittance)
@@ -162,7 +162,7 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
     if !scene.time.moon || sky.suns.len() >= MAX_SUNS {
         return;
     }
-    let (lat, lon) = (scene.planet.latitude, scene.planet.longitude);
+    let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
     let view = moon_view(instant, lat, lon, camera.position.z.max(0.0));
     if view.direction.z < HORIZON_CUTOFF_DEG.to_radians().sin()
         || view.illuminance_lux.is_nan()

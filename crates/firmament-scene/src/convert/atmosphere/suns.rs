@@ -6,9 +6,9 @@ use firmament_core::camera::direction_from_heading_elevation;
 use firmament_core::frame::MAX_SUNS;
 use glam::DVec3;
 
+use crate::checks::{check, in_range, non_negative};
 use crate::error::SceneError;
 use crate::model::{Body, SunEntry};
-use crate::validate::{check, in_range, non_negative};
 
 /// Black-body temperatures the scene accepts, kelvin (Planck's law stays finite in f64 over the
 /// model wavelengths).
@@ -64,7 +64,7 @@ fn sun(i: usize, entry: &SunEntry, body: Body, atmosphere: &Atmosphere) -> Resul
     let irradiance = entry.irradiance.unwrap_or(base.irradiance.y);
     non_negative(&key("irradiance"), irradiance)?;
 
-    let angular_radius = match entry.angular_radius {
+    let angular_radius = match entry.angular_radius_deg {
         Some(degrees) => {
             check(
                 degrees.is_finite() && degrees > 0.0 && degrees < 90.0,
@@ -107,7 +107,7 @@ fn direction(i: usize, entry: &SunEntry, atmosphere: &Atmosphere) -> Result<DVec
         key: key(field),
         message: format!("missing: {message}"),
     };
-    match (entry.azimuth, entry.elevation, entry.position) {
+    match (entry.azimuth_deg, entry.elevation_deg, entry.position) {
         (Some(_), _, Some([e, n, u])) | (_, Some(_), Some([e, n, u])) => Err(SceneError::invalid(
             key("position"),
             format!("[{e}, {n}, {u}]"),

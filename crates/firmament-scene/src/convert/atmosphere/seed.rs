@@ -16,9 +16,9 @@ use firmament_core::atmosphere::{Planet, Sun};
 use firmament_core::frame::{AtmosphereSky, SEED_DEFAULT_LUMINANCE, SeedSky};
 use glam::DVec3;
 
+use crate::checks::{check, positive};
 use crate::error::SceneError;
 use crate::model::{Body, Scene};
-use crate::validate::{check, positive};
 
 /// Distance of a sun given by azimuth and elevation from the planet centre, metres (1 AU); only
 /// the ratio of radius to distance matters for a star this far.
@@ -100,7 +100,7 @@ pub(crate) fn seed_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<SeedSk
             .ok_or_else(|| missing("overglow"))?,
     };
     let planet = Planet::spheroid(equatorial_radius, polar_radius, atmosphere.height)
-        .posed_at(p.latitude.to_radians(), p.longitude.to_radians());
+        .posed_at(p.latitude_deg.to_radians(), p.longitude_deg.to_radians());
     let stars = scene
         .suns
         .iter()

@@ -3,9 +3,9 @@
 
 use firmament_core::atmosphere::Planet;
 
+use crate::checks::{check, in_range, positive};
 use crate::error::SceneError;
 use crate::model::PlanetSection;
-use crate::validate::{check, in_range, positive};
 
 /// The largest ratio between the radii the core accepts.
 const MAX_RADIUS_RATIO: f64 = 10.0;
@@ -52,14 +52,14 @@ pub(super) fn planet(section: &PlanetSection) -> Result<Planet, SceneError> {
         value,
         &format!("must be within {MAX_RADIUS_RATIO} times {} ({} m)", other.0, other.1),
     )?;
-    in_range("planet.latitude", section.latitude, -90.0, 90.0, " degrees")?;
+    in_range("planet.latitude", section.latitude_deg, -90.0, 90.0, " degrees")?;
     check(
-        section.longitude.is_finite(),
+        section.longitude_deg.is_finite(),
         "planet.longitude",
-        section.longitude,
+        section.longitude_deg,
         "must be a finite number of degrees",
     )?;
     let height = section.atmosphere_height.unwrap_or(body.atmosphere_height);
     Ok(Planet::spheroid(equatorial, polar, height)
-        .posed_at(section.latitude.to_radians(), section.longitude.to_radians()))
+        .posed_at(section.latitude_deg.to_radians(), section.longitude_deg.to_radians()))
 }

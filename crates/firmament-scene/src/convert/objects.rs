@@ -20,13 +20,13 @@ use firmament_core::texture::TextureImage;
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::assets;
+use crate::checks::{check, in_range, non_negative};
 use crate::error::SceneError;
 use crate::model::{
     AtmosphereModelName, FilterName, FogCoordinateName, FogModeName, GlColor, LightEntry, LightSpaceName,
     LightingModelName, MaterialEntry, MeshEntry, ObjectEntry, Scene, ShadingName, SkyModelName, SpecularName,
     TextureEntry, TransformEntry,
 };
-use crate::validate::{check, in_range, non_negative};
 
 fn color(key: &str, c: GlColor) -> Result<DVec4, SceneError> {
     let rgba = c.rgba();
@@ -76,7 +76,7 @@ pub(crate) fn light(i: usize, entry: &LightEntry) -> Result<SceneLight, SceneErr
     };
     let spot_exponent = entry.spot_exponent.unwrap_or(initial.spot_exponent);
     in_range(&key("spot_exponent"), spot_exponent, 0.0, 128.0, "")?;
-    let spot_cutoff = entry.spot_cutoff.unwrap_or(initial.spot_cutoff);
+    let spot_cutoff = entry.spot_cutoff_deg.unwrap_or(initial.spot_cutoff);
     check(
         spot_cutoff == 180.0 || (spot_cutoff.is_finite() && (0.0..=90.0).contains(&spot_cutoff)),
         &key("spot_cutoff"),
