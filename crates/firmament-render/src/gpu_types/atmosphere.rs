@@ -96,15 +96,10 @@ pub struct AtmosphereParamsUniforms {
 /// LUTs hold, but no more than this.
 ///
 /// Delta-M assumes the light the peak scatters hardly changes over the peak's width. That holds
-/// for Mars's dust (Henyey–Greenstein g = 0.63, a₅ = 0.099), whose sky is smooth, but not for
-/// Earth's haze (Cornette–Shanks g = 0.8, a₅ = 0.374): the sky near the ground is brightest in a
-/// band a few degrees high above a dark ground, so a view along the horizon gets its
-/// forward-scattered light from half a lobe of sky and half a lobe of ground. Measured against
-/// the reference (`sky-sample`, 65 536 paths; docs/ATMOSPHERE.md): on Earth (sun 10° up, views
-/// within 1° of the horizon) the whole a₅ overshoots by 1.6–2.2 %, half of it stays within 0.6 %;
-/// on Mars (sun 20° up) the whole a₅ is within 0.3–2.4 %, half of it 0.3–2.8 % low everywhere.
-/// Haze of Earth's kind fifty times thicker would want the whole a₅ again; no single rule fits
-/// every medium with four bands (docs/ATMOSPHERE.md, "Not yet done").
+/// for Mars's dust, whose sky is smooth, but not for Earth's haze near the horizon, where a view
+/// gets its forward-scattered light from half a lobe of bright sky and half a lobe of dark
+/// ground; capping f at about half of Earth's a₅ keeps both within budget. The measurements and
+/// what no single cap fits: docs/ATMOSPHERE.md, "Mie's forward peak (delta-M)" and "Not yet done".
 pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the

@@ -37,8 +37,8 @@ fn profile_density(profile: DensityProfile, h: f32) -> f32 {
 // scattered light meets by f·σ_M — and the rest, with coefficients a_l − f, is left to bands 0–4.
 // Delta-M takes f = a_5; firmament takes at most 0.19 (MIE_FORWARD_PEAK_MAX in
 // gpu_types/atmosphere.rs: Earth's horizon light is a band narrower than its haze's wide peak).
-// Cutting the series off after band 4 instead left the sky 1–1.5 % dark near the horizon
-// (docs/ATMOSPHERE.md).
+// Cutting the series off after band 4 instead leaves the sky dark near the horizon
+// (docs/ATMOSPHERE.md, "Mie's forward peak").
 // Sunlight itself keeps the full extinction and the exact phase function: single scattering, the
 // sun's disc and whatever stands behind the air (whose transmittance is `extinction`'s) are exact.
 struct Coefficients {

@@ -7,8 +7,8 @@
 // integrates the sky's radiance over the upper hemisphere (cos θ-weighted), with DIRECTIONS_SQRT²
 // directions of STEPS samples. Light reflected by the ground below is left out (second order in
 // the albedo). rgb = ln(irradiance / sun irradiance), as `encode_log` stores it: below the horizon
-// it falls ~e^70 per unit of mu_s like Ψ, 4-fold a texel apart with the sun 6° down, where
-// filtering it linearly made the twilight ground up to 25 % too bright; a = 1.
+// it falls ~e^70 per unit of mu_s like Ψ, so filtering it linearly would brighten the twilight
+// ground (docs/ATMOSPHERE.md, "The GPU pipeline"); a = 1.
 
 #import common/fullscreen
 #import atmosphere/bindings
@@ -39,7 +39,7 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
             // Crowded at the horizon: cos θ = x² for x stratified in (0, 1), so ∫ L cos θ dω =
             // ∫∫ L·x²·2x dx dφ and each direction carries 2x³ of 2π/N. At twilight the ground's
             // light comes from a band of lit sky a few degrees high, which cosine-weighted strata
-            // (the lowest 10° up) stepped over: the ground came out 12 % dark in red.
+            // (the lowest 10° up) step over.
             let phi = 2.0 * PI * (f32(i) + 0.5) / f32(DIRECTIONS_SQRT);
             let x = (f32(j) + 0.5) / f32(DIRECTIONS_SQRT);
             let mu = x * x;

@@ -51,10 +51,10 @@ const MULTISCATTERING_LUT_SIZE: vec2<f32> = vec2<f32>(32.0, 32.0);
 //
 // Stored as ln(psi) and the other moments over psi (bands 3 and 4 over psi summed over
 // wavelengths: one shape for all three, in the alphas of five textures and a seventh's rgba).
-// Below the horizon psi falls by ~e^70 per unit of mu_s (docs/ATMOSPHERE.md): linear filtering
-// between texels that differ 16-fold overshot the twilight sky by up to 50 %, and half floats
-// lost it altogether from the sun 10° down. ln(psi) is nearly linear there, the ratios are
-// bounded (|x/psi| ≤ 1, |band/psi| ≤ 3) and smooth.
+// Below the horizon psi falls by ~e^70 per unit of mu_s: filtered linearly it overshoots the
+// twilight sky, and half floats lose it altogether (docs/ATMOSPHERE.md, "The GPU pipeline").
+// ln(psi) is nearly linear there, the ratios are bounded (|x/psi| ≤ 1, |band/psi| ≤ 3) and
+// smooth.
 struct Moments {
     psi: vec3<f32>,
     zz: vec3<f32>,
@@ -78,9 +78,8 @@ struct Moments {
 // the medium's own a_l (`atmosphere.mie_legendre`, from firmament_core's
 // MiePhase::legendre_coefficient) less its forward peak f (delta-M, see `Coefficients` in
 // common.wgsl: the peak's light goes straight on, which the marches account for by
-// `diffuse_extinction`). Bands 3 and 4 matter for a dusty sky (Mars, g = 0.63): without them
-// the sky away from the sun was 13 % dark; with them held only about the up and sun axes, 4.6 %
-// (docs/ATMOSPHERE.md). Isotropic light (m = 0, Q = psi/3 on the diagonal, no bands 3–4) gives
+// `diffuse_extinction`). Bands 3 and 4 matter for a dusty sky (Mars, g = 0.63), whole and not
+// only about the up and sun axes (docs/ATMOSPHERE.md, "The GPU pipeline"). Isotropic light (m = 0, Q = psi/3 on the diagonal, no bands 3–4) gives
 // (σ_R + (1 − f)·σ_M)·psi.
 fn scatter_moments(c: Coefficients, m: Moments, up_axis: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let up = dot(d, up_axis);

@@ -21,8 +21,8 @@
 //   "An Efficient Representation for Irradiance Environment Maps"): `sky_sh[l(l + 1) + m]` holds
 //   L_lm (rgb; w = 0), the basis being Y_00 = 1/(2√π), Y_1m = √(3/4π)·(y, z, x), Y_2m =
 //   √(15/4π)·(xy, yz), √(5/16π)·(3z² − 1), √(15/4π)·xz, √(15/16π)·(x² − y²) for m = −l … l.
-//   Irradiance from bands 0–2 is within a few per cent of the exact cosine integral (up to 9 % in
-//   one channel for an upward normal under a low sun, the lit ground leaking in; docs/ATMOSPHERE.md).
+//   Irradiance from bands 0–2 approximates the exact cosine integral; how closely:
+//   docs/ATMOSPHERE.md, "Lighting your own materials".
 
 const FIRMAMENT_MAX_SUNS: u32 = 8u;
 
