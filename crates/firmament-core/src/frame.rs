@@ -2,7 +2,7 @@
 
 use glam::{DQuat, DVec3};
 
-use crate::atmosphere::seed::{SeedAtmosphere, SeedStar};
+use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
 use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
 use crate::classic::scene::ObjectLayer;
@@ -24,8 +24,8 @@ pub enum Sky {
     /// A physically based atmosphere around a planet, lit by one or more suns.
     Atmosphere(AtmosphereSky),
     /// The seed's own empirical atmosphere model (seed 000, version 3.1;
-    /// [`crate::atmosphere::seed`]).
-    Seed(SeedSky),
+    /// [`crate::atmosphere::empirical`]).
+    Empirical(EmpiricalSky),
     /// One colour everywhere, as a GL program's `glClearColor` (radiance, or GL units in a
     /// classic scene).
     Clear(LinearRgb),
@@ -35,11 +35,12 @@ impl Sky {
     /// The gradient sky's radiance along a unit view direction in the local frame — the
     /// reference the GPU gradient pass is tested against. `None` for the atmospheres, whose
     /// radiance depends on where the camera is: use
-    /// [`Reference`](crate::atmosphere::reference::Reference) or [`SeedSky::radiance`] for them.
+    /// [`Reference`](crate::atmosphere::reference::Reference) or [`EmpiricalSky::radiance`] for
+    /// them.
     pub fn gradient_radiance(&self, view: DVec3) -> Option<LinearRgb> {
         match self {
             Self::Gradient(sky) => Some(sky.radiance(view)),
-            Self::Atmosphere(_) | Self::Seed(_) | Self::Clear(_) => None,
+            Self::Atmosphere(_) | Self::Empirical(_) | Self::Clear(_) => None,
         }
     }
 }
@@ -71,37 +72,37 @@ impl AtmosphereSky {
     }
 }
 
-/// The most stars a [`SeedSky`] may have (the seed itself takes 3, `_lights`, seed line 297;
+/// The most stars an [`EmpiricalSky`] may have (the seed itself takes 3, `_lights`, seed line 297;
 /// firmament's GPU pass takes as many as it takes suns).
-pub const MAX_SEED_STARS: usize = MAX_SUNS;
+pub const MAX_EMPIRICAL_STARS: usize = MAX_SUNS;
 
 /// Luminance of the seed colour 1 (white) in the HDR target, cd/m², unless a scene says
 /// otherwise: a bright daylight sky, so the seed's saturated limb (1) and its zenith (≈ 0.2) land
 /// where daylight exposures (EV100 12–14) put them.
-pub const SEED_DEFAULT_LUMINANCE: f64 = 10_000.0;
+pub const EMPIRICAL_DEFAULT_LUMINANCE: f64 = 10_000.0;
 
-/// The seed's own atmosphere model around a posed planet: the sky firmament draws for
-/// `atmosphere.model = "seed"`.
+/// The seed's own atmosphere model, the empirical one, around a posed planet: the sky firmament
+/// draws for `atmosphere.model = "seed"`.
 ///
-/// The seed works in its planet frame ([`crate::atmosphere::seed`]: origin at the planet centre,
-/// `z` along the polar axis, metres); `center` and `orientation` place that frame in the world,
-/// like [`Planet`](crate::atmosphere::Planet)'s pose, so a world-frame camera maps into it.
+/// The seed works in its planet frame ([`crate::atmosphere::empirical`]: origin at the planet
+/// centre, `z` along the polar axis, metres); `center` and `orientation` place that frame in the
+/// world, like [`Planet`](crate::atmosphere::Planet)'s pose, so a world-frame camera maps into it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SeedSky {
+pub struct EmpiricalSky {
     /// The seed's parameters (radii, height, view depth, B0, overglow).
-    pub atmosphere: SeedAtmosphere,
+    pub atmosphere: EmpiricalAtmosphere,
     /// Planet centre in world coordinates, metres.
     pub center: DVec3,
     /// Rotation from the planet frame to the world frame.
     pub orientation: DQuat,
-    /// The stars (the seed's `light_*` uniforms), **planet frame**; 0 to [`MAX_SEED_STARS`].
-    pub stars: Vec<SeedStar>,
+    /// The stars (the seed's `light_*` uniforms), **planet frame**; 0 to [`MAX_EMPIRICAL_STARS`].
+    pub stars: Vec<EmpiricalStar>,
     /// Luminance that the seed's colour 1 becomes in the HDR target, cd/m² (the seed's colours
-    /// are unitless display values in [0, 1]; see [`SEED_DEFAULT_LUMINANCE`]).
+    /// are unitless display values in [0, 1]; see [`EMPIRICAL_DEFAULT_LUMINANCE`]).
     pub luminance: f64,
 }
 
-impl SeedSky {
+impl EmpiricalSky {
     /// Checks the seed's parameters, the pose, the number of stars, every star (finite
     /// position, radius > 0 m, finite non-zero direction, colour finite and >= 0) and the
     /// luminance (finite, > 0 cd/m²). Field names start with `seed.` (the atmosphere's own with
@@ -119,7 +120,7 @@ impl SeedSky {
                 "must be a finite rotation",
             );
         }
-        if self.stars.len() > MAX_SEED_STARS {
+        if self.stars.len() > MAX_EMPIRICAL_STARS {
             return invalid("seed.stars", format!("{} stars", self.stars.len()), "at most 8 stars");
         }
         for star in &self.stars {
@@ -172,7 +173,7 @@ impl SeedSky {
         self.orientation.normalize().inverse() * world
     }
 
-    /// The seed's `(rgb, alpha)` for a world-frame view ray ([`SeedAtmosphere::color`]):
+    /// The seed's `(rgb, alpha)` for a world-frame view ray ([`EmpiricalAtmosphere::color`]):
     /// unitless colour in [0, 1] and alpha 0 or 1.
     pub fn color(&self, origin: DVec3, direction: DVec3) -> (DVec3, f64) {
         self.atmosphere.color(
@@ -281,22 +282,22 @@ mod tests {
         assert_eq!(built, literal);
     }
 
-    fn seed_sky() -> SeedSky {
-        let a = SeedAtmosphere::seed_earth();
+    fn empirical_sky() -> EmpiricalSky {
+        let a = EmpiricalAtmosphere::seed_earth();
         let planet = Planet::spheroid(a.equatorial_radius, a.polar_radius, a.height).posed_at(0.6, -1.2);
         let sun = planet.direction_to_planet_frame(DVec3::new(0.3, -0.8, 0.5).normalize());
-        SeedSky {
+        EmpiricalSky {
             atmosphere: a,
             center: planet.center,
             orientation: planet.orientation,
-            stars: vec![SeedStar::at(sun * 1.5e11, 7.0e8, DVec3::splat(10.0))],
-            luminance: SEED_DEFAULT_LUMINANCE,
+            stars: vec![EmpiricalStar::at(sun * 1.5e11, 7.0e8, DVec3::splat(10.0))],
+            luminance: EMPIRICAL_DEFAULT_LUMINANCE,
         }
     }
 
     #[test]
-    fn seed_sky_maps_the_world_into_the_planet_frame() {
-        let sky = seed_sky();
+    fn empirical_sky_maps_the_world_into_the_planet_frame() {
+        let sky = empirical_sky();
         assert_eq!(sky.validate(), Ok(()));
         // The world origin is on the surface, the world +z its geodetic up (a ray straight up
         // from 2 m is the seed's zenith ray there).
@@ -311,18 +312,18 @@ mod tests {
         let radiance = sky.radiance(DVec3::new(0.0, 0.0, 2.0), DVec3::Z);
         assert_eq!(
             DVec3::new(radiance.r, radiance.g, radiance.b),
-            rgb * SEED_DEFAULT_LUMINANCE
+            rgb * EMPIRICAL_DEFAULT_LUMINANCE
         );
-        assert_eq!(Sky::Seed(sky).gradient_radiance(DVec3::Z), None);
+        assert_eq!(Sky::Empirical(sky).gradient_radiance(DVec3::Z), None);
     }
 
     #[test]
-    fn seed_sky_validation_names_the_field() {
-        let field = |sky: SeedSky| match sky.validate() {
+    fn empirical_sky_validation_names_the_field() {
+        let field = |sky: EmpiricalSky| match sky.validate() {
             Err(crate::error::CoreError::Invalid { field, .. }) => field,
             other => panic!("{other:?}"),
         };
-        let good = seed_sky();
+        let good = empirical_sky();
         let mut sky = good.clone();
         sky.atmosphere.view_depth = 0.0;
         assert_eq!(field(sky), "atmosphere.seed.view_depth");
@@ -342,7 +343,7 @@ mod tests {
         sky.stars[0].direction = DVec3::ZERO;
         assert_eq!(field(sky), "seed.stars.direction");
         let mut sky = good;
-        sky.stars = vec![sky.stars[0]; MAX_SEED_STARS + 1];
+        sky.stars = vec![sky.stars[0]; MAX_EMPIRICAL_STARS + 1];
         assert_eq!(field(sky), "seed.stars");
     }
 }

@@ -16,8 +16,8 @@ use crate::pass_timing::{
 use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
 use crate::passes::{
-    AtmospherePass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, SeedSkyPass, TonemapPass, begin_clear_pass,
-    begin_load_pass,
+    AtmospherePass, EmpiricalSkyPass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, TonemapPass,
+    begin_clear_pass, begin_load_pass,
 };
 use crate::targets::{DEPTH_CLEAR, EmbedTarget, FrameTargets};
 
@@ -26,7 +26,7 @@ use crate::targets::{DEPTH_CLEAR, EmbedTarget, FrameTargets};
 enum SkyKind {
     Gradient,
     Atmosphere,
-    Seed,
+    Empirical,
     /// A clear colour (linear, as given).
     Clear(wgpu::Color),
 }
@@ -37,7 +37,7 @@ enum SkyKind {
 struct SkyPasses {
     gradient: GradientSkyPass,
     atmosphere: AtmospherePass,
-    seed: SeedSkyPass,
+    empirical: EmpiricalSkyPass,
     night: NightSkyPass,
     flares: FlarePass,
 }
@@ -51,7 +51,7 @@ impl SkyPasses {
         Self {
             gradient: GradientSkyPass::for_target(device, key),
             atmosphere: AtmospherePass::for_target(device, key),
-            seed: SeedSkyPass::for_target(device, key),
+            empirical: EmpiricalSkyPass::for_target(device, key),
             night: NightSkyPass::for_target(device, key),
             flares,
         }
@@ -80,9 +80,9 @@ impl SkyPasses {
                 self.atmosphere.prepare(&ctx.queue, sky, camera);
                 SkyKind::Atmosphere
             }
-            Sky::Seed(sky) => {
-                self.seed.prepare(&ctx.queue, sky, camera);
-                SkyKind::Seed
+            Sky::Empirical(sky) => {
+                self.empirical.prepare(&ctx.queue, sky, camera);
+                SkyKind::Empirical
             }
             Sky::Clear(c) => SkyKind::Clear(wgpu::Color {
                 r: c.r,
@@ -112,7 +112,7 @@ impl SkyPasses {
         match sky {
             SkyKind::Gradient => self.gradient.draw(pass),
             SkyKind::Atmosphere => self.atmosphere.draw(pass),
-            SkyKind::Seed => self.seed.draw(pass),
+            SkyKind::Empirical => self.empirical.draw(pass),
             SkyKind::Clear(_) => {}
         }
     }

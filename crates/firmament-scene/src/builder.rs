@@ -9,8 +9,8 @@ use firmament_core::display::{Encoding, ToneCurve};
 
 use crate::error::SceneError;
 use crate::model::{
-    AtmosphereModelName, Body, FlareElementEntry, FlarePresetName, FogCoordinateName, FogModeName, GlColor,
-    KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry, Scene, SeedSection, ShadingName,
+    AtmosphereModelName, Body, EmpiricalSection, FlareElementEntry, FlarePresetName, FogCoordinateName, FogModeName,
+    GlColor, KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry, Scene, ShadingName,
     SkyModelName, SunEntry,
 };
 use crate::spectrum::SceneSpectrum;
@@ -191,16 +191,19 @@ impl SceneBuilder {
     }
 
     /// `sky.model = "atmosphere"` over `planet.body = body` (its shape, medium and sun; the
-    /// physical model unless [`seed_atmosphere`](Self::seed_atmosphere)).
+    /// physical model unless [`empirical_atmosphere`](Self::empirical_atmosphere)).
     pub fn atmosphere(mut self, body: Body) -> Self {
         self.scene.sky.model = SkyModelName::Atmosphere;
         self.scene.planet.body = body;
         self
     }
 
-    /// `atmosphere.model = "seed"`: the seed's empirical model instead of the physical one.
-    pub fn seed_atmosphere(mut self) -> Self {
-        self.scene.atmosphere.model = AtmosphereModelName::Seed;
+    /// `atmosphere.model = "seed"`: the seed's empirical model ([`EmpiricalAtmosphere`]) instead
+    /// of the physical one; set its values with [`empirical_values`](Self::empirical_values).
+    ///
+    /// [`EmpiricalAtmosphere`]: firmament_core::atmosphere::empirical::EmpiricalAtmosphere
+    pub fn empirical_atmosphere(mut self) -> Self {
+        self.scene.atmosphere.model = AtmosphereModelName::Empirical;
         self
     }
 
@@ -392,9 +395,10 @@ impl SceneBuilder {
         self
     }
 
-    /// `[atmosphere.seed]`: the seed model's values.
-    pub fn seed_values(mut self, seed: SeedSection) -> Self {
-        self.scene.atmosphere.seed = seed;
+    /// `[atmosphere.seed]`: the empirical model's values (used when
+    /// [`empirical_atmosphere`](Self::empirical_atmosphere) picks it).
+    pub fn empirical_values(mut self, values: EmpiricalSection) -> Self {
+        self.scene.atmosphere.empirical = values;
         self
     }
 

@@ -79,13 +79,15 @@ mod validate;
 
 pub use builder::SceneBuilder;
 pub use color::SceneColor;
-pub use convert::{MOON_DISPLAY_RADIANCE, SEED_STAR_DISTANCE, SEED_STAR_INTENSITY, add_seconds, parse_date_time};
+pub use convert::{
+    EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY, MOON_DISPLAY_RADIANCE, add_seconds, parse_date_time,
+};
 pub use document::{SceneDocument, SceneOrigin, SceneSource, load, load_file};
 pub use error::SceneError;
 pub use model::{
-    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, GradientSection, KeyframeSection,
-    KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SeedSection, SkyModelName, SkySection, SunEntry,
-    SunSection, TimeSection,
+    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, EmpiricalSection, GradientSection,
+    KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SkyModelName, SkySection,
+    SunEntry, SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

@@ -11,7 +11,7 @@ mod objects;
 use serde::Deserialize;
 
 pub use self::atmosphere::{
-    AtmosphereModelName, AtmosphereSection, Body, MiePhaseName, PlanetSection, SeedSection, SunEntry,
+    AtmosphereModelName, AtmosphereSection, Body, EmpiricalSection, MiePhaseName, PlanetSection, SunEntry,
 };
 pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
 pub use self::objects::{

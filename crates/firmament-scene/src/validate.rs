@@ -188,7 +188,7 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     // seed's radii) is then the one the camera must be above.
     let planet = match scene.atmosphere.model {
         AtmosphereModelName::Physical => sky.atmosphere.planet,
-        AtmosphereModelName::Seed => atmosphere::seed_planet(&atmosphere::seed_sky(scene, &sky)?),
+        AtmosphereModelName::Empirical => atmosphere::empirical_planet(&atmosphere::empirical_sky(scene, &sky)?),
     };
     if scene.sky.model == SkyModelName::Atmosphere {
         atmosphere::camera_above_surface(scene, &planet)?;

@@ -11,11 +11,11 @@
 //!   W·m⁻²·sr⁻¹·nm⁻¹, one value per model wavelength ([`spectrum::Spectrum`]).
 //! - Geometry is computed in the *planet frame* (see [`planet::Planet`]) in f64.
 
+pub mod empirical;
 pub mod medium;
 pub mod planet;
 pub mod presets;
 pub mod reference;
-pub mod seed;
 pub mod spectrum;
 pub mod star;
 

@@ -16,17 +16,17 @@ use glam::{DMat4, Mat4};
 pub mod atmosphere;
 pub mod classic;
 pub mod codes;
+pub mod empirical_sky;
 pub mod flare;
 pub mod night_sky;
 mod planet_view;
-pub mod seed;
 pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
+pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};
-pub use seed::{SeedSkyUniforms, SeedStarUniform};
 pub use sky_lighting::{SkyLightingGpu, SkyLightingParamsUniforms, SkyLightingSunGpu};
 
 /// `vec4<f32>` of a vector, `w` appended, rounded once.

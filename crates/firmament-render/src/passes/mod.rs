@@ -5,20 +5,20 @@
 use firmament_core::DepthConvention;
 
 pub mod atmosphere;
+pub mod empirical_sky;
 mod far_plane;
 pub mod flare;
 mod flare_images;
 pub mod night_sky;
 pub mod objects;
-pub mod seed_sky;
 pub mod sky_gradient;
 pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
+pub use empirical_sky::EmpiricalSkyPass;
 pub use flare::FlarePass;
 pub use night_sky::NightSkyPass;
 pub use objects::{GpuMesh, ObjectPass};
-pub use seed_sky::SeedSkyPass;
 pub use sky_gradient::GradientSkyPass;
 pub use tonemap::TonemapPass;
 

@@ -36,7 +36,7 @@ const FILES: &[(&str, &str)] = &[
     ("common/view_ray", include_str!("common/view_ray.wgsl")),
     ("sky_gradient", include_str!("sky_gradient.wgsl")),
     ("tonemap", include_str!("tonemap.wgsl")),
-    ("seed_sky", include_str!("seed_sky.wgsl")),
+    ("empirical_sky", include_str!("empirical_sky.wgsl")),
     ("classic_lighting", include_str!("classic_lighting.wgsl")),
     ("night_sky", include_str!("night_sky.wgsl")),
     ("flare/bindings", include_str!("flare/bindings.wgsl")),
@@ -188,8 +188,8 @@ impl fmt::Debug for Shader {
 pub static SKY_GRADIENT: Shader = entry!("sky_gradient");
 /// The tonemap pass.
 pub static TONEMAP: Shader = entry!("tonemap");
-/// The seed's own atmosphere model (`atmosphere.model = "seed"`).
-pub static SEED_SKY: Shader = entry!("seed_sky");
+/// The seed's own atmosphere model, the empirical one (`atmosphere.model = "seed"`).
+pub static EMPIRICAL_SKY: Shader = entry!("empirical_sky");
 /// The atmosphere's transmittance LUT pass (compute).
 pub static ATMOSPHERE_TRANSMITTANCE_LUT: Shader = entry!("atmosphere/transmittance_lut");
 /// The atmosphere's multiple-scattering LUT pass.
@@ -222,7 +222,7 @@ pub static NIGHT_SKY: Shader = entry!("night_sky");
 pub static ENTRIES: [&Shader; 16] = [
     &SKY_GRADIENT,
     &TONEMAP,
-    &SEED_SKY,
+    &EMPIRICAL_SKY,
     &ATMOSPHERE_TRANSMITTANCE_LUT,
     &ATMOSPHERE_MULTISCATTERING_LUT,
     &ATMOSPHERE_IRRADIANCE_LUT,
@@ -793,14 +793,14 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
     }
 
     #[test]
-    fn seed_sky_layouts_match() {
-        use crate::gpu_types::{SeedSkyUniforms, SeedStarUniform};
-        let seed = validate("seed_sky", &SEED_SKY);
-        assert_layout!(seed, "SeedStar", SeedStarUniform, [position, direction, color]);
+    fn empirical_sky_layouts_match() {
+        use crate::gpu_types::{EmpiricalSkyUniforms, EmpiricalStarUniform};
+        let empirical = validate("empirical_sky", &EMPIRICAL_SKY);
+        assert_layout!(empirical, "EmpiricalStar", EmpiricalStarUniform, [position, direction, color]);
         assert_layout!(
-            seed,
-            "SeedSky",
-            SeedSkyUniforms,
+            empirical,
+            "EmpiricalSky",
+            EmpiricalSkyUniforms,
             [
                 view_to_planet,
                 camera,

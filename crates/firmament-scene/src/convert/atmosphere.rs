@@ -5,13 +5,13 @@
 //! The body (`planet.body`) gives every value; each key a scene sets replaces the body's. The
 //! core's own checks run last, as a backstop, with their field names turned into scene keys.
 
+mod empirical;
 mod medium;
 mod planet;
-mod seed;
 mod suns;
 
-pub use seed::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
-pub(crate) use seed::{seed_planet, seed_sky};
+pub use empirical::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
+pub(crate) use empirical::{empirical_planet, empirical_sky};
 
 use firmament_core::CoreError;
 use firmament_core::atmosphere::{Atmosphere, Planet};

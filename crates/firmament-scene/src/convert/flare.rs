@@ -15,7 +15,7 @@
 //!   - `"atmosphere"` with `atmosphere.model = "seed"`: every star of the seed sky, in its
 //!     direction from the camera, its angular radius seen from there, and as colour the star's
 //!     colour scaled to luminance 1 times what the seed's own 8-step extinction lets through
-//!     along that line of sight ([`SeedAtmosphere::star_transmittance`](firmament_core::atmosphere::seed::SeedAtmosphere::star_transmittance):
+//!     along that line of sight ([`EmpiricalAtmosphere::star_transmittance`](firmament_core::atmosphere::empirical::EmpiricalAtmosphere::star_transmittance):
 //!     reddened and dimmed near the seed's horizon); left out when the seed's planet hides it;
 //!   - `"gradient"`: the sun of `[sun]` at the frame's time, its colour the keyframes' `sun`
 //!     colour at that time (linear; white at noon in the default cycle, orange at sunset, black
@@ -31,7 +31,7 @@ use firmament_core::flare::{
     FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_ELEMENTS, MAX_FLARE_IMAGES,
     MAX_FLARE_SAMPLES, MAX_FLARE_SOURCES,
 };
-use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
+use firmament_core::frame::{AtmosphereSky, EmpiricalSky, Sky};
 use firmament_core::geometry::Ray;
 use firmament_core::texture::TextureImage;
 use firmament_core::{Camera, CoreError};
@@ -313,8 +313,8 @@ fn atmosphere_sources(sky: &AtmosphereSky, eye: DVec3) -> Vec<FlareSource> {
         .collect()
 }
 
-/// The seed sky's stars seen from `eye`: white, left out where the seed's planet hides them.
-fn seed_sources(sky: &SeedSky, eye: DVec3) -> Vec<FlareSource> {
+/// The empirical sky's stars seen from `eye`: white, left out where its planet hides them.
+fn empirical_sources(sky: &EmpiricalSky, eye: DVec3) -> Vec<FlareSource> {
     let at = sky.to_planet_frame(eye);
     let surface = sky.atmosphere.surface();
     sky.stars
@@ -346,7 +346,7 @@ fn seed_sources(sky: &SeedSky, eye: DVec3) -> Vec<FlareSource> {
 fn sun_sources(sky: &Sky, eye: DVec3) -> Vec<FlareSource> {
     match sky {
         Sky::Atmosphere(sky) => atmosphere_sources(sky, eye),
-        Sky::Seed(sky) => seed_sources(sky, eye),
+        Sky::Empirical(sky) => empirical_sources(sky, eye),
         Sky::Gradient(state) => {
             let sun = &state.sun;
             let direction = sun.direction.normalize();

@@ -3,7 +3,7 @@
 //! The scene model (`crate::model`) holds the file's keys in the file's units; this module and its
 //! steps turn them into the core's types, checking each value on the way (each error names the
 //! scene key): `atmosphere` (`[planet]`, `[atmosphere]`, `[[suns]]` → [`AtmosphereSky`], or the
-//! seed's [`SeedSky`]), `time` (`[time]` → the frame's moment and the real sun), `objects`
+//! seed's [`EmpiricalSky`]), `time` (`[time]` → the frame's moment and the real sun), `objects`
 //! (`[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]` → the object layer), `flare` (`[flare]` →
 //! the flare layer) and `night` (the stars and the Moon at a real instant).
 
@@ -13,7 +13,7 @@ mod night;
 pub(crate) mod objects;
 pub(crate) mod time;
 
-pub use atmosphere::{SEED_STAR_DISTANCE, SEED_STAR_INTENSITY};
+pub use atmosphere::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
 pub use night::MOON_DISPLAY_RADIANCE;
 pub use time::{add_seconds, parse_date_time};
 
@@ -22,7 +22,7 @@ use firmament_core::astro::spa::SolarPosition;
 use firmament_core::atmosphere::Planet;
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
-use firmament_core::frame::{AtmosphereSky, SeedSky, Sky};
+use firmament_core::frame::{AtmosphereSky, EmpiricalSky, Sky};
 use firmament_core::sky::gradient::{DayCycle, GradientShape, GradientSkyState, SkyBands, SkyKeyframe};
 use firmament_core::sky::sun::{SolarPath, SunDisc};
 use firmament_core::{Camera, Frame, TimeOfDay};
@@ -178,11 +178,11 @@ impl Scene {
         })
     }
 
-    /// The seed's own atmosphere model around the scene's planet (`atmosphere.model = "seed"`):
-    /// the body's seed values with `[planet]`'s radii and `[atmosphere.seed]`'s overrides, the
-    /// `[[suns]]` as the seed's stars.
-    pub fn seed_sky(&self) -> Result<SeedSky, SceneError> {
-        atmosphere::seed_sky(self, &self.atmosphere_sky()?)
+    /// The seed's own atmosphere model, the empirical one, around the scene's planet
+    /// (`atmosphere.model = "seed"`): the body's seed values with `[planet]`'s radii and
+    /// `[atmosphere.seed]`'s overrides, the `[[suns]]` as the seed's stars.
+    pub fn empirical_sky(&self) -> Result<EmpiricalSky, SceneError> {
+        atmosphere::empirical_sky(self, &self.atmosphere_sky()?)
     }
 
     /// The camera's geodetic altitude above the surface of the scene's planet, metres (negative
@@ -198,7 +198,7 @@ impl Scene {
     pub fn atmosphere_planet(&self) -> Result<Planet, SceneError> {
         Ok(match self.atmosphere.model {
             AtmosphereModelName::Physical => self.atmosphere_sky()?.atmosphere.planet,
-            AtmosphereModelName::Seed => atmosphere::seed_planet(&self.seed_sky()?),
+            AtmosphereModelName::Empirical => atmosphere::empirical_planet(&self.empirical_sky()?),
         })
     }
 
@@ -241,7 +241,7 @@ impl Scene {
                         }
                         Sky::Atmosphere(sky)
                     }
-                    AtmosphereModelName::Seed => Sky::Seed(atmosphere::seed_sky(self, &sky)?),
+                    AtmosphereModelName::Empirical => Sky::Empirical(atmosphere::empirical_sky(self, &sky)?),
                 }
             }
             SkyModelName::Clear => {

@@ -20,7 +20,7 @@ use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
 use firmament_core::atmosphere::Sun;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::frame::{AtmosphereSky, MAX_SUNS, SeedSky, Sky};
+use firmament_core::frame::{AtmosphereSky, EmpiricalSky, MAX_SUNS, Sky};
 use firmament_core::sky::night::{HORIZON_CUTOFF_DEG, NightLayer};
 use glam::{DMat3, DVec3};
 
@@ -96,8 +96,8 @@ fn darkness(sun_elevation: f64) -> f64 {
     t * t * (3.0 - 2.0 * t)
 }
 
-/// The seed sky's own extinction from `eye` towards a world direction.
-fn seed_transmittance(sky: &SeedSky, eye: DVec3) -> impl Fn(DVec3) -> DVec3 {
+/// The empirical sky's own extinction from `eye` towards a world direction.
+fn empirical_transmittance(sky: &EmpiricalSky, eye: DVec3) -> impl Fn(DVec3) -> DVec3 {
     let at = sky.to_planet_frame(eye);
     let to_planet = sky.orientation.normalize().inverse();
     move |world: DVec3| sky.atmosphere.star_transmittance(at, to_planet * world)
@@ -132,16 +132,16 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
             };
             scale_moon(build(1.0, &extinction))
         }
-        Sky::Seed(seed) => {
-            let sun_up = seed.stars.first().map_or(-90.0, |s| {
-                let d = seed.orientation.normalize() * (s.position - seed.to_planet_frame(camera.position));
+        Sky::Empirical(empirical) => {
+            let sun_up = empirical.stars.first().map_or(-90.0, |s| {
+                let d = empirical.orientation.normalize() * (s.position - empirical.to_planet_frame(camera.position));
                 d.normalize().z.clamp(-1.0, 1.0).asin().to_degrees()
             });
             let dark = darkness(sun_up);
             if dark <= 0.0 {
                 return NightLayer::default();
             }
-            let through = seed_transmittance(seed, camera.position);
+            let through = empirical_transmittance(empirical, camera.position);
             scale_moon(build(1.0, &|d: DVec3| through(d) * dark))
         }
         Sky::Clear(_) => return NightLayer::default(),

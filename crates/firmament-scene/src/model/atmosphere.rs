@@ -94,17 +94,22 @@ pub enum AtmosphereModelName {
     /// The physically based atmosphere (the body's medium with `[atmosphere]`'s overrides).
     #[default]
     Physical,
-    /// The seed's own empirical model (seed 000, version 3.1), with `[atmosphere.seed]`.
-    Seed,
+    /// The seed's own empirical model (seed 000, version 3.1), with `[atmosphere.seed]`; `"seed"`
+    /// in scene files.
+    #[serde(rename = "seed")]
+    Empirical,
 }
 
-/// `[atmosphere.seed]`: the seed model's values, all optional; the defaults are the seed's own
-/// for the body (`seed_earth`, `seed_mars`; Saturn has none, so a Saturn scene must give
+/// `[atmosphere.seed]`: the empirical model's values, all optional; the defaults are the seed's
+/// own for the body (`seed_earth`, `seed_mars`; Saturn has none, so a Saturn scene must give
 /// `view_depth`, `b0` and `overglow`). The radii are the planet's when `[planet]` sets them, else
 /// the seed's (Earth 6 378 141.2 / 6 356 754.795 m, Mars 3 397 000 / 3 374 919.5 m).
+///
+/// `expecting` keeps the wrong-type message ("expected struct SeedSection") as it was before the
+/// Rust name changed.
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SeedSection {
+#[serde(deny_unknown_fields, expecting = "struct SeedSection")]
+pub struct EmpiricalSection {
     /// Height of the atmosphere above the surface, metres, > 0 (also the density's length scale;
     /// default `planet.atmosphere_height` when set, else the seed's: 60 km Earth, 30 km Mars).
     #[serde(default)]
@@ -133,9 +138,9 @@ pub struct AtmosphereSection {
     /// Which model draws the atmosphere: `"physical"` (default) or `"seed"`.
     #[serde(default)]
     pub model: AtmosphereModelName,
-    /// The seed model's values (`model = "seed"`).
-    #[serde(default)]
-    pub seed: SeedSection,
+    /// The empirical model's values, `[atmosphere.seed]` (used when `model = "seed"`).
+    #[serde(default, rename = "seed")]
+    pub empirical: EmpiricalSection,
     /// Rayleigh (molecular) scattering coefficient, m⁻¹, >= 0.
     #[serde(default)]
     pub rayleigh_scattering: Option<SceneSpectrum>,

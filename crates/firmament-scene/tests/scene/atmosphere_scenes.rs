@@ -24,7 +24,7 @@ fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
 fn sky_of(scene: &Scene) -> AtmosphereSky {
     match scene.frame_at(None).expect("frame").sky {
         Sky::Atmosphere(sky) => sky,
-        Sky::Gradient(_) | Sky::Seed(_) | Sky::Clear(_) => panic!("expected an atmosphere sky"),
+        Sky::Gradient(_) | Sky::Empirical(_) | Sky::Clear(_) => panic!("expected an atmosphere sky"),
     }
 }
 

@@ -258,10 +258,10 @@ fn a_setting_sun_flares_red_and_dim_and_a_set_sun_not_at_all() {
 }
 
 #[test]
-fn seed_stars_flare_through_the_seed_s_air_unless_the_planet_hides_them() {
+fn empirical_stars_flare_through_their_own_air_unless_the_planet_hides_them() {
     let scene = preset("seed-mars", &["flare.enabled=true"]).expect("valid");
     let frame = scene.frame_at(None).expect("frame");
-    assert!(matches!(frame.sky, Sky::Seed(_)));
+    assert!(matches!(frame.sky, Sky::Empirical(_)));
     let sources = frame.flares.sources;
     assert_eq!(sources.len(), 1);
     // Dimmed by the seed's extinction, and (Mars's B0 is reddish) bluer than it started.

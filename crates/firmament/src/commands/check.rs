@@ -46,7 +46,7 @@ fn sky_summary(scene: &Scene) -> String {
                 .unwrap_or_default();
             let model = match scene.atmosphere.model {
                 AtmosphereModelName::Physical => "atmosphere",
-                AtmosphereModelName::Seed => "seed atmosphere",
+                AtmosphereModelName::Empirical => "seed atmosphere",
             };
             format!("{model} of {}, {suns}{altitude}", scene.planet.body.name())
         }

@@ -41,10 +41,10 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     .with_context(|| format!("cannot build {what}"))?;
 
     if args.reference
-        && let Sky::Seed(sky) = &frame.sky
+        && let Sky::Empirical(sky) = &frame.sky
     {
-        // The seed's model is its own reference: SeedAtmosphere::color per pixel centre, in f64
-        // (what the GPU pass is tested against), times the sky's luminance scale.
+        // The seed's model is its own reference: EmpiricalAtmosphere::color per pixel centre, in
+        // f64 (what the GPU pass is tested against), times the sky's luminance scale.
         tracing::info!("rendering {what} with the seed model's f64 port at {width}x{height}");
         let camera = firmament_core::Camera {
             aspect: f64::from(width) / f64::from(height),

@@ -1,10 +1,10 @@
-//! Seed-model scenes (`atmosphere.model = "seed"`): presets, `[atmosphere.seed]` and `[[suns]]`
-//! to the core's `SeedSky`, and the rules they break naming the key.
+//! Empirical-model scenes (`atmosphere.model = "seed"`): presets, `[atmosphere.seed]` and
+//! `[[suns]]` to the core's `EmpiricalSky`, and the rules they break naming the key.
 
-use firmament_core::atmosphere::seed::SeedAtmosphere;
-use firmament_core::frame::{SEED_DEFAULT_LUMINANCE, SeedSky, Sky};
+use firmament_core::atmosphere::empirical::EmpiricalAtmosphere;
+use firmament_core::frame::{EMPIRICAL_DEFAULT_LUMINANCE, EmpiricalSky, Sky};
 use firmament_scene::{
-    AtmosphereModelName, SEED_STAR_DISTANCE, SEED_STAR_INTENSITY, Scene, SceneError, SceneSource, load,
+    AtmosphereModelName, EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY, Scene, SceneError, SceneSource, load,
 };
 use glam::DVec3;
 
@@ -13,10 +13,10 @@ fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
     load(SceneSource::Preset(name), None, &sets)
 }
 
-fn seed_of(scene: &Scene) -> SeedSky {
+fn empirical_sky_of(scene: &Scene) -> EmpiricalSky {
     match scene.frame_at(None).expect("frame").sky {
-        Sky::Seed(sky) => sky,
-        other => panic!("expected the seed sky, got {other:?}"),
+        Sky::Empirical(sky) => sky,
+        other => panic!("expected the empirical sky, got {other:?}"),
     }
 }
 
@@ -27,15 +27,15 @@ fn message(result: Result<Scene, SceneError>) -> String {
 #[test]
 fn the_seed_presets_hold_the_seeds_values() {
     for (name, expected) in [
-        ("seed-earth", SeedAtmosphere::seed_earth()),
-        ("seed-mars", SeedAtmosphere::seed_mars()),
+        ("seed-earth", EmpiricalAtmosphere::seed_earth()),
+        ("seed-mars", EmpiricalAtmosphere::seed_mars()),
     ] {
         let scene = preset(name, &[]).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_eq!(scene.atmosphere.model, AtmosphereModelName::Seed);
-        let sky = seed_of(&scene);
+        assert_eq!(scene.atmosphere.model, AtmosphereModelName::Empirical);
+        let sky = empirical_sky_of(&scene);
         sky.validate().expect("valid for the core");
         assert_eq!(sky.atmosphere, expected, "{name}");
-        assert_eq!(sky.luminance, SEED_DEFAULT_LUMINANCE);
+        assert_eq!(sky.luminance, EMPIRICAL_DEFAULT_LUMINANCE);
         assert_eq!(sky.stars.len(), 1, "{name}");
         // The camera is above the seed planet's surface and the world origin is on it.
         let camera = sky.to_planet_frame(DVec3::from_array(scene.camera.position));
@@ -57,20 +57,20 @@ fn the_seed_presets_hold_the_seeds_values() {
 }
 
 #[test]
-fn a_sun_becomes_a_seed_star() {
+fn a_sun_becomes_an_empirical_star() {
     let scene = preset("seed-mars", &[]).expect("valid");
-    let sky = seed_of(&scene);
+    let sky = empirical_sky_of(&scene);
     let star = sky.stars[0];
     // 1 AU from the planet centre, towards the sun's world direction.
-    assert!((star.position.length() / SEED_STAR_DISTANCE - 1.0).abs() < 1e-12);
+    assert!((star.position.length() / EMPIRICAL_STAR_DISTANCE - 1.0).abs() < 1e-12);
     let world = sky.orientation * star.direction;
     let expected = firmament_core::camera::direction_from_heading_elevation(250f64.to_radians(), 12f64.to_radians());
     assert!((world - expected).length() < 1e-9, "{world} vs {expected}");
     // The radius subtends the body's sun's angular radius; the colour is the sun's spectrum
     // normalised to its largest channel, × 10.
     let sun = scene.atmosphere_sky().expect("sky").suns[0];
-    assert!((star.radius / SEED_STAR_DISTANCE - sun.angular_radius.sin()).abs() < 1e-15);
-    assert!((star.color.max_element() - SEED_STAR_INTENSITY).abs() < 1e-12);
+    assert!((star.radius / EMPIRICAL_STAR_DISTANCE - sun.angular_radius.sin()).abs() < 1e-15);
+    assert!((star.color.max_element() - EMPIRICAL_STAR_INTENSITY).abs() < 1e-12);
     // A sun given by position sits there.
     let text = r#"
         preset = "seed-earth"
@@ -79,20 +79,20 @@ fn a_sun_becomes_a_seed_star() {
         temperature = 3000.0
     "#;
     let scene = load(SceneSource::Text { text, origin: "test" }, None, &[]).expect("valid");
-    let sky = seed_of(&scene);
+    let sky = empirical_sky_of(&scene);
     let star = sky.stars[0];
     let world = sky.orientation * star.position + sky.center;
     assert!((world - DVec3::new(0.0, 1.0e9, 2.0e9)).length() < 1e-3, "{world}");
     // A 3000 K sun is red: red is the largest channel.
-    assert_eq!(star.color.x, SEED_STAR_INTENSITY);
+    assert_eq!(star.color.x, EMPIRICAL_STAR_INTENSITY);
     assert!(star.color.x > star.color.y && star.color.y > star.color.z);
     // Two suns, two stars.
     let two = preset("seed-earth", &["suns.1.azimuth=10", "suns.1.elevation=5"]).expect("valid");
-    assert_eq!(seed_of(&two).stars.len(), 2);
+    assert_eq!(empirical_sky_of(&two).stars.len(), 2);
 }
 
 #[test]
-fn seed_values_override_and_planet_radii_apply() {
+fn empirical_values_override_and_planet_radii_apply() {
     let scene = preset(
         "seed-earth",
         &[
@@ -105,10 +105,10 @@ fn seed_values_override_and_planet_radii_apply() {
         ],
     )
     .expect("valid");
-    let sky = seed_of(&scene);
+    let sky = empirical_sky_of(&scene);
     assert_eq!(
         sky.atmosphere,
-        SeedAtmosphere {
+        EmpiricalAtmosphere {
             equatorial_radius: 6.4e6,
             polar_radius: 6.4e6,
             height: 80_000.0,
@@ -119,7 +119,7 @@ fn seed_values_override_and_planet_radii_apply() {
     );
     assert_eq!(sky.luminance, 500.0);
     // planet.atmosphere_height is the seed's height when atmosphere.seed.height is not given.
-    let sky = seed_of(&preset("seed-earth", &["planet.atmosphere_height=70000"]).expect("valid"));
+    let sky = empirical_sky_of(&preset("seed-earth", &["planet.atmosphere_height=70000"]).expect("valid"));
     assert_eq!(sky.atmosphere.height, 70_000.0);
     // The seed model on Saturn needs the values the seed does not have.
     let msg = message(preset("seed-earth", &["planet.body=saturn"]));
@@ -135,7 +135,7 @@ fn seed_values_override_and_planet_radii_apply() {
         ],
     )
     .expect("valid");
-    let sky = seed_of(&saturn);
+    let sky = empirical_sky_of(&saturn);
     assert_eq!(
         sky.atmosphere.equatorial_radius,
         saturn.planet.body.atmosphere().planet.radii.x
@@ -143,7 +143,7 @@ fn seed_values_override_and_planet_radii_apply() {
 }
 
 #[test]
-fn bad_seed_values_name_their_key_and_rule() {
+fn bad_empirical_values_name_their_key_and_rule() {
     for (set, key, rule) in [
         ("atmosphere.seed.height=0", "atmosphere.seed.height", "> 0"),
         ("atmosphere.seed.view_depth=-5", "atmosphere.seed.view_depth", "> 0"),
@@ -155,10 +155,16 @@ fn bad_seed_values_name_their_key_and_rule() {
         assert!(msg.starts_with(&format!("{key} = ")), "{set}: {msg}");
         assert!(msg.contains(rule), "{set}: {msg}");
     }
+    // The Rust names say "empirical"; the keys and messages keep the scene file's "seed".
     let msg = message(preset("seed-earth", &["atmosphere.model=seeds"]));
     assert!(msg.starts_with("atmosphere.model: "), "{msg}");
+    assert!(msg.contains("expected `physical` or `seed`"), "{msg}");
     let msg = message(preset("seed-earth", &["atmosphere.seed.view_dept=3"]));
     assert!(msg.contains("did you mean `view_depth`"), "{msg}");
+    let msg = message(preset("seed-earth", &["atmosphere.seeds=1"]));
+    assert!(msg.contains("did you mean `seed`"), "{msg}");
+    let msg = message(preset("seed-earth", &["atmosphere.seed=3"]));
+    assert!(msg.contains("expected struct SeedSection"), "{msg}");
     // The camera must be above the seed planet's ground.
     let msg = message(preset("seed-mars", &["camera.position=[0.0, 0.0, -10.0]"]));
     assert!(msg.starts_with("camera.position = "), "{msg}");

@@ -3,9 +3,13 @@
 //! `000_643abe256ac7a513.txt` (lines 285–476, uniforms lines 477–495, CPU side lines 498–553),
 //! the reference the GPU port is tested against.
 //!
+//! Scene files select it as `"seed"`; in Rust it is called *empirical* (for what it is, below), so
+//! that "seed" keeps meaning the founding texts, whose values [`EmpiricalAtmosphere::seed_earth`]
+//! and [`EmpiricalAtmosphere::seed_mars`] hold.
+//!
 //! # The model
 //! Not physics but an empirical colouring: the part of the view ray inside the atmosphere
-//! ellipsoid and in front of the ground is integrated in [`SEED_STEPS`] steps from its far end
+//! ellipsoid and in front of the ground is integrated in [`EMPIRICAL_STEPS`] steps from its far end
 //! towards the viewer; each step mixes the colour so far towards the "100 % scattered" colour B0
 //! by `b = B0 · density · step / view_depth`, times a light factor (overglow plus the cosine
 //! between the segment's far end and the direction to the star). A ray that sees a star's disc
@@ -32,7 +36,7 @@
 //!    the atmosphere, i.e. `exp((top − altitude) / planet_h) / 2.78`: `e / 2.78 ≈ 0.978` at the
 //!    ground falling to `1 / 2.78 ≈ 0.360` at the top.
 //!
-//! Everything else, quirks included, follows version 3.1; see [`SeedAtmosphere::color`].
+//! Everything else, quirks included, follows version 3.1; see [`EmpiricalAtmosphere::color`].
 
 use glam::DVec3;
 
@@ -40,20 +44,20 @@ use crate::error::CoreError;
 use crate::geometry::{Ellipsoid, Ray, RayHits, Sphere};
 
 /// Number of integration steps along the visible segment (the seed's `const int n=8`, line 390).
-pub const SEED_STEPS: usize = 8;
+pub const EMPIRICAL_STEPS: usize = 8;
 
-/// The seed's density normaliser: density is `exp(d / planet_h) / SEED_DENSITY_DIVISOR`
+/// The seed's density normaliser: density is `exp(d / planet_h) / EMPIRICAL_DENSITY_DIVISOR`
 /// (lines 187 and 450), unitless.
-pub const SEED_DENSITY_DIVISOR: f64 = 2.78;
+pub const EMPIRICAL_DENSITY_DIVISOR: f64 = 2.78;
 
 /// Factor on a star's `radius⁻²` in the disc test, enlarging the disc to `radius / √0.75` to
 /// "hide star texture corona" (the seed's `light_posr[i].a*0.75`, line 422), unitless.
-pub const SEED_STAR_RADIUS_INV_SQ_FACTOR: f64 = 0.75;
+pub const EMPIRICAL_STAR_RADIUS_INV_SQ_FACTOR: f64 = 0.75;
 
-/// The seed model's parameters: the uniforms of the version 3.1 fragment shader other than the
+/// The empirical model's parameters: the uniforms of the version 3.1 fragment shader other than the
 /// stars (seed lines 292–302, filled on the CPU at lines 511–517).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeedAtmosphere {
+pub struct EmpiricalAtmosphere {
     /// Equatorial radius of the planet's surface, metres: the x and y semi-axes (the seed's `re`,
     /// uploaded as `planet_r.x = planet_r.y = re⁻²`, lines 479 and 511–512).
     pub equatorial_radius: f64,
@@ -78,21 +82,21 @@ pub struct SeedAtmosphere {
 /// A star as the seed's shader sees it (one entry of `light_posr`, `light_dir`, `light_col`,
 /// seed lines 299–301, filled at lines 519–531).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeedStar {
+pub struct EmpiricalStar {
     /// Centre of the star in the planet frame, metres (the seed's `light_posr[i].xyz`).
     pub position: DVec3,
     /// Radius of the star, metres, > 0 for its disc to be seen (the seed uploads
     /// `light_posr[i].a = radius⁻²`, line 524).
     pub radius: f64,
     /// Direction towards the star in the planet frame, normalised when used (the seed's
-    /// `light_dir[i]`, line 527). [`SeedStar::at`] sets it to `normalize(position)`.
+    /// `light_dir[i]`, line 527). [`EmpiricalStar::at`] sets it to `normalize(position)`.
     pub direction: DVec3,
     /// The star's colour times its visual intensity, linear RGB in `x, y, z`, unitless (the
     /// seed's `light_col[i]`; its CPU side uploads the star's colour × 10, line 528).
     pub color: DVec3,
 }
 
-impl SeedStar {
+impl EmpiricalStar {
     /// A star at `position` (planet frame, metres) of `radius` metres and `color` (linear RGB ×
     /// intensity), lit from the direction `normalize(position)` (a zero position gives a zero
     /// direction, which lights nothing).
@@ -120,7 +124,7 @@ fn view_depth(ray: &Ray, ellipsoid: &Ellipsoid) -> Option<(f64, Option<f64>)> {
     }
 }
 
-impl SeedAtmosphere {
+impl EmpiricalAtmosphere {
     /// The seed's Earth uniforms (seed `000_643abe256ac7a513.txt`, lines 478–486): `re` =
     /// 6 378 141.2 m, `rp` = 6 356 754.795 061 39 m, `planet_h` = 60 km, `view_depth` = 250 km,
     /// `B0` = (0.1981, 0.4656, 0.8625), overglow 0.75.
@@ -216,7 +220,7 @@ impl SeedAtmosphere {
         let d = Ray::new(point, point)
             .and_then(|up| view_depth(&up, &self.top()))
             .map_or(-1.0, |(l0, _)| l0);
-        (d / self.height).exp() / SEED_DENSITY_DIVISOR
+        (d / self.height).exp() / EMPIRICAL_DENSITY_DIVISOR
     }
 
     /// The colour the seed's pass adds for one view ray: `(rgb, alpha)`, linear RGB in
@@ -246,7 +250,7 @@ impl SeedAtmosphere {
     /// [`validate`](Self::validate) give the "nothing" result `(0, 0, 0), 0`. Stars whose radius is
     /// not finite and > 0, or whose position or colour is not finite, show no disc; a zero or
     /// non-finite star direction lights nothing (it counts as 0 in `ll`).
-    pub fn color(&self, ray_origin: DVec3, ray_direction: DVec3, stars: &[SeedStar]) -> (DVec3, f64) {
+    pub fn color(&self, ray_origin: DVec3, ray_direction: DVec3, stars: &[EmpiricalStar]) -> (DVec3, f64) {
         let nothing = (DVec3::ZERO, 0.0);
         if self.validate().is_err() {
             return nothing;
@@ -270,13 +274,13 @@ impl SeedAtmosphere {
         let (start, length) = (segment.start, segment.length);
         // Lines 439–443.
         let end = start + ray.direction * length;
-        let step = (end - start) / SEED_STEPS as f64;
-        let dl = length / SEED_STEPS as f64 / self.view_depth;
+        let step = (end - start) / EMPIRICAL_STEPS as f64;
+        let dl = length / EMPIRICAL_STEPS as f64 / self.view_depth;
         let up_at_end = end.normalize_or_zero();
         let first_light = stars.first().map_or(DVec3::ZERO, |s| s.direction.normalize_or_zero());
         let ll = self.overglow + stars.len() as f64 * up_at_end.dot(first_light);
         // Lines 444–456.
-        for k in 0..SEED_STEPS {
+        for k in 0..EMPIRICAL_STEPS {
             let p = end - step * k as f64;
             let b = self.b0 * self.density(p) * dl;
             color = color * (DVec3::ONE - b) + b * ll;
@@ -292,7 +296,7 @@ impl SeedAtmosphere {
     }
 }
 
-impl SeedAtmosphere {
+impl EmpiricalAtmosphere {
     /// The part of `ray` that the seed integrates (lines 400–437): from where it enters the
     /// atmosphere (or its origin, inside) to where it leaves it or meets the ground. `None` when
     /// it misses the atmosphere or starts under the ground.
@@ -342,9 +346,9 @@ impl SeedAtmosphere {
             return DVec3::ZERO;
         }
         let end = segment.start + ray.direction * segment.length;
-        let step = (end - segment.start) / SEED_STEPS as f64;
-        let dl = segment.length / SEED_STEPS as f64 / self.view_depth;
-        (0..SEED_STEPS).fold(DVec3::ONE, |share, k| {
+        let step = (end - segment.start) / EMPIRICAL_STEPS as f64;
+        let dl = segment.length / EMPIRICAL_STEPS as f64 / self.view_depth;
+        (0..EMPIRICAL_STEPS).fold(DVec3::ONE, |share, k| {
             let b = self.b0 * self.density(end - step * k as f64) * dl;
             share * (DVec3::ONE - b).clamp(DVec3::ZERO, DVec3::ONE)
         })
@@ -363,13 +367,13 @@ struct Segment {
 
 /// The seed's `_star_colide` (lines 351–386) with the 0.75 enlargement of line 422: true when the
 /// line from `start` along `direction` meets the star's enlarged sphere at or ahead of `start`.
-fn star_on_ray(start: DVec3, direction: DVec3, star: &SeedStar) -> bool {
+fn star_on_ray(start: DVec3, direction: DVec3, star: &EmpiricalStar) -> bool {
     if !(star.radius.is_finite() && star.radius > 0.0 && star.position.is_finite() && star.color.is_finite()) {
         return false;
     }
     let sphere = Sphere {
         center: star.position,
-        radius: star.radius / SEED_STAR_RADIUS_INV_SQ_FACTOR.sqrt(),
+        radius: star.radius / EMPIRICAL_STAR_RADIUS_INV_SQ_FACTOR.sqrt(),
     };
     Ray::new(start, direction)
         .and_then(|ray| sphere.intersect(&ray))
@@ -383,24 +387,24 @@ mod tests {
     const SUN_DISTANCE: f64 = 1.496e11;
     const SUN_RADIUS: f64 = 6.957e8;
 
-    fn sun_along(direction: DVec3, color: DVec3) -> SeedStar {
-        SeedStar::at(direction.normalize() * SUN_DISTANCE, SUN_RADIUS, color)
+    fn sun_along(direction: DVec3, color: DVec3) -> EmpiricalStar {
+        EmpiricalStar::at(direction.normalize() * SUN_DISTANCE, SUN_RADIUS, color)
     }
 
-    fn sphere() -> SeedAtmosphere {
-        SeedAtmosphere {
+    fn sphere() -> EmpiricalAtmosphere {
+        EmpiricalAtmosphere {
             polar_radius: 6_378_141.2,
-            ..SeedAtmosphere::seed_earth()
+            ..EmpiricalAtmosphere::seed_earth()
         }
     }
 
     #[test]
     fn presets_are_valid_and_hold_the_seed_values() {
-        let e = SeedAtmosphere::seed_earth();
+        let e = EmpiricalAtmosphere::seed_earth();
         assert_eq!(e.validate(), Ok(()));
         assert_eq!(e.polar_radius, 6_356_754.795_061_39);
         assert_eq!(e.b0, DVec3::new(0.1981, 0.4656, 0.8625));
-        let m = SeedAtmosphere::seed_mars();
+        let m = EmpiricalAtmosphere::seed_mars();
         assert_eq!(m.validate(), Ok(()));
         assert_eq!(
             (m.equatorial_radius, m.height, m.overglow),
@@ -410,7 +414,7 @@ mod tests {
 
     #[test]
     fn a_ray_missing_the_atmosphere_gives_nothing() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let sun = sun_along(DVec3::X, DVec3::ONE);
         // 10 000 km up the x axis, looking further out and sideways.
         let o = DVec3::new(1.0e7, 0.0, 0.0);
@@ -424,7 +428,7 @@ mod tests {
 
     #[test]
     fn under_ground_and_bad_rays_give_nothing() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let sun = sun_along(DVec3::X, DVec3::ONE);
         assert_eq!(
             a.color(DVec3::new(6.0e6, 0.0, 0.0), DVec3::X, &[sun]),
@@ -437,19 +441,19 @@ mod tests {
         // Non-finite stars neither panic nor leak NaN.
         let o = DVec3::new(a.equatorial_radius + 10.0, 0.0, 0.0);
         for star in [
-            SeedStar {
+            EmpiricalStar {
                 color: DVec3::INFINITY,
                 ..sun
             },
-            SeedStar {
+            EmpiricalStar {
                 color: DVec3::NAN,
                 ..sun
             },
-            SeedStar {
+            EmpiricalStar {
                 direction: DVec3::NAN,
                 ..sun
             },
-            SeedStar {
+            EmpiricalStar {
                 position: DVec3::NAN,
                 radius: f64::NAN,
                 ..sun
@@ -460,7 +464,7 @@ mod tests {
             assert!(alpha == 0.0 || alpha == 1.0);
         }
         let o = DVec3::new(6.4e6, 0.0, 0.0);
-        let bad = SeedAtmosphere { height: 0.0, ..a };
+        let bad = EmpiricalAtmosphere { height: 0.0, ..a };
         assert_eq!(bad.color(o, DVec3::Y, &[sun]), (DVec3::ZERO, 0.0));
     }
 
@@ -509,7 +513,7 @@ mod tests {
         assert!((c - expected).abs().max_element() < 1e-9, "{c} vs {expected}");
         assert_eq!((c.z, alpha), (1.0, 1.0));
         // Without a disc (radius 0) the integration starts at black.
-        let (c_no_disc, alpha_no_disc) = a.color(o, DVec3::X, &[SeedStar { radius: 0.0, ..sun }]);
+        let (c_no_disc, alpha_no_disc) = a.color(o, DVec3::X, &[EmpiricalStar { radius: 0.0, ..sun }]);
         let expected = by_hand(DVec3::ZERO);
         assert_eq!(alpha_no_disc, 0.0);
         assert!(
@@ -527,7 +531,7 @@ mod tests {
 
     #[test]
     fn the_limb_from_space_is_bluish_and_normalised() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let sun = sun_along(DVec3::X, DVec3::ONE);
         // From 20 000 km out along −y, a ray grazing 30 km above the equator over the sub-solar
         // point (the sun along +x).
@@ -552,7 +556,7 @@ mod tests {
 
     #[test]
     fn a_star_disc_starts_the_ray_and_is_normalised() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let dir = DVec3::new(0.2, 1.0, 0.1).normalize();
         let sun = sun_along(dir, DVec3::new(10.0, 9.0, 8.0));
         let o = DVec3::Z * (a.polar_radius + 100.0);
@@ -573,7 +577,7 @@ mod tests {
 
     #[test]
     fn star_transmittance_is_the_seeds_own_extinction() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let o = DVec3::Z * (a.polar_radius + 2.0);
         let overhead = a.star_transmittance(o, DVec3::Z);
         let low = a.star_transmittance(o, DVec3::new(1.0, 0.0, 0.02).normalize());
@@ -593,7 +597,7 @@ mod tests {
 
     #[test]
     fn night_side_is_dark_and_overglow_lights_the_terminator() {
-        let a = SeedAtmosphere::seed_earth();
+        let a = EmpiricalAtmosphere::seed_earth();
         let sun = sun_along(-DVec3::X, DVec3::ONE);
         let o = DVec3::X * (a.equatorial_radius + 1.0);
         // Zenith at midnight: ll = 0.75 − 1 < 0, clamped to black.
@@ -636,7 +640,7 @@ mod tests {
 
     #[test]
     fn the_direction_length_does_not_matter() {
-        let a = SeedAtmosphere::seed_mars();
+        let a = EmpiricalAtmosphere::seed_mars();
         let sun = sun_along(DVec3::new(1.0, 0.5, 0.2), DVec3::ONE);
         let o = DVec3::new(a.equatorial_radius + 500.0, 0.0, 0.0);
         let d = DVec3::new(0.3, 1.0, 0.1);
@@ -649,49 +653,52 @@ mod tests {
 
     #[test]
     fn bad_parameters_name_their_field() {
-        let field = |a: SeedAtmosphere| match a.validate() {
+        let field = |a: EmpiricalAtmosphere| match a.validate() {
             Err(CoreError::Invalid { field, .. }) => field,
             other => panic!("{other:?}"),
         };
-        let e = SeedAtmosphere::seed_earth();
+        let e = EmpiricalAtmosphere::seed_earth();
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere {
                 equatorial_radius: -1.0,
                 ..e
             }),
             "atmosphere.seed.equatorial_radius"
         );
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere {
                 polar_radius: -6.0e6,
                 ..e
             }),
             "atmosphere.seed.polar_radius"
         );
-        assert_eq!(field(SeedAtmosphere { height: 0.0, ..e }), "atmosphere.seed.height");
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere { height: 0.0, ..e }),
+            "atmosphere.seed.height"
+        );
+        assert_eq!(
+            field(EmpiricalAtmosphere {
                 view_depth: f64::INFINITY,
                 ..e
             }),
             "atmosphere.seed.view_depth"
         );
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere {
                 b0: DVec3::new(0.1, f64::NAN, 0.3),
                 ..e
             }),
             "atmosphere.seed.b0"
         );
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere {
                 b0: DVec3::new(-0.1, 0.2, 0.3),
                 ..e
             }),
             "atmosphere.seed.b0"
         );
         assert_eq!(
-            field(SeedAtmosphere {
+            field(EmpiricalAtmosphere {
                 overglow: f64::NAN,
                 ..e
             }),

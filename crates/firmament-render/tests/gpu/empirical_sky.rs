@@ -1,6 +1,6 @@
-//! GPU tests of the seed's atmosphere model (`SeedSkyPass`, `shaders/seed_sky.wgsl`) against its
-//! f64 port (`firmament_core::atmosphere::seed::SeedAtmosphere::color`): every pixel of small
-//! images, compared in linear float.
+//! GPU tests of the seed's atmosphere model (`EmpiricalSkyPass`, `shaders/empirical_sky.wgsl`)
+//! against its f64 port (`firmament_core::atmosphere::empirical::EmpiricalAtmosphere::color`):
+//! every pixel of small images, compared in linear float.
 //!
 //! The GPU's HDR target is half float (11-bit mantissa, relative rounding up to 2⁻¹¹ ≈ 4.9e-4),
 //! so each pixel's difference is that rounding plus f32's own error. Measured on llvmpipe: worst
@@ -10,9 +10,9 @@
 use crate::support::{Gpu, direction, gpu};
 
 use firmament_core::atmosphere::Planet;
-use firmament_core::atmosphere::seed::{SeedAtmosphere, SeedStar};
+use firmament_core::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
 use firmament_core::display::DisplaySettings;
-use firmament_core::frame::{SEED_DEFAULT_LUMINANCE, SeedSky, Sky};
+use firmament_core::frame::{EMPIRICAL_DEFAULT_LUMINANCE, EmpiricalSky, Sky};
 use firmament_core::{Camera, Frame};
 use glam::{DVec2, DVec3};
 
@@ -25,24 +25,25 @@ const HEIGHT: u32 = 24;
 /// or over 1e-3 of the luminance for near-black pixels) allowed per pixel.
 const TOLERANCE: f64 = 1.5e-3;
 
-/// The seed's `preset` posed so the world is ENU at (`latitude`, `longitude`) degrees, lit by
-/// stars towards the given world directions (planet frame positions 1 AU away).
-fn seed_sky(preset: SeedAtmosphere, latitude: f64, longitude: f64, suns: &[(DVec3, f64, DVec3)]) -> SeedSky {
+/// The empirical model with `preset`'s values, posed so the world is ENU at (`latitude`,
+/// `longitude`) degrees, lit by stars towards the given world directions (planet frame positions
+/// 1 AU away).
+fn posed_sky(preset: EmpiricalAtmosphere, latitude: f64, longitude: f64, suns: &[(DVec3, f64, DVec3)]) -> EmpiricalSky {
     let planet = Planet::spheroid(preset.equatorial_radius, preset.polar_radius, preset.height)
         .posed_at(latitude.to_radians(), longitude.to_radians());
     let stars = suns
         .iter()
         .map(|&(direction, radius, color)| {
             let d = planet.direction_to_planet_frame(direction.normalize());
-            SeedStar::at(d * AU, radius, color)
+            EmpiricalStar::at(d * AU, radius, color)
         })
         .collect();
-    SeedSky {
+    EmpiricalSky {
         atmosphere: preset,
         center: planet.center,
         orientation: planet.orientation,
         stars,
-        luminance: SEED_DEFAULT_LUMINANCE,
+        luminance: EMPIRICAL_DEFAULT_LUMINANCE,
     }
 }
 
@@ -65,10 +66,10 @@ struct Comparison {
     lit: usize,
 }
 
-fn compare(gpu: &mut Gpu, name: &str, sky: &SeedSky, camera: Camera) -> Comparison {
+fn compare(gpu: &mut Gpu, name: &str, sky: &EmpiricalSky, camera: Camera) -> Comparison {
     let frame = Frame {
         camera,
-        sky: Sky::Seed(sky.clone()),
+        sky: Sky::Empirical(sky.clone()),
         display: DisplaySettings::default(),
         objects: Default::default(),
         flares: Default::default(),
@@ -132,8 +133,8 @@ fn assert_close(c: &Comparison, name: &str, min_lit: usize) {
 fn orbit_view_of_the_globe_and_its_limb_matches_the_f64_port() {
     let mut gpu = gpu();
     // 12 000 km above 20° N, the Sun on the horizon there: the half-lit globe, limb and space.
-    let sky = seed_sky(
-        SeedAtmosphere::seed_earth(),
+    let sky = posed_sky(
+        EmpiricalAtmosphere::seed_earth(),
         20.0,
         0.0,
         &[(direction(240.0, 0.0), SUN_RADIUS, DVec3::splat(10.0))],
@@ -143,8 +144,8 @@ fn orbit_view_of_the_globe_and_its_limb_matches_the_f64_port() {
     let c = compare(&mut gpu, "orbit, one star", &sky, cam);
     assert_close(&c, "orbit, one star", 200);
     // From 1000 km, looking along the limb with two stars.
-    let sky = seed_sky(
-        SeedAtmosphere::seed_earth(),
+    let sky = posed_sky(
+        EmpiricalAtmosphere::seed_earth(),
         -10.0,
         30.0,
         &[
@@ -164,8 +165,8 @@ fn ground_views_match_the_f64_port() {
     // From 1.7 m, looking at the Sun 10° up with a large (5°) disc in view: disc pixels start at
     // the star's colour (alpha 1) and are normalised.
     let sun = direction(250.0, 10.0);
-    let sky = seed_sky(
-        SeedAtmosphere::seed_earth(),
+    let sky = posed_sky(
+        EmpiricalAtmosphere::seed_earth(),
         45.0,
         0.0,
         &[(sun, AU * 5f64.to_radians().sin(), DVec3::new(10.0, 9.0, 7.0))],
@@ -178,8 +179,8 @@ fn ground_views_match_the_f64_port() {
     assert_close(&c, "Earth ground, one star", 300);
     // Mars, two suns, one below the horizon (the light_dir[0] quirk counts it with star 0's
     // direction).
-    let sky = seed_sky(
-        SeedAtmosphere::seed_mars(),
+    let sky = posed_sky(
+        EmpiricalAtmosphere::seed_mars(),
         0.0,
         0.0,
         &[
@@ -198,8 +199,8 @@ fn the_limb_from_25_au_matches_the_f64_port() {
     let mut gpu = gpu();
     // A far camera: rays start at their closest approach to the planet (the f32 camera position
     // would be off by hundreds of kilometres). The planet fills the narrow view.
-    let sky = seed_sky(
-        SeedAtmosphere::seed_earth(),
+    let sky = posed_sky(
+        EmpiricalAtmosphere::seed_earth(),
         0.0,
         0.0,
         &[(direction(90.0, 10.0), SUN_RADIUS, DVec3::splat(10.0))],
@@ -215,11 +216,11 @@ fn the_limb_from_25_au_matches_the_f64_port() {
 #[test]
 fn invalid_parameters_draw_nothing() {
     let mut gpu = gpu();
-    let mut sky = seed_sky(SeedAtmosphere::seed_earth(), 0.0, 0.0, &[]);
+    let mut sky = posed_sky(EmpiricalAtmosphere::seed_earth(), 0.0, 0.0, &[]);
     sky.atmosphere.view_depth = 0.0;
     let frame = Frame {
         camera: camera(DVec3::new(0.0, 0.0, 2.0), DVec3::new(0.0, 1.0, 2.0), 1.0),
-        sky: Sky::Seed(sky),
+        sky: Sky::Empirical(sky),
         display: DisplaySettings::default(),
         objects: Default::default(),
         flares: Default::default(),

@@ -1,8 +1,8 @@
-// seed_sky.wgsl — the seed's own atmosphere model (`atmosphere.model = "seed"`): a port of
+// empirical_sky.wgsl — the seed's own atmosphere model (`atmosphere.model = "seed"`): a port of
 // `atmosphere()` of version 3.1 of the GLSL "SSH GLSL Atmospheric Ray light scattering" shader in
 // seed document 000_643abe256ac7a513.txt (lines 285–476, uniforms 477–495, CPU side 498–553),
-// mirroring firmament_core::atmosphere::seed::SeedAtmosphere::color step for step (the f64
-// reference the GPU test compares with).
+// mirroring firmament_core::atmosphere::empirical::EmpiricalAtmosphere::color step for step (the
+// f64 reference the GPU test compares with). In Rust the model is called "empirical".
 //
 // Conventions
 // - Planet frame (the seed's "ellipsoid space"): origin at the planet centre, x and y in the
@@ -29,15 +29,15 @@
 #import common/ellipsoid
 #import common/view_ray
 
-struct SeedStar {
+struct EmpiricalStar {
     position: vec4<f32>,  // centre, planet frame (m); w = radius / √0.75 (m), or −1: no disc
     direction: vec4<f32>, // unit direction to the star (light_dir), planet frame; 0 if none
     color: vec4<f32>,     // colour × visual intensity (light_col), unitless
 }
 
-const MAX_SEED_STARS: u32 = 8u;
+const MAX_EMPIRICAL_STARS: u32 = 8u;
 
-struct SeedSky {
+struct EmpiricalSky {
     view_to_planet: mat4x4<f32>, // view-space direction → planet frame rotation
     camera: vec4<f32>,           // camera position, planet frame (m)
     camera_shape: vec4<f32>,     // |o/a|² − 1 against the surface and the top; tan of half fov x, y
@@ -46,14 +46,14 @@ struct SeedSky {
     b0: vec4<f32>,               // B0 rgb (unitless); w = overglow (B0.a)
     params: vec4<f32>,           // view_depth (m), unused, luminance (cd/m² per unit colour), unused
     counts: vec4<u32>,           // x = number of stars, y = 1 when the parameters are valid
-    stars: array<SeedStar, MAX_SEED_STARS>,
+    stars: array<EmpiricalStar, MAX_EMPIRICAL_STARS>,
 }
 
-@group(0) @binding(0) var<uniform> seed: SeedSky;
+@group(0) @binding(0) var<uniform> sky: EmpiricalSky;
 
-const SEED_STEPS: i32 = 8;           // the seed's `const int n=8`, line 390
-const SEED_DENSITY_DIVISOR: f32 = 2.78; // lines 187 and 450
-const HDR_MAX: f32 = 65504.0;        // largest half float (firmament_render::HDR_MAX)
+const EMPIRICAL_STEPS: i32 = 8;              // the seed's `const int n=8`, line 390
+const EMPIRICAL_DENSITY_DIVISOR: f32 = 2.78; // lines 187 and 450
+const HDR_MAX: f32 = 65504.0;                // largest half float (firmament_render::HDR_MAX)
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
@@ -61,7 +61,7 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
 }
 
 fn top_radii() -> vec3<f32> {
-    return seed.radii.xyz + vec3<f32>(seed.radii.w);
+    return sky.radii.xyz + vec3<f32>(sky.radii.w);
 }
 
 // The seed's `_view_depth` (lines 310–348) for the ray that starts at parameter `near` of the
@@ -105,14 +105,14 @@ fn density(p: vec3<f32>) -> f32 {
             d = up.t0;
         }
     }
-    return exp(d / seed.radii.w) / SEED_DENSITY_DIVISOR;
+    return exp(d / sky.radii.w) / EMPIRICAL_DENSITY_DIVISOR;
 }
 
 // The seed's `_star_colide` (lines 351–386) with the 0.75 enlargement of line 422 (folded into
 // `position.w` on the CPU): the line from `start` along unit `d` meets the enlarged sphere at or
 // ahead of `start`. The discriminant is r² − |f − (f·d)d|², which keeps its precision for a star
 // 1 AU away.
-fn star_on_ray(start: vec3<f32>, d: vec3<f32>, star: SeedStar) -> bool {
+fn star_on_ray(start: vec3<f32>, d: vec3<f32>, star: EmpiricalStar) -> bool {
     let r = star.position.w;
     if r <= 0.0 {
         return false;
@@ -130,8 +130,8 @@ fn star_on_ray(start: vec3<f32>, d: vec3<f32>, star: SeedStar) -> bool {
 // This pass's view ray (common/view_ray.wgsl), the seed's "correction 1": the direction is
 // normalised in the planet frame.
 fn view_ray(ndc: vec2<f32>) -> ViewRay {
-    let planet = PlanetView(seed.view_to_planet, seed.camera, seed.camera_shape, seed.center);
-    return planet_view_ray(ndc, planet, seed.radii.xyz, top_radii());
+    let planet = PlanetView(sky.view_to_planet, sky.camera, sky.camera_shape, sky.center);
+    return planet_view_ray(ndc, planet, sky.radii.xyz, top_radii());
 }
 
 // The seed's `atmosphere()`, lines 388–472: (rgb, alpha).
@@ -143,7 +143,7 @@ fn atmosphere(ray: ViewRay) -> vec4<f32> {
     if !atm.hit {
         return c;
     }
-    let ground = view_depth(ray.origin, d, seed.radii.xyz, ray.c_surface, ray.near);
+    let ground = view_depth(ray.origin, d, sky.radii.xyz, ray.c_surface, ray.near);
     if ground.hit && !ground.second {
         return c;
     }
@@ -159,9 +159,9 @@ fn atmosphere(ray: ViewRay) -> vec4<f32> {
         }
         // Lines 420–426: a star disc on the ray starts the integration with its colour.
         let start = ray.origin + d * t_start;
-        for (var i = 0u; i < min(seed.counts.x, MAX_SEED_STARS); i++) {
-            if star_on_ray(start, d, seed.stars[i]) {
-                c = vec4<f32>(c.rgb + seed.stars[i].color.rgb, 1.0);
+        for (var i = 0u; i < min(sky.counts.x, MAX_EMPIRICAL_STARS); i++) {
+            if star_on_ray(start, d, sky.stars[i]) {
+                c = vec4<f32>(c.rgb + sky.stars[i].color.rgb, 1.0);
             }
         }
     } else if atm.t0 < ground.t0 {
@@ -173,18 +173,18 @@ fn atmosphere(ray: ViewRay) -> vec4<f32> {
     // Lines 439–443: step, and the light factor with star 0's direction once per star (the
     // seed's `light_dir[0]`, kept as written); not clamped.
     let end = ray.origin + d * (t_start + length_m);
-    let step = d * (length_m / f32(SEED_STEPS));
-    let dl = length_m / f32(SEED_STEPS) / seed.params.x;
+    let step = d * (length_m / f32(EMPIRICAL_STEPS));
+    let dl = length_m / f32(EMPIRICAL_STEPS) / sky.params.x;
     let up_at_end = select(vec3<f32>(0.0), normalize(end), dot(end, end) > 0.0);
-    var ll = seed.b0.w;
-    for (var i = 0u; i < min(seed.counts.x, MAX_SEED_STARS); i++) {
-        ll += dot(up_at_end, seed.stars[0].direction.xyz);
+    var ll = sky.b0.w;
+    for (var i = 0u; i < min(sky.counts.x, MAX_EMPIRICAL_STARS); i++) {
+        ll += dot(up_at_end, sky.stars[0].direction.xyz);
     }
     // Lines 444–456: from the far end towards the start; the start itself is not sampled.
     var rgb = c.rgb;
-    for (var k = 0; k < SEED_STEPS; k++) {
+    for (var k = 0; k < EMPIRICAL_STEPS; k++) {
         let p = end - step * f32(k);
-        let b = seed.b0.rgb * (density(p) * dl);
+        let b = sky.b0.rgb * (density(p) * dl);
         rgb = rgb * (vec3<f32>(1.0) - b) + b * ll;
     }
     // Lines 457–470: negative channels to 0; divide by the largest channel when it exceeds 1.
@@ -198,9 +198,9 @@ fn atmosphere(ray: ViewRay) -> vec4<f32> {
 
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
-    if seed.counts.y == 0u {
+    if sky.counts.y == 0u {
         return vec4<f32>(0.0); // invalid parameters: nothing, like the f64 port
     }
     let c = atmosphere(view_ray(in.ndc));
-    return vec4<f32>(min(c.rgb * seed.params.z, vec3<f32>(HDR_MAX)), c.a);
+    return vec4<f32>(min(c.rgb * sky.params.z, vec3<f32>(HDR_MAX)), c.a);
 }

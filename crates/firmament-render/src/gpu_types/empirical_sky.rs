@@ -1,4 +1,4 @@
-//! The seed atmosphere's GPU data (`shaders/seed_sky.wgsl`).
+//! The empirical atmosphere's GPU data (`atmosphere.model = "seed"`; `shaders/empirical_sky.wgsl`).
 //!
 //! Everything is in the seed's planet frame and computed in `f64` before rounding: the camera's
 //! planet-frame position and its ellipsoid terms `|o/a|² − 1` (exact even 1 m above the ground,
@@ -9,17 +9,17 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
-use firmament_core::atmosphere::seed::{SEED_STAR_RADIUS_INV_SQ_FACTOR, SeedStar};
-use firmament_core::frame::{MAX_SEED_STARS, SeedSky};
+use firmament_core::atmosphere::empirical::{EMPIRICAL_STAR_RADIUS_INV_SQ_FACTOR, EmpiricalStar};
+use firmament_core::frame::{MAX_EMPIRICAL_STARS, EmpiricalSky};
 use glam::DVec3;
 
 use super::planet_view::PlanetView;
 use super::vec3_w;
 
-/// Mirrors `SeedStar` in `shaders/seed_sky.wgsl`: one of the seed's `light_*` uniforms.
+/// Mirrors `EmpiricalStar` in `shaders/empirical_sky.wgsl`: one of the seed's `light_*` uniforms.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct SeedStarUniform {
+pub struct EmpiricalStarUniform {
     /// Centre, planet frame, metres; `w` = the disc-test radius `radius / √0.75` (the seed's
     /// 0.75 enlargement, line 422), metres, or −1 when the star shows no disc.
     pub position: [f32; 4],
@@ -29,15 +29,15 @@ pub struct SeedStarUniform {
     pub color: [f32; 4],
 }
 
-impl SeedStarUniform {
+impl EmpiricalStarUniform {
     /// The star as the shader reads it; what the f64 port ignores (a non-finite or non-positive
     /// radius, position or colour: no disc; a zero or non-finite direction: lights nothing) is
     /// encoded so that the shader ignores it too.
-    pub fn new(star: &SeedStar) -> Self {
+    pub fn new(star: &EmpiricalStar) -> Self {
         let shows_disc =
             star.radius.is_finite() && star.radius > 0.0 && star.position.is_finite() && star.color.is_finite();
         let radius = if shows_disc {
-            star.radius / SEED_STAR_RADIUS_INV_SQ_FACTOR.sqrt()
+            star.radius / EMPIRICAL_STAR_RADIUS_INV_SQ_FACTOR.sqrt()
         } else {
             -1.0
         };
@@ -64,10 +64,10 @@ impl SeedStarUniform {
     }
 }
 
-/// Mirrors `SeedSky` in `shaders/seed_sky.wgsl`.
+/// Mirrors `EmpiricalSky` in `shaders/empirical_sky.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct SeedSkyUniforms {
+pub struct EmpiricalSkyUniforms {
     /// View-space direction → planet frame rotation.
     pub view_to_planet: [[f32; 4]; 4],
     /// Camera position in the planet frame, metres.
@@ -86,21 +86,21 @@ pub struct SeedSkyUniforms {
     /// Number of stars; 1 when the parameters are valid (else the pass draws black); unused ×2.
     pub counts: [u32; 4],
     /// The stars; the first `counts[0]` are used.
-    pub stars: [SeedStarUniform; MAX_SEED_STARS],
+    pub stars: [EmpiricalStarUniform; MAX_EMPIRICAL_STARS],
 }
 
-impl SeedSkyUniforms {
+impl EmpiricalSkyUniforms {
     /// The uniforms for `sky` seen by `camera` (whose aspect ratio is the target's). Stars past
-    /// [`MAX_SEED_STARS`] are dropped (the caller validates counts).
-    pub fn new(sky: &SeedSky, camera: &Camera) -> Self {
+    /// [`MAX_EMPIRICAL_STARS`] are dropped (the caller validates counts).
+    pub fn new(sky: &EmpiricalSky, camera: &Camera) -> Self {
         let a = &sky.atmosphere;
         let radii = a.surface().radii;
         let top = a.top().radii;
         let o = sky.to_planet_frame(camera.position);
         let shape = PlanetView::new(camera, sky.center, sky.orientation, o, radii, top);
-        let mut stars = [SeedStarUniform::zeroed(); MAX_SEED_STARS];
+        let mut stars = [EmpiricalStarUniform::zeroed(); MAX_EMPIRICAL_STARS];
         for (slot, star) in stars.iter_mut().zip(&sky.stars) {
-            *slot = SeedStarUniform::new(star);
+            *slot = EmpiricalStarUniform::new(star);
         }
         let valid = a.validate().is_ok() && o.is_finite() && sky.luminance.is_finite();
         Self {
@@ -111,7 +111,7 @@ impl SeedSkyUniforms {
             radii: vec3_w(radii, a.height),
             b0: vec3_w(a.b0, a.overglow),
             params: [a.view_depth as f32, 0.0, sky.luminance as f32, 0.0],
-            counts: [sky.stars.len().min(MAX_SEED_STARS) as u32, u32::from(valid), 0, 0],
+            counts: [sky.stars.len().min(MAX_EMPIRICAL_STARS) as u32, u32::from(valid), 0, 0],
             stars,
         }
     }
@@ -120,17 +120,17 @@ impl SeedSkyUniforms {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use firmament_core::atmosphere::seed::SeedAtmosphere;
-    use firmament_core::frame::SEED_DEFAULT_LUMINANCE;
+    use firmament_core::atmosphere::empirical::EmpiricalAtmosphere;
+    use firmament_core::frame::EMPIRICAL_DEFAULT_LUMINANCE;
     use glam::DQuat;
 
-    fn sky(center: DVec3) -> SeedSky {
-        SeedSky {
-            atmosphere: SeedAtmosphere::seed_earth(),
+    fn sky(center: DVec3) -> EmpiricalSky {
+        EmpiricalSky {
+            atmosphere: EmpiricalAtmosphere::seed_earth(),
             center,
             orientation: DQuat::from_rotation_x(0.3),
-            stars: vec![SeedStar::at(DVec3::X * 1.5e11, 7e8, DVec3::ONE)],
-            luminance: SEED_DEFAULT_LUMINANCE,
+            stars: vec![EmpiricalStar::at(DVec3::X * 1.5e11, 7e8, DVec3::ONE)],
+            luminance: EMPIRICAL_DEFAULT_LUMINANCE,
         }
     }
 
@@ -140,7 +140,7 @@ mod tests {
         let s = sky(center);
         // 2 m above the pole (the world z axis is the planet's, rotated by 0.3 rad about x).
         let pole = s.orientation * DVec3::Z * (s.atmosphere.polar_radius + 2.0) + center;
-        let u = SeedSkyUniforms::new(&s, &Camera::from_heading_pitch(pole, 0.0, 0.0));
+        let u = EmpiricalSkyUniforms::new(&s, &Camera::from_heading_pitch(pole, 0.0, 0.0));
         assert!((f64::from(u.camera[2]) - (s.atmosphere.polar_radius + 2.0)).abs() < 1.0);
         // |o/a|² − 1 ≈ 2·2 m / rp, from f64.
         let c = f64::from(u.camera_shape[0]);
@@ -156,12 +156,12 @@ mod tests {
         let s = sky(DVec3::ZERO);
         let au = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
         let camera = Camera::looking_at(DVec3::new(0.0, -25.0 * au, 1.0e6), DVec3::ZERO, DVec3::Z).expect("camera");
-        let u = SeedSkyUniforms::new(&s, &camera);
+        let u = EmpiricalSkyUniforms::new(&s, &camera);
         assert_eq!(u.center[3], 1.0);
         assert!((f64::from(u.center[2]) - 25.0 * au).abs() < 1e-6 * 25.0 * au);
         // Invalid parameters are flagged, not uploaded as NaN work.
         let mut bad = s.clone();
         bad.atmosphere.height = f64::NAN;
-        assert_eq!(SeedSkyUniforms::new(&bad, &camera).counts[1], 0);
+        assert_eq!(EmpiricalSkyUniforms::new(&bad, &camera).counts[1], 0);
     }
 }

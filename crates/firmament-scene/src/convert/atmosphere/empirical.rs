@@ -1,19 +1,20 @@
-//! `atmosphere.model = "seed"`: the seed's own model ([`SeedAtmosphere`]) from the body's seed
-//! values, `[planet]`'s radii and `[atmosphere.seed]`, with `[[suns]]` as the seed's stars.
+//! `atmosphere.model = "seed"`: the seed's own model, the empirical one ([`EmpiricalAtmosphere`]),
+//! from the body's seed values, `[planet]`'s radii and `[atmosphere.seed]`, with `[[suns]]` as the
+//! seed's stars.
 //!
 //! # Suns become stars
 //! The seed lights its atmosphere with stars at real positions (`light_posr`, `light_dir`,
 //! `light_col`, seed lines 519–531). A sun given by `position` sits at that point; one given by
-//! `azimuth` and `elevation` sits [`SEED_STAR_DISTANCE`] from the planet centre in its direction.
-//! Its radius is the one that subtends the sun's angular radius from the planet centre
+//! `azimuth` and `elevation` sits [`EMPIRICAL_STAR_DISTANCE`] from the planet centre in its
+//! direction. Its radius is the one that subtends the sun's angular radius from the planet centre
 //! (`distance · sin α`), its direction (`light_dir`) is the one from the planet centre to it, and its
 //! colour is the sun's spectral irradiance at the three model wavelengths (red first) divided by
-//! its largest channel, times [`SEED_STAR_INTENSITY`] (the seed's CPU side uploads the star's
+//! its largest channel, times [`EMPIRICAL_STAR_INTENSITY`] (the seed's CPU side uploads the star's
 //! colour × 10, line 528).
 
-use firmament_core::atmosphere::seed::{SeedAtmosphere, SeedStar};
+use firmament_core::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
 use firmament_core::atmosphere::{Planet, Sun};
-use firmament_core::frame::{AtmosphereSky, SEED_DEFAULT_LUMINANCE, SeedSky};
+use firmament_core::frame::{AtmosphereSky, EMPIRICAL_DEFAULT_LUMINANCE, EmpiricalSky};
 use glam::DVec3;
 
 use crate::checks::{check, positive};
@@ -22,25 +23,25 @@ use crate::model::{Body, Scene};
 
 /// Distance of a sun given by azimuth and elevation from the planet centre, metres (1 AU); only
 /// the ratio of radius to distance matters for a star this far.
-pub const SEED_STAR_DISTANCE: f64 = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
+pub const EMPIRICAL_STAR_DISTANCE: f64 = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
 
 /// The seed's visual intensity of a star: its colour × 10 (seed line 528), unitless.
-pub const SEED_STAR_INTENSITY: f64 = 10.0;
+pub const EMPIRICAL_STAR_INTENSITY: f64 = 10.0;
 
 /// The seed's own values for `body`, if it has any.
-fn body_seed(body: Body) -> Option<SeedAtmosphere> {
+fn body_seed(body: Body) -> Option<EmpiricalAtmosphere> {
     match body {
-        Body::Earth => Some(SeedAtmosphere::seed_earth()),
-        Body::Mars => Some(SeedAtmosphere::seed_mars()),
+        Body::Earth => Some(EmpiricalAtmosphere::seed_earth()),
+        Body::Mars => Some(EmpiricalAtmosphere::seed_mars()),
         Body::Saturn => None,
     }
 }
 
-/// The seed sky of `scene`, every value checked; `physical` is the scene's checked physical sky
-/// (its suns, their directions and colours).
-pub(crate) fn seed_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<SeedSky, SceneError> {
+/// The empirical sky of `scene`, every value checked; `physical` is the scene's checked physical
+/// sky (its suns, their directions and colours).
+pub(crate) fn empirical_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<EmpiricalSky, SceneError> {
     let body = scene.planet.body;
-    let section = &scene.atmosphere.seed;
+    let section = &scene.atmosphere.empirical;
     let base = body_seed(body);
     let p = &scene.planet;
     for (key, value) in [
@@ -77,7 +78,7 @@ pub(crate) fn seed_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<SeedSk
         Some(b) if !radius_set => (b.equatorial_radius, b.polar_radius),
         _ => (physical_radii.x, physical_radii.z),
     };
-    let atmosphere = SeedAtmosphere {
+    let atmosphere = EmpiricalAtmosphere {
         equatorial_radius,
         polar_radius,
         height: section
@@ -107,12 +108,12 @@ pub(crate) fn seed_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<SeedSk
         .zip(&physical.suns)
         .map(|(entry, sun)| star(&planet, sun, entry.position.map(DVec3::from_array)))
         .collect();
-    let sky = SeedSky {
+    let sky = EmpiricalSky {
         atmosphere,
         center: planet.center,
         orientation: planet.orientation,
         stars,
-        luminance: section.luminance.unwrap_or(SEED_DEFAULT_LUMINANCE),
+        luminance: section.luminance.unwrap_or(EMPIRICAL_DEFAULT_LUMINANCE),
     };
     sky.validate().map_err(|e| match e {
         firmament_core::CoreError::Invalid { field, value, rule } => {
@@ -134,8 +135,8 @@ pub(crate) fn seed_sky(scene: &Scene, physical: &AtmosphereSky) -> Result<SeedSk
     Ok(sky)
 }
 
-/// The posed planet of a seed sky (its surface and pose), for the camera-above-ground rule.
-pub(crate) fn seed_planet(sky: &SeedSky) -> Planet {
+/// The posed planet of an empirical sky (its surface and pose), for the camera-above-ground rule.
+pub(crate) fn empirical_planet(sky: &EmpiricalSky) -> Planet {
     Planet {
         radii: sky.atmosphere.surface().radii,
         center: sky.center,
@@ -144,22 +145,22 @@ pub(crate) fn seed_planet(sky: &SeedSky) -> Planet {
     }
 }
 
-/// A sun as a seed star in the planet frame (see the module docs); `position` is the scene's
+/// A sun as an empirical star in the planet frame (see the module docs); `position` is the scene's
 /// world-frame position of the sun, if it gave one.
-fn star(planet: &Planet, sun: &Sun, position: Option<DVec3>) -> SeedStar {
+fn star(planet: &Planet, sun: &Sun, position: Option<DVec3>) -> EmpiricalStar {
     let position = match position {
         Some(world) => planet.to_planet_frame(world),
-        None => planet.direction_to_planet_frame(sun.direction).normalize_or_zero() * SEED_STAR_DISTANCE,
+        None => planet.direction_to_planet_frame(sun.direction).normalize_or_zero() * EMPIRICAL_STAR_DISTANCE,
     };
     let distance = position.length();
     let irradiance = sun.irradiance;
     let largest = irradiance.max_element();
     let color = if largest > 0.0 {
-        irradiance / largest * SEED_STAR_INTENSITY
+        irradiance / largest * EMPIRICAL_STAR_INTENSITY
     } else {
         DVec3::ZERO
     };
-    SeedStar {
+    EmpiricalStar {
         position,
         radius: distance * sun.angular_radius.sin(),
         direction: position.normalize_or_zero(),
