@@ -5,7 +5,6 @@ use crate::support::{self, Gpu, direction, gpu};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};
-use firmament_core::display::DisplaySettings;
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::Ray;
 use firmament_core::{Camera, Frame};
@@ -31,14 +30,7 @@ fn camera(position: DVec3, view: DVec3, fov_y: f64) -> Camera {
 
 /// The GPU's HDR image (linear sRGB, cd/m²).
 fn render(gpu: &mut Gpu, sky: &AtmosphereSky, camera: Camera, width: u32, height: u32) -> Image<f32> {
-    let frame = Frame {
-        camera,
-        sky: Sky::Atmosphere(sky.clone()),
-        display: DisplaySettings::default(),
-        objects: Default::default(),
-        flares: Default::default(),
-        night: Default::default(),
-    };
+    let frame = Frame::new(camera, Sky::Atmosphere(sky.clone()));
     let Gpu { ctx, renderer } = gpu;
     renderer.render_hdr(ctx, &frame, width, height).expect("render")
 }

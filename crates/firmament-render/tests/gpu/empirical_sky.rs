@@ -67,14 +67,7 @@ struct Comparison {
 }
 
 fn compare(gpu: &mut Gpu, name: &str, sky: &EmpiricalSky, camera: Camera) -> Comparison {
-    let frame = Frame {
-        camera,
-        sky: Sky::Empirical(sky.clone()),
-        display: DisplaySettings::default(),
-        objects: Default::default(),
-        flares: Default::default(),
-        night: Default::default(),
-    };
+    let frame = Frame::new(camera, Sky::Empirical(sky.clone()));
     let Gpu { ctx, renderer } = gpu;
     let image = renderer.render_hdr(ctx, &frame, WIDTH, HEIGHT).expect("render");
     let mut differences = Vec::new();

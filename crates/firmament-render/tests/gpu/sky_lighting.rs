@@ -9,7 +9,6 @@ use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};
 use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::color::LinearRgb;
-use firmament_core::display::DisplaySettings;
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::{Camera, Frame};
 use firmament_render::GpuContext;
@@ -202,14 +201,7 @@ fn render_cube(gpu: &mut Gpu, sky: &AtmosphereSky, position: DVec3) -> Vec<CubeP
     let mut pixels = Vec::new();
     for view in [DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y, DVec3::Z, -DVec3::Z] {
         let camera = camera(position, view);
-        let frame = Frame {
-            camera,
-            sky: Sky::Atmosphere(sky.clone()),
-            display: DisplaySettings::default(),
-            objects: Default::default(),
-            flares: Default::default(),
-            night: Default::default(),
-        };
+        let frame = Frame::new(camera, Sky::Atmosphere(sky.clone()));
         let Gpu { ctx, renderer } = gpu;
         let image = renderer.render_hdr(ctx, &frame, FACE, FACE).expect("render");
         for y in 0..FACE {

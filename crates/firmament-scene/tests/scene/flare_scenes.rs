@@ -8,16 +8,7 @@ use firmament_core::frame::Sky;
 use firmament_scene::{FlarePresetName, Scene, SceneError, SceneSource, load};
 use glam::{DVec3, DVec4};
 
-fn from_text(text: &str) -> Result<Scene, SceneError> {
-    load(
-        SceneSource::Text {
-            text,
-            origin: "test.toml",
-        },
-        None,
-        &[],
-    )
-}
+use crate::support::from_text;
 
 fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
     let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();

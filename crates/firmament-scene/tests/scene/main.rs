@@ -10,4 +10,5 @@ mod empirical_scenes;
 mod flare_scenes;
 mod object_scenes;
 mod scene_files;
+mod support;
 mod time_scenes;

@@ -5,19 +5,10 @@ use firmament_core::classic::fog::{FogCoordinate, FogMode};
 use firmament_core::classic::lighting::Material;
 use firmament_core::classic::scene::{LightSpace, ObjectLighting, SceneFog, Shading};
 use firmament_core::frame::Sky;
-use firmament_scene::{SceneError, SceneSource, load};
+use firmament_scene::{SceneSource, load};
 use glam::{DVec3, DVec4};
 
-fn from_text(text: &str) -> Result<firmament_scene::Scene, SceneError> {
-    load(
-        SceneSource::Text {
-            text,
-            origin: "test.toml",
-        },
-        None,
-        &[],
-    )
-}
+use crate::support::from_text;
 
 /// The message of the first error, from loading or from building the frame.
 fn error(text: &str) -> String {

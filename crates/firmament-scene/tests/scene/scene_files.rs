@@ -2,16 +2,7 @@
 
 use firmament_scene::{SceneError, SceneSource, load};
 
-fn from_text(text: &str) -> Result<firmament_scene::Scene, SceneError> {
-    load(
-        SceneSource::Text {
-            text,
-            origin: "test.toml",
-        },
-        None,
-        &[],
-    )
-}
+use crate::support::from_text;
 
 fn with_sets(sets: &[&str]) -> Result<firmament_scene::Scene, SceneError> {
     let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();
