@@ -13,7 +13,7 @@ use glam::DVec3;
 pub use super::planet_view::FAR_CAMERA_RADII;
 use super::codes;
 use super::planet_view::PlanetView;
-use super::vec3_w;
+use super::pack::vec3_w;
 
 /// How far the aerial-perspective volume reaches into the air along each view ray, metres:
 /// geometry farther than this gets the scattering of this distance. 100 km holds a view from a

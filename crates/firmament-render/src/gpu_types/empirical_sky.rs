@@ -14,7 +14,7 @@ use firmament_core::frame::{MAX_EMPIRICAL_STARS, EmpiricalSky};
 use glam::DVec3;
 
 use super::planet_view::PlanetView;
-use super::vec3_w;
+use super::pack::vec3_w;
 
 /// Mirrors `EmpiricalStar` in `shaders/empirical_sky.wgsl`: one of the seed's `light_*` uniforms.
 #[repr(C)]

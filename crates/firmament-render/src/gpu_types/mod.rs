@@ -7,11 +7,12 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
-use firmament_core::color::LinearRgb;
 use firmament_core::display::{DisplaySettings, Encoding, ToneCurve};
 use firmament_core::sky::gradient::{Blend, GradientSkyState};
 use firmament_core::sky::sun::SUN_HORIZON_FADE;
 use glam::{DMat4, Mat4};
+
+use pack::rgbw;
 
 pub mod atmosphere;
 pub mod classic;
@@ -19,6 +20,7 @@ pub mod codes;
 pub mod empirical_sky;
 pub mod flare;
 pub mod night_sky;
+mod pack;
 mod planet_view;
 pub mod sky_lighting;
 
@@ -28,16 +30,6 @@ pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};
 pub use sky_lighting::{SkyLightingGpu, SkyLightingParamsUniforms, SkyLightingSunGpu};
-
-/// `vec4<f32>` of a vector, `w` appended, rounded once.
-fn vec3_w(v: glam::DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
-}
-
-/// `vec4<f32>` of a colour, alpha `w`.
-fn rgbw(c: LinearRgb, w: f64) -> [f32; 4] {
-    [c.r as f32, c.g as f32, c.b as f32, w as f32]
-}
 
 /// Clip space → camera-relative world position, for passes that only need view directions.
 /// Computed in `f64` (the inverse of projection × view rotation), rounded once at the end.

@@ -16,7 +16,7 @@ use firmament_core::Camera;
 use firmament_core::frame::EmpiricalSky;
 
 use crate::gpu_types::EmpiricalSkyUniforms;
-use crate::passes::SkyTarget;
+use crate::passes::common::SkyTarget;
 use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
 

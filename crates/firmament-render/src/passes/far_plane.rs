@@ -3,7 +3,7 @@
 
 use std::marker::PhantomData;
 
-use crate::passes::{
+use crate::passes::common::{
     PassPipeline, SkyTarget, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer, uniform_entry,
 };
 

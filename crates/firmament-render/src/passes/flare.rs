@@ -12,7 +12,7 @@ use firmament_core::{Camera, DepthConvention};
 
 use super::flare_images::FlareImageArray;
 use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
-use crate::passes::{uniform_buffer, uniform_entry, uniform_entry_in};
+use crate::passes::common::{uniform_buffer, uniform_entry, uniform_entry_in};
 use crate::shaders;
 use crate::targets::HDR_FORMAT;
 
@@ -243,7 +243,7 @@ impl FlarePass {
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
                     format,
-                    blend: Some(super::ADDITIVE),
+                    blend: Some(super::common::ADDITIVE),
                     write_mask: wgpu::ColorWrites::ALL,
                 })],
             }),
@@ -438,7 +438,7 @@ impl FlarePass {
         self.record_occlusion(encoder);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("firmament FlarePass elements"),
-            color_attachments: &[Some(super::load_color_attachment(color))],
+            color_attachments: &[Some(super::common::load_color_attachment(color))],
             depth_stencil_attachment: None,
             timestamp_writes: None,
             occlusion_query_set: None,

@@ -14,8 +14,8 @@ use firmament_core::Camera;
 use firmament_core::sky::night::NightLayer;
 
 use crate::gpu_types::{MoonDraw, NightSkyUniforms, StarInstance};
-use crate::passes::SkyTarget;
-use crate::passes::{begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer, uniform_entry};
+use crate::passes::common::SkyTarget;
+use crate::passes::common::{begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer, uniform_entry};
 use crate::shaders;
 
 /// Stars the instance buffer holds at first (it grows when a layer has more): the naked-eye
@@ -117,7 +117,7 @@ impl NightSkyPass {
                     compilation_options: options(),
                     targets: &[Some(wgpu::ColorTargetState {
                         format: color,
-                        blend: Some(super::ADDITIVE),
+                        blend: Some(super::common::ADDITIVE),
                         write_mask: wgpu::ColorWrites::ALL,
                     })],
                 }),

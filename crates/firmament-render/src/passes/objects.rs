@@ -19,7 +19,7 @@ use firmament_core::texture::TextureImage;
 pub use self::gpu_mesh::GpuMesh;
 use self::gpu_mesh::{GpuTexture, SHADE_ATTRIBUTES, VERTEX_ATTRIBUTES, VERTEX_STRIDE, sampler};
 use crate::gpu_types::{ClassicFrameUniforms, ClassicObjectUniforms};
-use crate::passes::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
+use crate::passes::common::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
 use crate::targets::{DEPTH_FORMAT, HDR_FORMAT};
 

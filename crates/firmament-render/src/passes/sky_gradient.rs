@@ -4,7 +4,7 @@ use firmament_core::Camera;
 use firmament_core::sky::gradient::GradientSkyState;
 
 use crate::gpu_types::GradientSkyUniforms;
-use crate::passes::SkyTarget;
+use crate::passes::common::SkyTarget;
 use crate::passes::far_plane::FarPlaneDraw;
 use crate::shaders;
 

@@ -3,7 +3,7 @@
 use firmament_core::display::DisplaySettings;
 
 use crate::gpu_types::TonemapUniforms;
-use crate::passes::{PassPipeline, uniform_buffer, uniform_entry};
+use crate::passes::common::{PassPipeline, uniform_buffer, uniform_entry};
 use crate::shaders;
 
 /// Turns the HDR target into a display image in any colour format (`*Srgb` formats are encoded

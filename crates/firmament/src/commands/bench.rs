@@ -25,12 +25,13 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
         crate::limits::check_pixels("the image", args.width, args.height)?;
         return run_flares(args);
     }
-    let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
+    let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
     let extra = vec![
         format!("render.width={}", args.width),
         format!("render.height={}", args.height),
     ];
-    let scene = super::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
+    let scene =
+        super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
     crate::limits::check_pixels("the image", args.width, args.height)?;
     let frame = scene.frame_at(None)?;
     if args.embedded {
@@ -161,8 +162,8 @@ fn json(b: &AtmosphereBench) -> String {
 /// `--objects`: the scene's objects (if a scene is given and has some), else the sphere grid.
 fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
     let (layer, camera) = if args.scene.is_some() || args.scene_args.preset.is_some() {
-        let scene =
-            super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new()).context("cannot build the scene")?;
+        let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
+            .context("cannot build the scene")?;
         let frame = scene.frame_at(None)?;
         if frame.objects.objects.is_empty() {
             bail!("bench --objects times the object pass: the scene has no [[objects]]");

@@ -8,8 +8,8 @@ use crate::cli::CheckArgs;
 /// Validates a scene file (or a preset, or the default scene) and prints a one-line summary of
 /// what it describes.
 pub(crate) fn run(args: &CheckArgs) -> Result<()> {
-    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
         .with_context(|| format!("{what} is not a valid scene"))?;
     // Builds the meshes and loads the mesh and texture files, so those are checked too.
     let frame = scene

@@ -19,13 +19,13 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let format = OutputFormat::from_path(&args.output)?;
     crate::output::check_parent_dir(&args.output)?;
 
-    let mut extra = super::size_overrides(args.width, args.height);
+    let mut extra = super::scene_input::size_overrides(args.width, args.height);
     if let Some(time) = &args.time {
         // Quoted, so the scene's own validation names the rule for a bad time.
         extra.push(format!("time.time_of_day=\"{}\"", time.replace('"', "")));
     }
-    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
     if args.reference {

@@ -51,8 +51,9 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             bail!("{name} = {value}: must lie in [0, 180] degrees");
         }
     }
-    let scene_args = super::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
-    let scene = super::load_scene(args.scene.as_deref(), &scene_args, Vec::new()).context("cannot build the scene")?;
+    let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, Vec::new())
+        .context("cannot build the scene")?;
     let frame = scene.frame_at(None)?;
     let Sky::Atmosphere(scene_sky) = frame.sky else {
         bail!("sky-sample samples the atmosphere: the scene needs sky.model = \"atmosphere\"");

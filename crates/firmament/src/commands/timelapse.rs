@@ -8,6 +8,7 @@
 
 mod animation;
 mod contact_sheet;
+mod frames;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -322,9 +323,9 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
     let dir = args.output.as_path();
     check_output_dir(dir)?;
 
-    let extra = super::size_overrides(args.width, args.height);
-    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::load_scene(args.scene.as_deref(), &args.scene_args, extra)
+    let extra = super::scene_input::size_overrides(args.width, args.height);
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
     crate::limits::check_pixels("each frame", width, height)?;
@@ -471,23 +472,6 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         started.elapsed().as_secs_f64()
     );
     Ok(Outcome::Done)
-}
-
-/// Reads a frame back from its PNG.
-fn read_frame(path: &Path) -> Result<image::DynamicImage> {
-    image::open(path).with_context(|| format!("cannot read the frame {}", path.display()))
-}
-
-/// `(width, height)` scaled down (never up) so that the longer side is at most `longest`,
-/// keeping the aspect ratio; each side at least 1.
-fn fit_within(width: u32, height: u32, longest: u32) -> (u32, u32) {
-    let side = width.max(height);
-    if side <= longest {
-        return (width, height);
-    }
-    let scale = f64::from(longest) / f64::from(side);
-    let fit = |v: u32| ((f64::from(v) * scale).round() as u32).clamp(1, longest);
-    (fit(width), fit(height))
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use super::stages::{
 use std::num::NonZeroU64;
 
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms, codes};
-use crate::passes::{PassPipeline, load_color_attachment};
+use crate::passes::common::{PassPipeline, load_color_attachment};
 use crate::shaders;
 
 /// The five bind group layout entries of the aerial-perspective volume in a user's pipeline, at
@@ -294,5 +294,30 @@ impl AerialPerspectiveStages {
             pass.set_bind_group(0, bind_group, &[]);
             pass.draw(0..3, 0..1);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shaders;
+
+    #[test]
+    fn the_layout_entries_are_the_include_s_five_bindings_in_order() {
+        let entries = aerial_perspective_layout_entries(10);
+        assert_eq!(entries.map(|e| e.binding), [10, 11, 12, 13, 14]);
+    }
+
+    #[test]
+    fn the_shaders_declare_the_volume_s_size() {
+        let (x, y, z) = AERIAL_PERSPECTIVE_SIZE;
+        let declared = format!("vec3<u32>({x}u, {y}u, {z}u)");
+        assert!(shaders::FIRMAMENT_AERIAL_PERSPECTIVE_WGSL.contains(&format!(
+            "const FIRMAMENT_AERIAL_PERSPECTIVE_SIZE: vec3<u32> = {declared};"
+        )));
+        assert!(
+            shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME
+                .contains(&format!("const AERIAL_PERSPECTIVE_SIZE: vec3<u32> = {declared};"))
+        );
     }
 }

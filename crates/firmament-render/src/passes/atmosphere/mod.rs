@@ -40,8 +40,8 @@ use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms, codes};
-use crate::passes::SkyTarget;
-use crate::passes::{PassPipeline, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer};
+use crate::passes::common::SkyTarget;
+use crate::passes::common::{PassPipeline, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer};
 use crate::shaders;
 
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};

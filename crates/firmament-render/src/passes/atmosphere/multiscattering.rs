@@ -12,7 +12,7 @@ use super::stages::{
     Stage, bind_group, binding, moment_entries, moment_resources, sampler_entry, texture_entry, uniform_entry,
 };
 use crate::gpu_types::codes;
-use crate::passes::PassPipeline;
+use crate::passes::common::PassPipeline;
 use crate::shaders;
 
 /// Iterates after the first (single scattering and the sunlit ground): iterate k holds orders up

@@ -17,7 +17,7 @@ use firmament_core::frame::AtmosphereSky;
 use super::luts::AtmosphereLuts;
 use super::stages::{ComputeStage, binding, sampler_entry, storage_buffer_entry, texture_entry, uniform_entry};
 use crate::gpu_types::{SkyLightingGpu, SkyLightingParamsUniforms};
-use crate::passes::uniform_buffer;
+use crate::passes::common::uniform_buffer;
 use crate::shaders;
 
 /// The bind group layout entry of the lighting buffer in a user's pipeline, at `binding`: a

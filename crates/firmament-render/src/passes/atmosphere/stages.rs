@@ -1,33 +1,33 @@
 //! The building blocks of the atmosphere pass: bind group layout entries, and a pipeline with its
 //! bind group for full-screen draws (`Stage`) and compute dispatches (`ComputeStage`).
 
-use crate::passes::PassPipeline;
+use crate::passes::common::PassPipeline;
 
 /// Binding numbers shared by every atmosphere shader: those `shaders/atmosphere/bindings.wgsl`
 /// declares (a test compares the two).
 pub(super) mod binding {
-    pub(in crate::passes::atmosphere) const PARAMS: u32 = 0;
-    pub(in crate::passes::atmosphere) const VIEW: u32 = 1;
-    pub(in crate::passes::atmosphere) const TRANSMITTANCE: u32 = 2;
-    pub(in crate::passes::atmosphere) const MULTISCATTERING: u32 = 3;
-    pub(in crate::passes::atmosphere) const SKY_VIEW: u32 = 4;
-    pub(in crate::passes::atmosphere) const SAMPLER: u32 = 5;
-    pub(in crate::passes::atmosphere) const TRANSMITTANCE_OUT: u32 = 6;
-    pub(in crate::passes::atmosphere) const IRRADIANCE: u32 = 7;
-    pub(in crate::passes::atmosphere) const AERIAL_SCATTERING_OUT: u32 = 8;
-    pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE_OUT: u32 = 9;
-    pub(in crate::passes::atmosphere) const AERIAL_SCATTERING: u32 = 10;
-    pub(in crate::passes::atmosphere) const AERIAL_TRANSMITTANCE: u32 = 11;
-    pub(in crate::passes::atmosphere) const SCENE_DEPTH: u32 = 12;
-    pub(in crate::passes::atmosphere) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
-    pub(in crate::passes::atmosphere) const SKY_LIGHTING_PARAMS: u32 = 25;
-    pub(in crate::passes::atmosphere) const SKY_LIGHTING_OUT: u32 = 26;
+    pub(crate) const PARAMS: u32 = 0;
+    pub(crate) const VIEW: u32 = 1;
+    pub(crate) const TRANSMITTANCE: u32 = 2;
+    pub(crate) const MULTISCATTERING: u32 = 3;
+    pub(crate) const SKY_VIEW: u32 = 4;
+    pub(crate) const SAMPLER: u32 = 5;
+    pub(crate) const TRANSMITTANCE_OUT: u32 = 6;
+    pub(crate) const IRRADIANCE: u32 = 7;
+    pub(crate) const AERIAL_SCATTERING_OUT: u32 = 8;
+    pub(crate) const AERIAL_TRANSMITTANCE_OUT: u32 = 9;
+    pub(crate) const AERIAL_SCATTERING: u32 = 10;
+    pub(crate) const AERIAL_TRANSMITTANCE: u32 = 11;
+    pub(crate) const SCENE_DEPTH: u32 = 12;
+    pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
+    pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
+    pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
     /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
     /// `atmosphere/luts.wgsl`).
-    pub(in crate::passes::atmosphere) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
+    pub(crate) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
         [MULTISCATTERING, 15, 17, 18, 21, 22, 27];
     /// The previous iterate's moments, while the multiple-scattering LUTs are built.
-    pub(in crate::passes::atmosphere) const PREVIOUS_MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
+    pub(crate) const PREVIOUS_MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
         [13, 16, 19, 20, 23, 24, 28];
 }
 
@@ -218,7 +218,7 @@ impl ComputeStage {
 pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ..crate::passes::uniform_entry(binding)
+        ..crate::passes::common::uniform_entry(binding)
     }
 }
 

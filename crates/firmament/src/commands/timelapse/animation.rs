@@ -10,7 +10,7 @@ use anyhow::{Context, Result, anyhow};
 
 use rayon::prelude::*;
 
-use super::{fit_within, read_frame};
+use super::frames::{fit_within, read_frame};
 use crate::output::write_atomically_or_abandon;
 
 /// The GIF's longest side, pixels.

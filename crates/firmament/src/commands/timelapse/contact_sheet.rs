@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use image::{Rgb, RgbImage};
 
-use super::{fit_within, read_frame};
+use super::frames::{fit_within, read_frame};
 use crate::output::write_atomically;
 
 /// Thumbnails per row (fewer when there are fewer frames).

@@ -16,10 +16,10 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
-use super::ViewOptions;
 use super::fault::InjectedFault;
 use super::gpu::{EguiFrame, Gpu, Presented};
 use super::input::{self, Command};
+use super::options::ViewOptions;
 use super::panel::{self, FrameInfo, PanelState, Request};
 use super::session::Session;
 use crate::output::{write_exr, write_png};

@@ -22,6 +22,7 @@ mod fault;
 mod flight;
 mod gpu;
 mod input;
+mod options;
 mod panel;
 mod scene_editor;
 mod session;
@@ -42,37 +43,11 @@ use firmament_render::Backend;
 use winit::event_loop::EventLoop;
 
 use crate::cli::ViewArgs;
-
-/// The viewer's settings from the command line.
-#[derive(Debug, Clone)]
-pub(crate) struct ViewOptions {
-    /// Window size, physical pixels.
-    pub(crate) size: (u32, u32),
-    /// Frames to draw before closing.
-    pub(crate) frames: Option<u64>,
-    /// Screenshot written after the last frame.
-    pub(crate) screenshot: Option<PathBuf>,
-    /// Where "save scene" writes by default.
-    pub(crate) save_path: PathBuf,
-    /// Save the scene to `save_path` after the last of `frames`.
-    pub(crate) save_at_exit: bool,
-    /// Start with the clock stopped.
-    pub(crate) paused: bool,
-    /// Start with NeHe's controls.
-    pub(crate) nehe: bool,
-    /// Share of the window's pixels the scene is drawn at.
-    pub(crate) render_scale: f32,
-    /// Graphics API.
-    pub(crate) backend: Backend,
-    /// What the window's title names.
-    pub(crate) title: String,
-    /// A fault to inject for tests (`FIRMAMENT_VIEW_INJECT_FAULT`).
-    pub(crate) fault: Option<fault::InjectedFault>,
-}
+use options::ViewOptions;
 
 /// Opens the viewer and runs it until the window closes (or `--frames` are drawn).
 pub(crate) fn run(args: &ViewArgs) -> Result<()> {
-    let what = super::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
     crate::limits::check_pixels("the window (--size)", args.size.0, args.size.1)?;
     // Check the outputs before opening anything, so a typo fails at once.
     if let Some(path) = &args.screenshot {
@@ -83,7 +58,7 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
         crate::output::check_parent_dir(path)?;
     }
     let fault = fault::InjectedFault::from_env()?;
-    let doc = super::load_document(
+    let doc = super::scene_input::load_document(
         args.scene.as_deref(),
         args.scene_args.preset.as_deref(),
         &args.scene_args.overrides,
