@@ -2,10 +2,13 @@
 //! times (`--objects`), the lens-flare passes' (`--flares`), or a whole frame on the CLI's path
 //! against the embedded path (`--embedded`), on this machine's adapter.
 
+/// The fragment and compute baselines every mode is measured against.
+mod baseline;
 /// The measurements themselves, on the renderer's passes (its `internals`).
 mod measure;
 
 use anyhow::{Context, Result, bail};
+use baseline::Baselines;
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use measure::{
@@ -42,20 +45,33 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     };
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_atmosphere(&ctx, sky, &frame.camera, args.width, args.height, args.frames)?;
+    let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
     if args.json {
-        println!("{}", json(&result));
+        println!("{}", json(&result, &baselines));
     } else {
-        print_table(&result);
+        print_table(&result, &baselines);
     }
     Ok(())
+}
+
+/// `object` with the baselines' fields and the ratio of each of `rows` (JSON key, milliseconds)
+/// to each baseline, as one line of JSON.
+fn with_baselines(mut object: serde_json::Value, baselines: &Baselines, rows: &[(&str, f64)]) -> String {
+    if let Some(map) = object.as_object_mut() {
+        for (key, value) in baselines.json_fields(rows) {
+            map.insert(key.to_owned(), value);
+        }
+    }
+    object.to_string()
 }
 
 /// `--embedded`: the scene's frame on both paths.
 fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
     let ctx = GpuContext::headless(args.backend.into())?;
     let b = bench_embedding(&ctx, frame, args.width, args.height, args.frames)?;
+    let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
     if args.json {
-        println!("{}", embedding_json(&b));
+        println!("{}", embedding_json(&b, &baselines));
         return Ok(());
     }
     println!(
@@ -66,7 +82,7 @@ fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
         b.frames,
         b.timing.describe()
     );
-    for (name, ms) in [
+    baselines.print_rows(&[
         ("CLI path: Renderer::record into an 8-bit view", b.cli_ms),
         (
             "embedded: caller's clear + record_into (HDR, no tone mapping)",
@@ -77,9 +93,7 @@ fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
             "embedded: output pass, no aerial perspective",
             b.embedded_output_no_aerial_ms,
         ),
-    ] {
-        println!("  {name:<62} {ms:>10.3} ms");
-    }
+    ]);
     println!(
         "  embedded with output / CLI: {:.2}x ({:.2}x without aerial perspective)",
         b.embedded_output_ms / b.cli_ms,
@@ -88,8 +102,8 @@ fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
     Ok(())
 }
 
-fn embedding_json(b: &EmbeddingBench) -> String {
-    serde_json::json!({
+fn embedding_json(b: &EmbeddingBench, baselines: &Baselines) -> String {
+    let object = serde_json::json!({
         "adapter": b.adapter,
         "width": b.width,
         "height": b.height,
@@ -99,11 +113,17 @@ fn embedding_json(b: &EmbeddingBench) -> String {
         "embedded_hdr_ms": b.embedded_hdr_ms,
         "embedded_output_ms": b.embedded_output_ms,
         "embedded_output_no_aerial_ms": b.embedded_output_no_aerial_ms,
-    })
-    .to_string()
+    });
+    let rows = [
+        ("cli_ms", b.cli_ms),
+        ("embedded_hdr_ms", b.embedded_hdr_ms),
+        ("embedded_output_ms", b.embedded_output_ms),
+        ("embedded_output_no_aerial_ms", b.embedded_output_no_aerial_ms),
+    ];
+    with_baselines(object, baselines, &rows)
 }
 
-fn print_table(b: &AtmosphereBench) {
+fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
     println!(
         "{} — {}x{}, {} sun(s), median of {} frames, {}",
         b.adapter,
@@ -113,7 +133,7 @@ fn print_table(b: &AtmosphereBench) {
         b.frames,
         b.timing.describe()
     );
-    for (name, ms) in [
+    baselines.print_rows(&[
         (
             "medium LUTs (transmittance, multiple scattering, irradiance)",
             b.medium_luts_ms,
@@ -127,9 +147,7 @@ fn print_table(b: &AtmosphereBench) {
         ),
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
-    ] {
-        println!("  {name:<62} {ms:>10.3} ms");
-    }
+    ]);
     println!(
         "  brute force / LUT path: {:.1}x; LUT vs march: median {:.2} %, worst {:.2} %",
         b.march_frame_ms / b.lut_frame_ms,
@@ -138,8 +156,8 @@ fn print_table(b: &AtmosphereBench) {
     );
 }
 
-fn json(b: &AtmosphereBench) -> String {
-    serde_json::json!({
+fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
+    let object = serde_json::json!({
         "adapter": b.adapter,
         "width": b.width,
         "height": b.height,
@@ -155,8 +173,17 @@ fn json(b: &AtmosphereBench) -> String {
         "march_frame_ms": b.march_frame_ms,
         "difference_median": b.difference.0,
         "difference_worst": b.difference.1,
-    })
-    .to_string()
+    });
+    let rows = [
+        ("medium_luts_ms", b.medium_luts_ms),
+        ("sky_view_lut_ms", b.sky_view_lut_ms),
+        ("sky_ms", b.sky_ms),
+        ("aerial_volume_ms", b.aerial_volume_ms),
+        ("aerial_apply_ms", b.aerial_apply_ms),
+        ("lut_frame_ms", b.lut_frame_ms),
+        ("march_frame_ms", b.march_frame_ms),
+    ];
+    with_baselines(object, baselines, &rows)
 }
 
 /// `--objects`: the scene's objects (if a scene is given and has some), else the sphere grid.
@@ -174,10 +201,12 @@ fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
     };
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_objects(&ctx, &layer, &camera, args.width, args.height, args.frames)?;
+    let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
     if args.json {
         println!(
             "{}",
-            serde_json::json!({
+            with_baselines(
+                serde_json::json!({
                 "adapter": result.adapter,
                 "width": result.width,
                 "height": result.height,
@@ -188,15 +217,18 @@ fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
                 "timing": result.timing.describe(),
                 "gouraud_ms": result.gouraud_ms,
                 "phong_ms": result.phong_ms,
-            })
+                }),
+                &baselines,
+                &[("gouraud_ms", result.gouraud_ms), ("phong_ms", result.phong_ms)],
+            )
         );
     } else {
-        print_objects(&result);
+        print_objects(&result, &baselines);
     }
     Ok(())
 }
 
-fn print_objects(b: &ObjectBench) {
+fn print_objects(b: &ObjectBench, baselines: &Baselines) {
     println!(
         "{} — {}x{}, {} objects, {} triangles, {} lights, median of {} frames, {}",
         b.adapter,
@@ -208,8 +240,10 @@ fn print_objects(b: &ObjectBench) {
         b.frames,
         b.timing.describe()
     );
-    println!("  {:<30} {:>10.3} ms", "Gouraud (lit per vertex)", b.gouraud_ms);
-    println!("  {:<30} {:>10.3} ms", "Phong (lit per fragment)", b.phong_ms);
+    baselines.print_rows(&[
+        ("Gouraud (lit per vertex)", b.gouraud_ms),
+        ("Phong (lit per fragment)", b.phong_ms),
+    ]);
     println!("  Phong / Gouraud: {:.2}x", b.phong_ms / b.gouraud_ms);
 }
 
@@ -217,6 +251,18 @@ fn print_objects(b: &ObjectBench) {
 fn run_flares(args: &BenchArgs) -> Result<()> {
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_flares(&ctx, args.width, args.height, args.frames, 32)?;
+    let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
+    let ratio_rows: Vec<(String, f64)> = result
+        .rows
+        .iter()
+        .flat_map(|r| {
+            [
+                (format!("sources_{}_occlusion_ms", r.sources), r.occlusion_ms),
+                (format!("sources_{}_total_ms", r.sources), r.total_ms),
+            ]
+        })
+        .collect();
+    let ratio_rows: Vec<(&str, f64)> = ratio_rows.iter().map(|(key, ms)| (key.as_str(), *ms)).collect();
     if args.json {
         let rows: Vec<_> = result
             .rows
@@ -227,19 +273,35 @@ fn run_flares(args: &BenchArgs) -> Result<()> {
             .collect();
         println!(
             "{}",
-            serde_json::json!({
-                "adapter": result.adapter,
-                "width": result.width,
-                "height": result.height,
-                "frames": result.frames,
-                "elements": result.elements,
-                "samples": result.samples,
-                "timing": result.timing.describe(),
-                "rows": rows,
-            })
+            with_baselines(
+                serde_json::json!({
+                    "adapter": result.adapter,
+                    "width": result.width,
+                    "height": result.height,
+                    "frames": result.frames,
+                    "elements": result.elements,
+                    "samples": result.samples,
+                    "timing": result.timing.describe(),
+                    "rows": rows,
+                }),
+                &baselines,
+                &ratio_rows,
+            )
         );
     } else {
         print_flares(&result);
+        let labels: Vec<(String, f64)> = result
+            .rows
+            .iter()
+            .flat_map(|r| {
+                [
+                    (format!("{} sources: occlusion", r.sources), r.occlusion_ms),
+                    (format!("{} sources: occlusion and elements", r.sources), r.total_ms),
+                ]
+            })
+            .collect();
+        let labels: Vec<(&str, f64)> = labels.iter().map(|(label, ms)| (label.as_str(), *ms)).collect();
+        baselines.print_rows(&labels);
     }
     Ok(())
 }

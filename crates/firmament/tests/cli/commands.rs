@@ -406,6 +406,57 @@ fn bench_reports_every_pass_as_json() {
         stdout.contains("GPU timestamps") || stdout.contains("wall time"),
         "{stdout}"
     );
+    // Both baselines, and every pass's ratio to each.
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    for key in ["baseline_fragment_ms", "baseline_compute_ms"] {
+        let ms = json[key].as_f64().unwrap_or(-1.0);
+        assert!(ms.is_finite() && ms > 0.0, "{key}: {stdout}");
+    }
+    for pass in [
+        "medium_luts_ms",
+        "sky_view_lut_ms",
+        "sky_ms",
+        "lut_frame_ms",
+        "march_frame_ms",
+    ] {
+        for baseline in ["fragment", "compute"] {
+            let ratio = json["ratios"][pass][baseline].as_f64().unwrap_or(-1.0);
+            let expected = json[pass].as_f64().unwrap_or(f64::NAN)
+                / json[format!("baseline_{baseline}_ms")].as_f64().unwrap_or(f64::NAN);
+            assert!(
+                ratio > 0.0 && (ratio - expected).abs() <= 1e-9 * expected,
+                "{pass} / {baseline}: {stdout}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bench_objects_and_flares_report_their_baselines() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let size = ["--width", "16", "--height", "9", "--frames", "1", "--json", "-q"];
+    for (mode, pass) in [
+        (&["--objects", "2"][..], "phong_ms"),
+        (&["--flares"][..], "sources_64_total_ms"),
+    ] {
+        let args: Vec<&str> = ["bench"].iter().chain(mode).chain(&size).copied().collect();
+        let out = firmament(dir.path(), &args);
+        assert!(out.status.success(), "{mode:?}: {}", stderr(&out));
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        let json: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+        for key in ["baseline_fragment_ms", "baseline_compute_ms"] {
+            assert!(
+                json[key].as_f64().is_some_and(|ms| ms > 0.0),
+                "{mode:?} {key}: {stdout}"
+            );
+        }
+        for baseline in ["fragment", "compute"] {
+            assert!(
+                json["ratios"][pass][baseline].as_f64().is_some_and(|r| r > 0.0),
+                "{mode:?} {pass}: {stdout}"
+            );
+        }
+    }
 }
 
 #[test]
@@ -434,10 +485,16 @@ fn bench_embedded_times_both_paths() {
         "embedded_hdr_ms",
         "embedded_output_ms",
         "embedded_output_no_aerial_ms",
+        "baseline_fragment_ms",
+        "baseline_compute_ms",
     ] {
         let ms = json[key].as_f64().unwrap_or(-1.0);
         assert!(ms.is_finite() && ms > 0.0, "{key}: {stdout}");
     }
+    assert!(
+        json["ratios"]["cli_ms"]["compute"].as_f64().is_some_and(|r| r > 0.0),
+        "{stdout}"
+    );
 }
 
 #[test]

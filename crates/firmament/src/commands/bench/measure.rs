@@ -91,7 +91,7 @@ const BENCH_PHASE: &str = "bench";
 ///
 /// With [`Timing::GpuTimestamps`] the time is the GPU's between timestamps written before and
 /// after `encode`'s commands.
-fn median_ms(
+pub(super) fn median_ms(
     ctx: &GpuContext,
     frames: u32,
     written: &wgpu::Texture,
