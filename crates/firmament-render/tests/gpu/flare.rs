@@ -16,21 +16,14 @@ use firmament_core::flare::{FlareElement, FlareLayer, FlareShape, FlareSource, L
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::{Ray, Sphere};
 use firmament_core::{Camera, Frame};
-use glam::{DMat4, DQuat, DVec2, DVec3, DVec4};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 120;
 
 /// At the origin looking down −z, 45° like NeHe's lesson.
 fn camera() -> Camera {
-    Camera {
-        position: DVec3::ZERO,
-        orientation: DQuat::IDENTITY,
-        fov_y: 45f64.to_radians(),
-        aspect: f64::from(WIDTH) / f64::from(HEIGHT),
-        near: 0.5,
-        far: Some(1000.0),
-    }
+    crate::support::origin_camera_45(WIDTH, HEIGHT)
 }
 
 /// A light 50 m ahead, 8 m in radius (a disc of about 23 pixels' radius).

@@ -32,14 +32,7 @@ const HEIGHT: u32 = 120;
 
 /// At the origin looking down −z, 45° (a pixel is ~0.3 mrad).
 fn camera() -> Camera {
-    Camera {
-        position: DVec3::ZERO,
-        orientation: DQuat::IDENTITY,
-        fov_y: 45f64.to_radians(),
-        aspect: f64::from(WIDTH) / f64::from(HEIGHT),
-        near: 0.5,
-        far: Some(1000.0),
-    }
+    crate::support::origin_camera_45(WIDTH, HEIGHT)
 }
 
 fn frame(camera: Camera, night: NightLayer, objects: Vec<SceneObject>) -> Frame {

@@ -56,7 +56,7 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
 
 /// `object` with the baselines' fields and the ratio of each of `rows` (JSON key, milliseconds)
 /// to each baseline, as one line of JSON.
-fn with_baselines(mut object: serde_json::Value, baselines: &Baselines, rows: &[(&str, f64)]) -> String {
+fn with_baselines(mut object: serde_json::Value, baselines: &Baselines, rows: &[(impl AsRef<str>, f64)]) -> String {
     if let Some(map) = object.as_object_mut() {
         for (key, value) in baselines.json_fields(rows) {
             map.insert(key.to_owned(), value);
@@ -252,18 +252,17 @@ fn run_flares(args: &BenchArgs) -> Result<()> {
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_flares(&ctx, args.width, args.height, args.frames, 32)?;
     let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
-    let ratio_rows: Vec<(String, f64)> = result
-        .rows
-        .iter()
-        .flat_map(|r| {
-            [
-                (format!("sources_{}_occlusion_ms", r.sources), r.occlusion_ms),
-                (format!("sources_{}_total_ms", r.sources), r.total_ms),
-            ]
-        })
-        .collect();
-    let ratio_rows: Vec<(&str, f64)> = ratio_rows.iter().map(|(key, ms)| (key.as_str(), *ms)).collect();
     if args.json {
+        let ratio_rows: Vec<(String, f64)> = result
+            .rows
+            .iter()
+            .flat_map(|r| {
+                [
+                    (format!("sources_{}_occlusion_ms", r.sources), r.occlusion_ms),
+                    (format!("sources_{}_total_ms", r.sources), r.total_ms),
+                ]
+            })
+            .collect();
         let rows: Vec<_> = result
             .rows
             .iter()
@@ -300,7 +299,6 @@ fn run_flares(args: &BenchArgs) -> Result<()> {
                 ]
             })
             .collect();
-        let labels: Vec<(&str, f64)> = labels.iter().map(|(label, ms)| (label.as_str(), *ms)).collect();
         baselines.print_rows(&labels);
     }
     Ok(())

@@ -103,3 +103,16 @@ pub(crate) fn sky_reference(
         },
     )
 }
+
+/// At the origin looking down −z with a 45° vertical field of view (NeHe's lesson 44), near plane
+/// 0.5 m, far plane 1 km, for a `width` × `height` image.
+pub(crate) fn origin_camera_45(width: u32, height: u32) -> firmament_core::Camera {
+    firmament_core::Camera {
+        position: glam::DVec3::ZERO,
+        orientation: glam::DQuat::IDENTITY,
+        fov_y: 45f64.to_radians(),
+        aspect: f64::from(width) / f64::from(height),
+        near: 0.5,
+        far: Some(1000.0),
+    }
+}

@@ -158,7 +158,7 @@ impl Baselines {
     }
 
     /// Prints the baselines, then each `(name, ms)` with its ratio to each.
-    pub(crate) fn print_rows(&self, rows: &[(&str, f64)]) {
+    pub(crate) fn print_rows(&self, rows: &[(impl AsRef<str>, f64)]) {
         println!(
             "  {:<62} {:>10.3} ms",
             "baseline: full-screen fragment pass (a constant)", self.fragment_ms
@@ -168,7 +168,8 @@ impl Baselines {
             "baseline: compute pass (the same texture)", self.compute_ms
         );
         println!("  {:<62} {:>13}  {:>10}  {:>10}", "", "", "/ fragment", "/ compute");
-        for &(name, ms) in rows {
+        for (name, ms) in rows {
+            let (name, ms) = (name.as_ref(), *ms);
             let (fragment, compute) = self.ratios(ms);
             println!("  {name:<62} {ms:>10.3} ms  {fragment:>9.1}x  {compute:>9.1}x");
         }
@@ -176,13 +177,13 @@ impl Baselines {
 
     /// The baselines' JSON fields, and `ratios`: for each `(name, ms)`, its ratio to each
     /// baseline (`{"name": {"fragment": …, "compute": …}}`).
-    pub(crate) fn json_fields(&self, rows: &[(&str, f64)]) -> [(&'static str, serde_json::Value); 3] {
+    pub(crate) fn json_fields(&self, rows: &[(impl AsRef<str>, f64)]) -> [(&'static str, serde_json::Value); 3] {
         let ratios: serde_json::Map<String, serde_json::Value> = rows
             .iter()
-            .map(|&(name, ms)| {
-                let (fragment, compute) = self.ratios(ms);
+            .map(|(name, ms)| {
+                let (fragment, compute) = self.ratios(*ms);
                 (
-                    name.to_owned(),
+                    name.as_ref().to_owned(),
                     serde_json::json!({ "fragment": fragment, "compute": compute }),
                 )
             })
