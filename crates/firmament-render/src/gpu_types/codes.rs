@@ -89,10 +89,6 @@ codes! {
     SKY_MODE_MARCH = 1;
     /// Sky pass variant: both, blended by `view.local_up.w` (across the top of the atmosphere).
     SKY_MODE_BLEND = 2;
-    /// Multiple-scattering draw (`OUTPUT` of `atmosphere/multiscattering_lut.wgsl`): the moments.
-    MULTISCATTERING_OUTPUT_MOMENTS = 0;
-    /// Multiple-scattering draw: the ground's sky irradiance row.
-    MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE = 1;
     /// Aerial-perspective draw (`OUTPUT` of `atmosphere/aerial_perspective.wgsl`): the
     /// transmittance, blended `dst · src`.
     AERIAL_OUTPUT_TRANSMITTANCE = 0;

@@ -211,23 +211,11 @@ impl PassPipeline<'_> {
         device: &wgpu::Device,
         blend: Option<wgpu::BlendState>,
     ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-        self.build_with_targets(device, blend, 1)
-    }
-
-    /// Builds the pipeline with `count` colour targets of the same format and blending (the
-    /// shader writes `@location(0)` … `@location(count − 1)`), and its bind group layout.
-    pub(crate) fn build_with_targets(
-        &self,
-        device: &wgpu::Device,
-        blend: Option<wgpu::BlendState>,
-        count: usize,
-    ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
-        let target = wgpu::ColorTargetState {
+        let targets = [Some(wgpu::ColorTargetState {
             format: self.color,
             blend,
             write_mask: wgpu::ColorWrites::ALL,
-        };
-        let targets = vec![Some(target); count];
+        })];
         let owner = self.owner;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&format!("firmament {owner} shader")),

@@ -339,7 +339,10 @@ mod tests {
     fn validate(name: &str, source: &str) -> naga::Module {
         let module =
             naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty())
+        // f16 packing (`pack2x16float`, core WGSL) is the one capability: wgpu grants it with
+        // `DownlevelFlags::SHADER_F16_IN_F32`, which its Vulkan and GL backends always report.
+        let capabilities = naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32;
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), capabilities)
             .validate(&module)
             .unwrap_or_else(|e| panic!("{name}: {e:?}"));
         module

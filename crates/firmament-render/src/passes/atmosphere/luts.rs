@@ -8,7 +8,9 @@
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
 //!
-//! The sizes are mirrored by constants in `atmosphere/common.wgsl`, `luts.wgsl` and `view.wgsl`.
+//! Every LUT is written by a compute pass (the moments through a buffer and copies, see
+//! `multiscattering.rs`). The sizes are mirrored by constants in `atmosphere/common.wgsl`,
+//! `luts.wgsl`, `view.wgsl` and `multiscattering_lut.wgsl`.
 
 use firmament_core::frame::MAX_SUNS;
 
@@ -24,10 +26,10 @@ pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
 /// Number of multiple-scattering moment textures (`Moments` in `atmosphere/luts.wgsl`).
 pub const MULTISCATTERING_MOMENTS: usize = 7;
 /// Their names, for labels.
-pub(super) const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z", "band 3"];
+const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z", "band 3"];
 
 /// The views of a set of moment textures.
-pub(super) fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
+fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
     let mut i = 0;
     [(); MULTISCATTERING_MOMENTS].map(|()| {
         i += 1;
@@ -114,7 +116,7 @@ pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MU
             &format!("multiple-scattering {moment} moment{suffix}"),
             MULTISCATTERING_SIZE,
             MULTISCATTERING_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            wgpu::TextureUsages::empty(),
         )
     });
     let irradiance = Lut::new(
@@ -122,7 +124,7 @@ pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MU
         &format!("sky irradiance{suffix}"),
         IRRADIANCE_SIZE,
         IRRADIANCE_FORMAT,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
+        wgpu::TextureUsages::STORAGE_BINDING,
     );
     (transmittance, multiscattering, irradiance)
 }
@@ -166,7 +168,7 @@ impl AtmosphereLuts {
                 "sky-view",
                 (SKY_VIEW_TILE.0 * MAX_SUNS as u32, SKY_VIEW_TILE.1),
                 SKY_VIEW_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
+                wgpu::TextureUsages::STORAGE_BINDING,
             ),
             aerial_scattering: Lut::new(
                 device,

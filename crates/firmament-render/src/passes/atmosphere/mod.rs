@@ -109,8 +109,8 @@ pub struct AtmospherePass {
     view: wgpu::Buffer,
     transmittance: ComputeStage,
     multiscattering: MultiscatteringStages,
-    irradiance: Stage,
-    sky_view: Stage,
+    irradiance: ComputeStage,
+    sky_view: ComputeStage,
     aerial: AerialPerspectiveStages,
     lighting: SkyLightingStage,
     sampler: wgpu::Sampler,
@@ -155,16 +155,6 @@ impl AtmospherePass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        let lut_pipeline = |owner, source, entries, color| PassPipeline {
-            owner,
-            source,
-            entries,
-            color,
-            depth_stencil: None,
-            vertex_buffers: &[],
-            primitive: wgpu::PrimitiveState::default(),
-            constants: &[],
-        };
         let transmittance = ComputeStage::new(
             device,
             "AtmospherePass transmittance LUT",
@@ -224,20 +214,23 @@ impl AtmospherePass {
                 .cloned()
                 .collect()
         };
-        let sky_view_entries: Vec<_> = view_entries
+        let mut sky_view_entries: Vec<_> = view_entries
             .iter()
             .filter(|e| e.binding != binding::SKY_VIEW)
             .copied()
             .collect();
-        let sky_view = Stage::new(
+        let mut sky_view_resources = resources_for(&sky_view_entries);
+        sky_view_entries.push(storage_entry(binding::SKY_VIEW_OUT, SKY_VIEW_FORMAT));
+        sky_view_resources.push((
+            binding::SKY_VIEW_OUT,
+            wgpu::BindingResource::TextureView(&luts.sky_view.view),
+        ));
+        let sky_view = ComputeStage::new(
             device,
-            lut_pipeline(
-                "AtmospherePass sky-view LUT",
-                &shaders::ATMOSPHERE_SKY_VIEW_LUT,
-                &sky_view_entries,
-                SKY_VIEW_FORMAT,
-            ),
-            &resources_for(&sky_view_entries),
+            "AtmospherePass sky-view LUT",
+            &shaders::ATMOSPHERE_SKY_VIEW_LUT,
+            &sky_view_entries,
+            &sky_view_resources,
         );
         let mut irradiance_resources = vec![
             (binding::PARAMS, build.params.as_entire_binding()),
@@ -251,14 +244,16 @@ impl AtmospherePass {
             binding::MULTISCATTERING_MOMENTS,
             build.multiscattering_views(),
         ));
-        let irradiance = Stage::new(
+        irradiance_entries.push(storage_entry(binding::IRRADIANCE_OUT, IRRADIANCE_FORMAT));
+        irradiance_resources.push((
+            binding::IRRADIANCE_OUT,
+            wgpu::BindingResource::TextureView(&build.irradiance.view),
+        ));
+        let irradiance = ComputeStage::new(
             device,
-            lut_pipeline(
-                "AtmospherePass sky irradiance LUT",
-                &shaders::ATMOSPHERE_IRRADIANCE_LUT,
-                &irradiance_entries,
-                IRRADIANCE_FORMAT,
-            ),
+            "AtmospherePass sky irradiance LUT",
+            &shaders::ATMOSPHERE_IRRADIANCE_LUT,
+            &irradiance_entries,
             &irradiance_resources,
         );
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
@@ -491,14 +486,11 @@ impl AtmospherePass {
                     .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
                 self.multiscattering.record_start(encoder, &self.build);
             }
-            BuildStep::Iterate(iterate) => self.multiscattering.record_iterate(encoder, &self.build, iterate),
+            BuildStep::Iterate(_) => self.multiscattering.record_iterate(encoder, &self.build),
             BuildStep::IrradianceAndSwap => {
-                self.irradiance.render(
-                    encoder,
-                    "firmament AtmospherePass sky irradiance LUT",
-                    &self.build.irradiance.view,
-                    None,
-                );
+                let (width, height) = luts::IRRADIANCE_SIZE;
+                // One workgroup per texel (irradiance_lut.wgsl).
+                self.irradiance.dispatch(encoder, (width, height, 1));
                 self.build.copy_into(encoder, &self.luts, &self.params);
                 self.rebuild.builds.set(self.rebuild.builds.get() + 1);
             }
@@ -508,12 +500,10 @@ impl AtmospherePass {
     /// Encodes the sky-view LUT tiles of this frame's suns.
     pub fn record_sky_view_lut(&self, encoder: &mut wgpu::CommandEncoder) {
         if self.sun_count > 0 {
-            self.sky_view.render(
-                encoder,
-                "firmament AtmospherePass sky-view LUT",
-                &self.luts.sky_view.view,
-                Some((SKY_VIEW_TILE.0 * self.sun_count.min(MAX_SUNS as u32), SKY_VIEW_TILE.1)),
-            );
+            let (width, height) = SKY_VIEW_TILE;
+            let suns = self.sun_count.min(MAX_SUNS as u32);
+            self.sky_view
+                .dispatch(encoder, ((width * suns).div_ceil(8), height.div_ceil(8), 1));
         }
     }
 

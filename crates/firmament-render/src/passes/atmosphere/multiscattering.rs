@@ -1,18 +1,23 @@
-//! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`):
-//! each iterate reads the previous moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) and ground sky
-//! irradiance E and writes the next, ping-ponging between two sets of textures so that the last
-//! iterate lands in the build set's moments ([`MediumLuts`](super::luts::MediumLuts), copied into
-//! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done).
+//! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`).
+//!
+//! Each iterate is one compute dispatch (a workgroup per texel, an invocation per direction) that
+//! reads the build set's moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) and the ground sky
+//! irradiance row E, and writes the next ones into a buffer of packed `Rgba16Float` texels; copies
+//! then move the buffer into those textures, so the last iterate leaves its moments in the build
+//! set ([`MediumLuts`], copied into
+//! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done). A
+//! buffer rather than storage textures: seven moments are more storage textures than GL-class
+//! devices bind at once.
 
-use super::luts::{
-    LOG_FLOOR, Lut, MOMENT_NAMES, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE, moment_views,
-};
+use half::f16;
+use wgpu::util::DeviceExt;
+
 use super::luts::MediumLuts;
+use super::luts::{LOG_FLOOR, Lut, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE};
 use super::stages::{
-    Stage, bind_group, binding, moment_entries, moment_resources, sampler_entry, texture_entry, uniform_entry,
+    ComputeStage, binding, moment_entries, moment_resources, sampler_entry, storage_buffer_entry, texture_entry,
+    uniform_entry,
 };
-use crate::gpu_types::codes;
-use crate::passes::common::PassPipeline;
 use crate::shaders;
 
 /// Iterates after the first (single scattering and the sunlit ground): iterate k holds orders up
@@ -20,201 +25,139 @@ use crate::shaders;
 /// at least 10; a view adds one more scattering).
 pub const MULTISCATTERING_ITERATIONS: u32 = 9;
 
-/// One set of the iteration's textures: the four moments and the ground irradiance row E.
-#[derive(Debug)]
-struct Iterate<'a> {
-    moments: [&'a wgpu::TextureView; MULTISCATTERING_MOMENTS],
-    irradiance: &'a wgpu::TextureView,
-}
+/// Bytes of one `Rgba16Float` texel.
+const TEXEL_BYTES: u32 = 8;
 
-/// The scratch textures: the other set of moments, both ground irradiance rows and the rows
-/// nothing reads (the irradiance draw's other targets).
-#[derive(Debug)]
-struct Scratch {
-    moments: [Lut; MULTISCATTERING_MOMENTS],
-    irradiance: [Lut; 2],
-    unused: [Lut; MULTISCATTERING_MOMENTS - 1],
-}
+/// Texels of one moment texture.
+const MOMENT_TEXELS: u32 = MULTISCATTERING_SIZE.0 * MULTISCATTERING_SIZE.1;
 
-/// The iteration's stages: `[parity][output]`, parity 0 reading the scratch set and writing the
-/// LUTs, parity 1 the other way; output 0 = the moments, 1 = (E, unused rows).
+/// Bytes of an iterate's output: the seven moment textures, then the ground row (the layout of
+/// `multiscattering_out` in `multiscattering_lut.wgsl`).
+const OUTPUT_BYTES: u64 = ((MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS + MULTISCATTERING_SIZE.0) * TEXEL_BYTES) as u64;
+
+/// The iteration: its compute stage, its output buffer, the start (zero as stored) and the ground
+/// irradiance row.
 #[derive(Debug)]
 pub(super) struct MultiscatteringStages {
-    stages: [[Stage; 2]; 2],
-    scratch: Scratch,
+    iterate: ComputeStage,
+    /// An iterate's output, packed texels.
+    output: wgpu::Buffer,
+    /// The iteration's start in the same layout: zero as each texture stores it.
+    start: wgpu::Buffer,
+    /// E, the ground's sky irradiance row the next iterate reads.
+    ground: Lut,
 }
 
 impl MultiscatteringStages {
     pub(super) fn new(device: &wgpu::Device, luts: &MediumLuts, sampler: &wgpu::Sampler) -> Self {
-        let (width, height) = MULTISCATTERING_SIZE;
-        let scratch_lut = |name: &str, size| {
-            Lut::new(
-                device,
-                name,
-                size,
-                MULTISCATTERING_FORMAT,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            )
-        };
-        let scratch = Scratch {
-            moments: MOMENT_NAMES.map(|moment| {
-                scratch_lut(
-                    &format!("multiple-scattering {moment} (previous iterate)"),
-                    (width, height),
-                )
-            }),
-            irradiance: ["A", "B"]
-                .map(|row| scratch_lut(&format!("multiple-scattering ground irradiance {row}"), (width, 1))),
-            unused: MOMENT_NAMES[1..]
-                .try_into()
-                .map(|names: [&str; MULTISCATTERING_MOMENTS - 1]| {
-                    names.map(|name| scratch_lut(&format!("multiple-scattering unused row ({name})"), (width, 1)))
-                })
-                .expect("one name per moment"),
-        };
+        let ground = Lut::new(
+            device,
+            "multiple-scattering ground irradiance",
+            (MULTISCATTERING_SIZE.0, 1),
+            MULTISCATTERING_FORMAT,
+            wgpu::TextureUsages::empty(),
+        );
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("firmament AtmospherePass multiple-scattering iterate"),
+            size: OUTPUT_BYTES,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let start = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("firmament AtmospherePass multiple-scattering start"),
+            contents: &start_texels(),
+            usage: wgpu::BufferUsages::COPY_SRC,
+        });
+
         let mut entries = vec![
             uniform_entry(binding::PARAMS),
             texture_entry(binding::TRANSMITTANCE, false),
             sampler_entry(binding::SAMPLER),
             texture_entry(binding::PREVIOUS_GROUND_IRRADIANCE, true),
+            storage_buffer_entry(binding::MULTISCATTERING_OUT),
         ];
-        entries.extend(moment_entries(binding::PREVIOUS_MULTISCATTERING_MOMENTS));
-        let pipelines = [
-            ("AtmospherePass multiple-scattering LUT", codes::MULTISCATTERING_OUTPUT_MOMENTS),
+        entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        let mut resources = vec![
+            (binding::PARAMS, luts.params.as_entire_binding()),
             (
-                "AtmospherePass multiple-scattering ground irradiance",
-                codes::MULTISCATTERING_OUTPUT_GROUND_IRRADIANCE,
+                binding::TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.transmittance.view),
             ),
-        ]
-        .map(|(owner, output)| {
-            PassPipeline {
-                owner,
-                source: &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
-                entries: &entries,
-                color: MULTISCATTERING_FORMAT,
-                depth_stencil: None,
-                vertex_buffers: &[],
-                primitive: wgpu::PrimitiveState::default(),
-                constants: &[("OUTPUT", f64::from(output))],
-            }
-            .build_with_targets(device, None, MULTISCATTERING_MOMENTS)
-        });
-        let stages = [0, 1].map(|parity| {
-            let read = Self::iterate_of(luts, &scratch, 1 - parity);
-            let mut resources = vec![
-                (binding::PARAMS, luts.params.as_entire_binding()),
-                (
-                    binding::TRANSMITTANCE,
-                    wgpu::BindingResource::TextureView(&luts.transmittance.view),
-                ),
-                (binding::SAMPLER, wgpu::BindingResource::Sampler(sampler)),
-                (
-                    binding::PREVIOUS_GROUND_IRRADIANCE,
-                    wgpu::BindingResource::TextureView(read.irradiance),
-                ),
-            ];
-            resources.extend(moment_resources(
-                binding::PREVIOUS_MULTISCATTERING_MOMENTS,
-                read.moments,
-            ));
-            [0, 1].map(|output| {
-                let (pipeline, layout) = &pipelines[output];
-                Stage {
-                    pipeline: pipeline.clone(),
-                    bind_group: bind_group(device, "AtmospherePass multiple-scattering LUT", layout, &resources),
-                }
-            })
-        });
-        Self { stages, scratch }
-    }
-
-    /// The set iterates of `parity` write: 0 the LUTs (and E row A), 1 the scratch set (E row B).
-    fn iterate_of<'a>(luts: &'a MediumLuts, scratch: &'a Scratch, parity: usize) -> Iterate<'a> {
-        if parity == 0 {
-            Iterate {
-                moments: luts.multiscattering_views(),
-                irradiance: &scratch.irradiance[0].view,
-            }
-        } else {
-            Iterate {
-                moments: moment_views(&scratch.moments),
-                irradiance: &scratch.irradiance[1].view,
-            }
+            (binding::SAMPLER, wgpu::BindingResource::Sampler(sampler)),
+            (
+                binding::PREVIOUS_GROUND_IRRADIANCE,
+                wgpu::BindingResource::TextureView(&ground.view),
+            ),
+            (binding::MULTISCATTERING_OUT, output.as_entire_binding()),
+        ];
+        resources.extend(moment_resources(
+            binding::MULTISCATTERING_MOMENTS,
+            luts.multiscattering_views(),
+        ));
+        let iterate = ComputeStage::new(
+            device,
+            "AtmospherePass multiple-scattering LUT",
+            &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
+            &entries,
+            &resources,
+        );
+        Self {
+            iterate,
+            output,
+            start,
+            ground,
         }
     }
 
-    /// Encodes the iteration's start: the set the first iterate reads, cleared to zero (after the
-    /// transmittance LUT).
+    /// Encodes the iteration's start: the build set's moments and the ground row set to zero
+    /// (after the transmittance LUT).
     pub(super) fn record_start(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts) {
-        // Ψ and E (stored as logarithms) hold zero as LOG_FLOOR, the other moments (over Ψ) as 0.
-        let start = Self::iterate_of(luts, &self.scratch, 1 - parity_of(0));
-        let (psi, ratios) = start.moments.split_at(1);
-        render_targets(encoder, None, psi, LOG_ZERO);
-        render_targets(encoder, None, ratios, wgpu::Color::TRANSPARENT);
-        render_targets(encoder, None, &[start.irradiance], LOG_ZERO);
+        self.record_copy(encoder, &self.start, luts);
     }
 
-    /// Encodes iterate `iterate` (0 to [`MULTISCATTERING_ITERATIONS`], in order after
-    /// [`record_start`](Self::record_start)); the last one writes `luts`' moments.
-    pub(super) fn record_iterate(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, iterate: u32) {
-        let parity = parity_of(iterate);
-        let write = Self::iterate_of(luts, &self.scratch, parity);
-        let [moments, irradiance] = &self.stages[parity];
-        render_targets(encoder, Some(moments), &write.moments, wgpu::Color::TRANSPARENT);
-        let irradiance_targets: Vec<&wgpu::TextureView> = std::iter::once(write.irradiance)
-            .chain(self.scratch.unused.iter().map(|lut| &lut.view))
-            .collect();
-        render_targets(encoder, Some(irradiance), &irradiance_targets, wgpu::Color::TRANSPARENT);
+    /// Encodes the next iterate (after [`record_start`](Self::record_start) and the iterates
+    /// before it): it leaves its moments in `luts`.
+    pub(super) fn record_iterate(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts) {
+        let (width, height) = MULTISCATTERING_SIZE;
+        // One workgroup per texel, and a row more for the ground's irradiance.
+        self.iterate.dispatch(encoder, (width, height + 1, 1));
+        self.record_copy(encoder, &self.output, luts);
     }
-}
 
-/// Zero as Ψ and E are stored: their logarithm's floor (`LOG_FLOOR` in `atmosphere/luts.wgsl`).
-const LOG_ZERO: wgpu::Color = wgpu::Color {
-    r: LOG_FLOOR,
-    g: LOG_FLOOR,
-    b: LOG_FLOOR,
-    a: 1.0,
-};
-
-/// Clears `targets` (all of one size) to `clear` and draws `stage`'s full-screen triangle into
-/// them (only clears without one).
-fn render_targets(
-    encoder: &mut wgpu::CommandEncoder,
-    stage: Option<&Stage>,
-    targets: &[&wgpu::TextureView],
-    clear: wgpu::Color,
-) {
-    let attachments: Vec<_> = targets
-        .iter()
-        .map(|view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Store,
+    /// Encodes the copies of `texels` (an iterate's layout) into the moments and the ground row.
+    fn record_copy(&self, encoder: &mut wgpu::CommandEncoder, texels: &wgpu::Buffer, luts: &MediumLuts) {
+        let (width, height) = MULTISCATTERING_SIZE;
+        let targets = luts.multiscattering.iter().map(|lut| (lut, height));
+        for (k, (lut, rows)) in targets.chain(std::iter::once((&self.ground, 1))).enumerate() {
+            encoder.copy_buffer_to_texture(
+                wgpu::TexelCopyBufferInfo {
+                    buffer: texels,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: u64::from(k as u32 * MOMENT_TEXELS * TEXEL_BYTES),
+                        bytes_per_row: Some(width * TEXEL_BYTES),
+                        rows_per_image: Some(rows),
+                    },
                 },
-            })
-        })
-        .collect();
-    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("firmament AtmospherePass multiple-scattering iterate"),
-        color_attachments: &attachments,
-        ..Default::default()
-    });
-    if let Some(stage) = stage {
-        pass.set_pipeline(&stage.pipeline);
-        pass.set_bind_group(0, &stage.bind_group, &[]);
-        pass.draw(0..3, 0..1);
+                lut.texture.as_image_copy(),
+                wgpu::Extent3d {
+                    width,
+                    height: rows,
+                    depth_or_array_layers: 1,
+                },
+            );
+        }
     }
 }
 
-/// The parity of `iterate` (which set it writes, see [`MultiscatteringStages`]): alternating so
-/// that the last iterate has parity 0 and writes the LUTs the other stages read. (Counting from
-/// the first instead once left the last iterate in the scratch set, one order short.)
-fn parity_of(iterate: u32) -> usize {
-    ((MULTISCATTERING_ITERATIONS - iterate) % 2) as usize
+/// The iteration's start as packed `Rgba16Float` texels: zero as each texture stores it — Ψ and
+/// E (logarithms) as (LOG_FLOOR, LOG_FLOOR, LOG_FLOOR, 1), the other moments (over Ψ) as 0.
+fn start_texels() -> Vec<u8> {
+    let log_zero = [LOG_FLOOR, LOG_FLOOR, LOG_FLOOR, 1.0].map(|v| f16::from_f64(v).to_bits());
+    let texel_bytes = |texel: [u16; 4]| texel.into_iter().flat_map(u16::to_le_bytes);
+    let psi = (0..MOMENT_TEXELS).flat_map(|_| texel_bytes(log_zero));
+    let ratios = (0..(MULTISCATTERING_MOMENTS as u32 - 1) * MOMENT_TEXELS).flat_map(|_| texel_bytes([0; 4]));
+    let ground = (0..MULTISCATTERING_SIZE.0).flat_map(|_| texel_bytes(log_zero));
+    psi.chain(ratios).chain(ground).collect()
 }
 
 #[cfg(test)]
@@ -222,10 +165,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_last_iterate_writes_the_luts_and_each_reads_the_one_before() {
-        assert_eq!(parity_of(MULTISCATTERING_ITERATIONS), 0);
-        for iterate in 1..=MULTISCATTERING_ITERATIONS {
-            assert_ne!(parity_of(iterate), parity_of(iterate - 1));
-        }
+    fn the_start_fills_the_output_layout_with_zero_as_stored() {
+        let texels = start_texels();
+        assert_eq!(texels.len() as u64, OUTPUT_BYTES);
+        let texel = |index: usize| -> [f32; 4] {
+            let bytes = &texels[index * TEXEL_BYTES as usize..][..TEXEL_BYTES as usize];
+            [0, 1, 2, 3].map(|c| f16::from_le_bytes([bytes[2 * c], bytes[2 * c + 1]]).to_f32())
+        };
+        let log_zero = [LOG_FLOOR as f32, LOG_FLOOR as f32, LOG_FLOOR as f32, 1.0];
+        assert_eq!(texel(0), log_zero);
+        assert_eq!(texel(MOMENT_TEXELS as usize), [0.0; 4]);
+        assert_eq!(texel(MULTISCATTERING_MOMENTS * MOMENT_TEXELS as usize), log_zero);
     }
 }

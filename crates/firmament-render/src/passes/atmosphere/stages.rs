@@ -1,5 +1,6 @@
 //! The building blocks of the atmosphere pass: bind group layout entries, and a pipeline with its
-//! bind group for full-screen draws (`Stage`) and compute dispatches (`ComputeStage`).
+//! bind group for full-screen draws (`Stage`, drawn into the caller's pass) and compute dispatches
+//! (`ComputeStage`).
 
 use crate::passes::common::PassPipeline;
 
@@ -19,16 +20,16 @@ pub(super) mod binding {
     pub(crate) const AERIAL_SCATTERING: u32 = 10;
     pub(crate) const AERIAL_TRANSMITTANCE: u32 = 11;
     pub(crate) const SCENE_DEPTH: u32 = 12;
+    pub(crate) const MULTISCATTERING_OUT: u32 = 13;
     pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
+    pub(crate) const IRRADIANCE_OUT: u32 = 16;
+    pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
     /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
     /// `atmosphere/luts.wgsl`).
     pub(crate) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
         [MULTISCATTERING, 15, 17, 18, 21, 22, 27];
-    /// The previous iterate's moments, while the multiple-scattering LUTs are built.
-    pub(crate) const PREVIOUS_MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
-        [13, 16, 19, 20, 23, 24, 28];
 }
 
 /// A sampled 2D texture, seen by the fragment and compute stages.
@@ -123,36 +124,6 @@ impl Stage {
         let (pipeline, layout) = pipeline.build(device);
         let bind_group = bind_group(device, owner, &layout, resources);
         Self { pipeline, bind_group }
-    }
-
-    /// Renders the stage's full-screen triangle into `target`, cleared; with `viewport`, only
-    /// into its top-left `viewport` texels.
-    pub(super) fn render(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        label: &str,
-        target: &wgpu::TextureView,
-        viewport: Option<(u32, u32)>,
-    ) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        if let Some((width, height)) = viewport {
-            pass.set_viewport(0.0, 0.0, width as f32, height as f32, 0.0, 1.0);
-        }
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.draw(0..3, 0..1);
     }
 }
 
@@ -263,19 +234,17 @@ mod tests {
             ("aerial_transmittance", binding::AERIAL_TRANSMITTANCE),
             ("scene_depth", binding::SCENE_DEPTH),
             ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
+            ("multiscattering_out", binding::MULTISCATTERING_OUT),
+            ("irradiance_out", binding::IRRADIANCE_OUT),
+            ("sky_view_out", binding::SKY_VIEW_OUT),
             ("lighting", binding::SKY_LIGHTING_PARAMS),
             ("sky_lighting", binding::SKY_LIGHTING_OUT),
         ]
         .map(|(name, number)| (name.to_owned(), number))
         .into();
         let moments = ["", "_zz", "_xx", "_xz", "_x", "_z", "_band3"];
-        for (moment, (current, previous)) in moments.iter().zip(
-            binding::MULTISCATTERING_MOMENTS
-                .into_iter()
-                .zip(binding::PREVIOUS_MULTISCATTERING_MOMENTS),
-        ) {
-            all.push((format!("multiscattering{moment}_lut"), current));
-            all.push((format!("previous_multiscattering{moment}"), previous));
+        for (moment, number) in moments.iter().zip(binding::MULTISCATTERING_MOMENTS) {
+            all.push((format!("multiscattering{moment}_lut"), number));
         }
         all
     }

@@ -5,8 +5,8 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes the next free number here and in
-// `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (20, 23, 24, 28 or from
+// 29) here and in `stages.rs`.
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -98,15 +98,8 @@ struct SkyLighting {
 @group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
 @group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
 @group(0) @binding(27) var multiscattering_band3_lut: texture_2d<f32>;
-// The previous iterate's moments and ground irradiance row, while the multiple-scattering LUTs
-// are built (multiscattering_lut.wgsl).
-@group(0) @binding(13) var previous_multiscattering: texture_2d<f32>;
-@group(0) @binding(16) var previous_multiscattering_zz: texture_2d<f32>;
-@group(0) @binding(19) var previous_multiscattering_xx: texture_2d<f32>;
-@group(0) @binding(20) var previous_multiscattering_xz: texture_2d<f32>;
-@group(0) @binding(23) var previous_multiscattering_x: texture_2d<f32>;
-@group(0) @binding(24) var previous_multiscattering_z: texture_2d<f32>;
-@group(0) @binding(28) var previous_multiscattering_band3: texture_2d<f32>;
+// The previous iterate's ground irradiance row, while the multiple-scattering LUTs are built
+// (multiscattering_lut.wgsl; the previous moments are read through the bindings above).
 @group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
 // The aerial-perspective volume's slice atlases (aerial_perspective_volume.wgsl).
 @group(0) @binding(10) var aerial_scattering: texture_2d<f32>;
@@ -122,4 +115,8 @@ struct SkyLighting {
 @group(0) @binding(6) var transmittance_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(8) var aerial_scattering_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(16) var irradiance_out: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(19) var sky_view_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
+// An iterate's moments and ground row as packed Rgba16Float texels (multiscattering_lut.wgsl).
+@group(0) @binding(13) var<storage, read_write> multiscattering_out: array<vec2<u32>>;

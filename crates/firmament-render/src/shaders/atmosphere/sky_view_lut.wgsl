@@ -3,11 +3,10 @@
 // Conventions: as atmosphere/view.wgsl. The target is SKY_VIEW_LUT_SIZE.x · MAX_SUNS wide: tile i
 // (x in [i·W, (i+1)·W)) holds the light scattered towards the camera from sun i alone (all
 // orders, and the ground that sun lights), over (azimuth relative to the sun, non-linear zenith
-// angle) — see `sky_view_uv`. Only the first `sun_count` tiles are drawn (the viewport is
-// narrowed on the Rust side). rgb = spectral radiance over 2^a, a = `sky_view_exponent(sun)` (so
+// angle) — see `sky_view_uv`. A compute pass, one invocation per texel; only the first
+// `sun_count` tiles are dispatched (on the Rust side). rgb = spectral radiance over 2^a, a = `sky_view_exponent(sun)` (so
 // dim suns and deep twilight keep their precision).
 
-#import common/fullscreen
 #import common/ellipsoid
 #import atmosphere/bindings
 #import atmosphere/common
@@ -15,15 +14,14 @@
 
 const STEPS: i32 = 32;
 
-@vertex
-fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
-    return fullscreen_vertex(index, FAR_DEPTH);
-}
-
-@fragment
-fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
-    let sun = u32(in.clip.x / SKY_VIEW_LUT_SIZE.x);
-    let uv = vec2<f32>(in.clip.x - f32(sun) * SKY_VIEW_LUT_SIZE.x, in.clip.y) / SKY_VIEW_LUT_SIZE;
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let tile = vec2<u32>(SKY_VIEW_LUT_SIZE);
+    let sun = id.x / tile.x;
+    if id.y >= tile.y || sun >= MAX_SUNS {
+        return;
+    }
+    let uv = (vec2<f32>(f32(id.x - sun * tile.x), f32(id.y)) + 0.5) / SKY_VIEW_LUT_SIZE;
     let d = sky_view_direction(uv, sun_frame(sun));
     let o = view.camera.xyz;
     let top = ellipsoid_hits(o, d, top_radii(), view.camera_shape.y);
@@ -36,5 +34,5 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let t1 = select(max(top.y, 0.0), ground.x, hits_ground);
     let result = march(o, d, t0, max(t1, t0), hits_ground, sun, 1u, STEPS, inside);
     let k = sky_view_exponent(sun);
-    return vec4<f32>(result.radiance * exp2(-k), k);
+    textureStore(sky_view_out, id.xy, vec4<f32>(result.radiance * exp2(-k), k));
 }
