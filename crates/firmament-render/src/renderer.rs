@@ -202,6 +202,9 @@ impl Renderer {
         if self.targets.as_ref().map(FrameTargets::size) != Some((width, height)) {
             let targets = FrameTargets::new(&ctx.device, width, height);
             self.own.bind_depth(&ctx.device, &targets.depth_view, (width, height));
+            self.own
+                .atmosphere
+                .bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
             self.targets = Some(targets);
         }
         let camera = firmament_core::Camera {
@@ -252,8 +255,22 @@ impl Renderer {
             );
             // Opaque objects first; the sky then fills only what is left.
             self.objects.draw(&mut pass);
-            own.draw_sky(&mut pass, self.sky);
-            // Stars and the Moon, added over the sky where nothing nearer was drawn.
+            if self.sky != SkyKind::Atmosphere {
+                own.draw_sky(&mut pass, self.sky);
+                // Stars and the Moon, added over the sky where nothing nearer was drawn.
+                own.night.draw(&mut pass);
+            }
+        }
+        if self.sky == SkyKind::Atmosphere {
+            // The atmosphere's sky is a compute pass on the renderer's own targets (fragment work
+            // runs on a few SMs of data-centre GPUs), then the stars and the Moon over it.
+            own.atmosphere.record_sky(encoder);
+            let mut pass = begin_load_pass(
+                encoder,
+                "firmament Renderer night-sky pass",
+                &targets.hdr_view,
+                &targets.depth_view,
+            );
             own.night.draw(&mut pass);
         }
         timing.mark(encoder, PHASE_SKY_AND_OBJECTS);

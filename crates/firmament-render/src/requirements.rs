@@ -29,7 +29,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | limit | firmament's use | where |
 /// |---|---|---|
 /// | `max_bind_groups` | 1 | every pipeline has one bind group |
-/// | `max_sampled_textures_per_shader_stage` | 10 | the atmosphere's sky: transmittance, irradiance, sky view and seven scattering moments |
+/// | `max_sampled_textures_per_shader_stage` | 11 | the atmosphere's sky as a compute pass: transmittance, irradiance, sky view, seven scattering moments and the depth buffer |
 /// | `max_samplers_per_shader_stage` | 1 | |
 /// | `max_storage_buffers_per_shader_stage` | 2 | lens-flare occlusion: its sources and their visibility |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
@@ -60,7 +60,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits {
         max_bind_groups: 1,
-        max_sampled_textures_per_shader_stage: 10,
+        max_sampled_textures_per_shader_stage: 11,
         max_samplers_per_shader_stage: 1,
         max_storage_buffers_per_shader_stage: 2,
         max_storage_textures_per_shader_stage: 2,

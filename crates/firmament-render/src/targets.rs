@@ -53,8 +53,10 @@ impl FrameTargets {
         let hdr = make(
             "firmament FrameTargets hdr",
             HDR_FORMAT,
+            // Storage: the atmosphere's sky is a compute pass here.
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
         );
         let depth = make(

@@ -621,3 +621,71 @@ fn an_oblate_planet_from_space_matches_the_reference() {
     // budget, 10 %, applies), where the reference's own noise is 1.2 %.
     assert!(median < 0.01 && worst < 0.10, "median {median}, worst {worst}");
 }
+
+/// The sky as the renderer's own targets run it (a compute pass) gives the pixels of the
+/// full-screen draw callers' render passes use — the draw is the one the reference tests above
+/// measure — in both the LUT and the march modes, and leaves pixels with geometry alone.
+#[test]
+fn the_compute_sky_matches_the_drawn_sky_and_spares_geometry() {
+    let gpu = gpu();
+    let ctx = &gpu.ctx;
+    let (width, height) = (32, 18);
+    let targets = firmament_render::FrameTargets::new(&ctx.device, width, height);
+    let sky = support::street_sky(200.0, 15.0);
+    let camera = Camera {
+        aspect: f64::from(width) / f64::from(height),
+        ..camera(DVec3::new(0.0, 0.0, 2.0), direction(180.0, 10.0), 90f64.to_radians())
+    };
+    let mut pass = AtmospherePass::new(&ctx.device);
+    pass.bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
+    let background = wgpu::Color {
+        r: 1.0,
+        g: 2.0,
+        b: 3.0,
+        a: 1.0,
+    };
+    // Renders with `depth` in every pixel (reversed-Z: 0 is the far plane), drawn or computed.
+    let render = |pass: &AtmospherePass, depth: f32, compute: bool| -> Vec<f32> {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
+        support::clear_targets(&mut encoder, &targets, background, depth);
+        pass.record_luts(&mut encoder);
+        if compute {
+            assert!(pass.record_sky(&mut encoder), "a target is bound");
+        } else {
+            pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        read_texture(ctx, &targets.hdr)
+            .expect("readback")
+            .chunks_exact(2)
+            .map(|b| half::f16::from_le_bytes([b[0], b[1]]).to_f32())
+            .collect()
+    };
+    for method in [
+        firmament_render::passes::SkyMethod::Lut,
+        firmament_render::passes::SkyMethod::March,
+    ] {
+        pass.set_method(method);
+        pass.prepare(&ctx.queue, &sky, &camera);
+        let drawn = render(&pass, 0.0, false);
+        let computed = render(&pass, 0.0, true);
+        let brightest = drawn.iter().fold(0f32, |m, v| m.max(v.abs()));
+        assert!(brightest > 0.1, "{method:?}: the sky is lit ({brightest})");
+        let worst = drawn
+            .iter()
+            .zip(&computed)
+            .map(|(a, b)| (a - b).abs() / a.abs().max(1e-3))
+            .fold(0f32, f32::max);
+        // Both write the same f32 colour through half floats: at most a rounding apart.
+        assert!(worst < 2e-3, "{method:?}: worst relative difference {worst}");
+        let covered = render(&pass, 0.5, true);
+        assert!(
+            covered
+                .chunks_exact(4)
+                .all(|p| p == [background.r as f32, background.g as f32, background.b as f32, 1.0]),
+            "{method:?}: geometry's pixels were written"
+        );
+    }
+}

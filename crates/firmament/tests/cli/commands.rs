@@ -393,6 +393,7 @@ fn bench_reports_every_pass_as_json() {
         "medium_luts_ms",
         "sky_view_lut_ms",
         "sky_ms",
+        "sky_fragment_ms",
         "aerial_volume_ms",
         "aerial_apply_ms",
         "lut_frame_ms",

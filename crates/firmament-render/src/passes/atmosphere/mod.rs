@@ -96,6 +96,14 @@ impl SkyMode {
             Self::Blend => "AtmospherePass sky (blend)",
         }
     }
+
+    fn compute_owner(self) -> &'static str {
+        match self {
+            Self::Lut => "AtmospherePass compute sky (sky-view LUT)",
+            Self::March => "AtmospherePass compute sky (ray march)",
+            Self::Blend => "AtmospherePass compute sky (blend)",
+        }
+    }
 }
 
 /// The atmosphere: LUTs and the sky they feed. Build once; `prepare` every frame.
@@ -116,6 +124,9 @@ pub struct AtmospherePass {
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
+    /// The sky as compute passes, one per mode, once a target is bound
+    /// ([`bind_sky_target`](Self::bind_sky_target)); and that target's size (pixels).
+    sky_compute: Option<([ComputeStage; 3], (u32, u32))>,
     /// Which sky pipeline this frame uses.
     sky_mode: SkyMode,
     /// The medium last uploaded for building, to rebuild the LUTs only when it changes.
@@ -178,34 +189,8 @@ impl AtmospherePass {
             sampler_entry(binding::SAMPLER),
         ];
         irradiance_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
-        let mut view_entries = vec![
-            uniform_entry(binding::PARAMS),
-            uniform_entry(binding::VIEW),
-            texture_entry(binding::TRANSMITTANCE, false),
-            sampler_entry(binding::SAMPLER),
-            texture_entry(binding::IRRADIANCE, true),
-            texture_entry(binding::SKY_VIEW, true),
-        ];
-        view_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
-        let moments = moment_resources(binding::MULTISCATTERING_MOMENTS, luts.multiscattering_views());
-        let mut view_resources = vec![
-            (binding::PARAMS, params.as_entire_binding()),
-            (binding::VIEW, view.as_entire_binding()),
-            (
-                binding::TRANSMITTANCE,
-                wgpu::BindingResource::TextureView(&luts.transmittance.view),
-            ),
-            (binding::SAMPLER, wgpu::BindingResource::Sampler(&sampler)),
-            (
-                binding::IRRADIANCE,
-                wgpu::BindingResource::TextureView(&luts.irradiance.view),
-            ),
-            (
-                binding::SKY_VIEW,
-                wgpu::BindingResource::TextureView(&luts.sky_view.view),
-            ),
-        ];
-        view_resources.extend(moments);
+        let view_entries = view_entries();
+        let view_resources = view_resources(&params, &view, &luts, &sampler);
         // The view resources that the bindings in `entries` name.
         let resources_for = |entries: &[wgpu::BindGroupLayoutEntry]| -> Vec<(u32, wgpu::BindingResource<'_>)> {
             view_resources
@@ -307,6 +292,7 @@ impl AtmospherePass {
             irradiance,
             sky_view,
             sky,
+            sky_compute: None,
             uploaded: None,
             rebuild: Rebuild::default(),
             sun_count: 0,
@@ -522,8 +508,107 @@ impl AtmospherePass {
         self.draw(&mut pass);
     }
 
+    /// Binds a target for [`record_sky`](Self::record_sky): `color` an [`HDR_FORMAT`] view with
+    /// `STORAGE_BINDING` usage, `depth` the depth buffer the sky stays behind (of this pass's
+    /// convention), both `size` pixels. Rebinding after a resize keeps the pipelines.
+    ///
+    /// [`HDR_FORMAT`]: crate::targets::HDR_FORMAT
+    pub fn bind_sky_target(
+        &mut self,
+        device: &wgpu::Device,
+        color: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        size: (u32, u32),
+    ) {
+        let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler);
+        resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
+        resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
+        match &mut self.sky_compute {
+            Some((stages, bound)) => {
+                for stage in stages.iter_mut() {
+                    stage.rebind(device, &resources);
+                }
+                *bound = size;
+            }
+            None => {
+                let mut entries = view_entries();
+                entries.push(texture_entry(binding::SCENE_DEPTH, false));
+                entries.push(storage_entry(binding::SKY_OUT, crate::targets::HDR_FORMAT));
+                let stages = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(|mode| {
+                    ComputeStage::with_constants(
+                        device,
+                        mode.compute_owner(),
+                        &shaders::ATMOSPHERE_SKY,
+                        &entries,
+                        &resources,
+                        &[("SKY_MODE", f64::from(mode.code()))],
+                    )
+                });
+                self.sky_compute = Some((stages, size));
+            }
+        }
+    }
+
+    /// Encodes the sky as a compute pass into the target bound by
+    /// [`bind_sky_target`](Self::bind_sky_target), where its depth buffer holds the far plane
+    /// (after `record_luts`, like [`record`](Self::record)). Returns false, encoding nothing,
+    /// when no target is bound.
+    pub fn record_sky(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        let Some((stages, (width, height))) = &self.sky_compute else {
+            return false;
+        };
+        stages[self.sky_mode as usize].dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
+        true
+    }
+
     /// The LUTs (for tests and tools).
     pub fn luts(&self) -> &AtmosphereLuts {
         &self.luts
     }
+}
+
+/// The layout entries of every stage that looks through the camera: the medium, the view, the
+/// LUTs and their sampler.
+fn view_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut entries = vec![
+        uniform_entry(binding::PARAMS),
+        uniform_entry(binding::VIEW),
+        texture_entry(binding::TRANSMITTANCE, false),
+        sampler_entry(binding::SAMPLER),
+        texture_entry(binding::IRRADIANCE, true),
+        texture_entry(binding::SKY_VIEW, true),
+    ];
+    entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+    entries
+}
+
+/// The resources of [`view_entries`].
+fn view_resources<'a>(
+    params: &'a wgpu::Buffer,
+    view: &'a wgpu::Buffer,
+    luts: &'a AtmosphereLuts,
+    sampler: &'a wgpu::Sampler,
+) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+    let mut resources = vec![
+        (binding::PARAMS, params.as_entire_binding()),
+        (binding::VIEW, view.as_entire_binding()),
+        (
+            binding::TRANSMITTANCE,
+            wgpu::BindingResource::TextureView(&luts.transmittance.view),
+        ),
+        (binding::SAMPLER, wgpu::BindingResource::Sampler(sampler)),
+        (
+            binding::IRRADIANCE,
+            wgpu::BindingResource::TextureView(&luts.irradiance.view),
+        ),
+        (
+            binding::SKY_VIEW,
+            wgpu::BindingResource::TextureView(&luts.sky_view.view),
+        ),
+    ];
+    resources.extend(moment_resources(
+        binding::MULTISCATTERING_MOMENTS,
+        luts.multiscattering_views(),
+    ));
+    resources
 }

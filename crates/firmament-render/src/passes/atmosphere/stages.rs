@@ -24,6 +24,7 @@ pub(super) mod binding {
     pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
     pub(crate) const IRRADIANCE_OUT: u32 = 16;
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
+    pub(crate) const SKY_OUT: u32 = 20;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
     /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
@@ -132,6 +133,7 @@ impl Stage {
 pub(super) struct ComputeStage {
     owner: &'static str,
     pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
 }
 
@@ -143,6 +145,18 @@ impl ComputeStage {
         source: &str,
         entries: &[wgpu::BindGroupLayoutEntry],
         resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> Self {
+        Self::with_constants(device, owner, source, entries, resources, &[])
+    }
+
+    /// [`new`](Self::new) with pipeline-overridable `constants` set.
+    pub(super) fn with_constants(
+        device: &wgpu::Device,
+        owner: &'static str,
+        source: &str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+        constants: &[(&str, f64)],
     ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&format!("firmament {owner} shader")),
@@ -162,15 +176,24 @@ impl ComputeStage {
             layout: Some(&pipeline_layout),
             module: &module,
             entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             cache: None,
         });
         let bind_group = bind_group(device, owner, &layout, resources);
         Self {
             owner,
             pipeline,
+            layout,
             bind_group,
         }
+    }
+
+    /// Binds `resources` instead (new targets of the same layout).
+    pub(super) fn rebind(&mut self, device: &wgpu::Device, resources: &[(u32, wgpu::BindingResource<'_>)]) {
+        self.bind_group = bind_group(device, self.owner, &self.layout, resources);
     }
 
     /// Dispatches `workgroups` in a compute pass of its own.
@@ -237,6 +260,7 @@ mod tests {
             ("multiscattering_out", binding::MULTISCATTERING_OUT),
             ("irradiance_out", binding::IRRADIANCE_OUT),
             ("sky_view_out", binding::SKY_VIEW_OUT),
+            ("sky_out", binding::SKY_OUT),
             ("lighting", binding::SKY_LIGHTING_PARAMS),
             ("sky_lighting", binding::SKY_LIGHTING_OUT),
         ]

@@ -5,8 +5,7 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (20, 23, 24, 28 or from
-// 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (23, 24, 28 or from 29) here and in `stages.rs`.
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -117,6 +116,8 @@ struct SkyLighting {
 @group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(16) var irradiance_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(19) var sky_view_out: texture_storage_2d<rgba16float, write>;
+// The renderer's own HDR target (targets.rs HDR_FORMAT), for the compute sky (sky.wgsl).
+@group(0) @binding(20) var sky_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
 // An iterate's moments and ground row as packed Rgba16Float texels (multiscattering_lut.wgsl).
 @group(0) @binding(13) var<storage, read_write> multiscattering_out: array<vec2<u32>>;

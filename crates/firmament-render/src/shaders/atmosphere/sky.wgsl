@@ -6,6 +6,11 @@
 // tiles of the suns; above it each pixel marches its own ray (Hillaire 2020 does the same);
 // across the top of the atmosphere the two are blended by `view.local_up.w`, so crossing it does
 // not pop. `SKY_MODE` picks the path.
+//
+// Two entry points: `fs_main`, a full-screen draw depth-tested against the far plane (for
+// callers' render passes), and `cs_main`, a compute pass for the renderer's own targets that
+// writes `sky_out` where `scene_depth` holds the far plane (`view.aerial.w`) — data-centre GPUs
+// run fragment work on a few of their SMs and compute on all (docs/PERFORMANCE.md).
 
 #import common/fullscreen
 #import common/ellipsoid
@@ -87,7 +92,27 @@ fn sun_discs(d: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
-    let ray = view_ray(in.ndc);
+    return sky_color(in.ndc);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(sky_out);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    // The far plane: 0 (reversed-Z) or 1 (standard), as `view.aerial.w` says.
+    let depth = textureLoad(scene_depth, id.xy, 0).r;
+    if !select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5) {
+        return; // geometry stands here
+    }
+    let uv = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(size);
+    textureStore(sky_out, id.xy, sky_color(vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y)));
+}
+
+// The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`.
+fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
+    let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
     let on_a_disc = any(discs > vec3<f32>(0.0));
     var radiance: vec3<f32>;

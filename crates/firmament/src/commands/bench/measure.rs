@@ -66,8 +66,10 @@ pub(crate) struct AtmosphereBench {
     pub(crate) medium_luts_ms: f64,
     /// The sky-view LUT tiles.
     pub(crate) sky_view_lut_ms: f64,
-    /// The sky pass reading the sky-view LUT.
+    /// The sky pass reading the sky-view LUT, as the renderer's own targets run it (compute).
     pub(crate) sky_ms: f64,
+    /// The same as a full-screen draw, as callers' render passes run it.
+    pub(crate) sky_fragment_ms: f64,
     /// The aerial-perspective volume (froxels).
     pub(crate) aerial_volume_ms: f64,
     /// Applying aerial perspective to a depth buffer covered by geometry everywhere (the worst
@@ -190,22 +192,26 @@ pub(crate) fn bench_atmosphere(
     };
     let targets = FrameTargets::new(&ctx.device, width, height);
     let mut pass = AtmospherePass::new(&ctx.device);
+    pass.bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
     pass.prepare(&ctx.queue, sky, &camera);
     let luts = pass.luts();
     let medium_luts_ms = median_ms(ctx, frames, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
     let sky_view_lut_ms = median_ms(ctx, frames, &luts.sky_view.texture, |e| pass.record_sky_view_lut(e));
-    let sky_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+    let sky_fragment_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         pass.record(e, &targets.hdr_view, &targets.depth_view)
+    });
+    let sky_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        pass.record_sky(e);
     });
     let lut_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         pass.record_sky_view_lut(e);
-        pass.record(e, &targets.hdr_view, &targets.depth_view);
+        pass.record_sky(e);
     });
     let lut_image = hdr_pixels(ctx, &targets)?;
     pass.set_method(SkyMethod::March);
     pass.prepare(&ctx.queue, sky, &camera);
     let march_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
-        pass.record(e, &targets.hdr_view, &targets.depth_view)
+        pass.record_sky(e);
     });
     let march_image = hdr_pixels(ctx, &targets)?;
     let aerial_volume_ms = median_ms(ctx, frames, &pass.luts().aerial_transmittance.texture, |e| {
@@ -245,6 +251,7 @@ pub(crate) fn bench_atmosphere(
         medium_luts_ms,
         sky_view_lut_ms,
         sky_ms,
+        sky_fragment_ms,
         aerial_volume_ms,
         aerial_apply_ms,
         lut_frame_ms,
