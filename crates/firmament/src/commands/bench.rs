@@ -138,6 +138,10 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
             "medium LUTs (transmittance, multiple scattering, irradiance)",
             b.medium_luts_ms,
         ),
+        (
+            "longest step of an incremental rebuild (one per frame)",
+            b.medium_lut_step_max_ms,
+        ),
         ("sky-view LUT", b.sky_view_lut_ms),
         ("sky pass (compute, the renderer's own targets)", b.sky_ms),
         ("sky pass (fragment, callers' render passes)", b.sky_fragment_ms),
@@ -166,6 +170,7 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         "frames": b.frames,
         "timing": b.timing.describe(),
         "medium_luts_ms": b.medium_luts_ms,
+        "medium_lut_step_max_ms": b.medium_lut_step_max_ms,
         "sky_view_lut_ms": b.sky_view_lut_ms,
         "sky_ms": b.sky_ms,
         "sky_fragment_ms": b.sky_fragment_ms,
@@ -178,6 +183,7 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
     });
     let rows = [
         ("medium_luts_ms", b.medium_luts_ms),
+        ("medium_lut_step_max_ms", b.medium_lut_step_max_ms),
         ("sky_view_lut_ms", b.sky_view_lut_ms),
         ("sky_ms", b.sky_ms),
         ("sky_fragment_ms", b.sky_fragment_ms),

@@ -391,6 +391,7 @@ fn bench_reports_every_pass_as_json() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     for key in [
         "medium_luts_ms",
+        "medium_lut_step_max_ms",
         "sky_view_lut_ms",
         "sky_ms",
         "sky_fragment_ms",

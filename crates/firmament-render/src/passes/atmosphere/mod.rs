@@ -463,6 +463,13 @@ impl AtmospherePass {
         }
     }
 
+    /// Encodes step `step` (0 to [`MEDIUM_BUILD_STEPS`] − 1) of a build of the medium's LUTs
+    /// alone, as an incremental rebuild spends one frame on it (for benchmarks and tools; steps
+    /// read what the step before wrote).
+    pub fn record_medium_lut_step(&self, encoder: &mut wgpu::CommandEncoder, step: u32) {
+        self.record_build_step(encoder, BuildStep::of(step.min(MEDIUM_BUILD_STEPS - 1)));
+    }
+
     /// Encodes one step of a build of the medium's LUTs.
     fn record_build_step(&self, encoder: &mut wgpu::CommandEncoder, step: BuildStep) {
         match step {

@@ -22,6 +22,7 @@ use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading};
 use firmament_core::frame::AtmosphereSky;
 
 use firmament_render::pass_timing::{FrameTiming, PassTimer, pass_timing_supported};
+use firmament_render::passes::atmosphere::MEDIUM_BUILD_STEPS;
 use firmament_render::passes::{AtmospherePass, ObjectPass, SkyMethod, begin_clear_pass};
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::wgpu;
@@ -64,6 +65,8 @@ pub(crate) struct AtmosphereBench {
     pub(crate) timing: Timing,
     /// Transmittance, multiple-scattering and irradiance LUTs (rebuilt when the medium changes).
     pub(crate) medium_luts_ms: f64,
+    /// The longest step of an incremental rebuild of those LUTs (one step per frame).
+    pub(crate) medium_lut_step_max_ms: f64,
     /// The sky-view LUT tiles.
     pub(crate) sky_view_lut_ms: f64,
     /// The sky pass reading the sky-view LUT, as the renderer's own targets run it (compute).
@@ -196,6 +199,13 @@ pub(crate) fn bench_atmosphere(
     pass.prepare(&ctx.queue, sky, &camera);
     let luts = pass.luts();
     let medium_luts_ms = median_ms(ctx, frames, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
+    let medium_lut_step_max_ms = (0..MEDIUM_BUILD_STEPS)
+        .map(|step| {
+            median_ms(ctx, frames, &luts.irradiance.texture, |e| {
+                pass.record_medium_lut_step(e, step)
+            })
+        })
+        .fold(0.0, f64::max);
     let sky_view_lut_ms = median_ms(ctx, frames, &luts.sky_view.texture, |e| pass.record_sky_view_lut(e));
     let sky_fragment_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         pass.record(e, &targets.hdr_view, &targets.depth_view)
@@ -249,6 +259,7 @@ pub(crate) fn bench_atmosphere(
         suns: sky.suns.len(),
         timing: timing(ctx),
         medium_luts_ms,
+        medium_lut_step_max_ms,
         sky_view_lut_ms,
         sky_ms,
         sky_fragment_ms,
