@@ -3,8 +3,9 @@
 //!
 //! - **Physical atmosphere** (cd/m²): a star's light is its illuminance in lux
 //!   (`units_per_lux = 1`), dimmed per channel by the reference transmittance from the camera
-//!   towards it — tabulated once per frame against the angle from the camera's vertical (the air
-//!   is the same all round it), zero where the ground is in the way. The daylit sky then hides
+//!   towards it — tabulated against the angle from the camera's vertical (the air is the same
+//!   all round it) whenever the air or the camera's place changed, zero where the ground is in
+//!   the way. The daylit sky then hides
 //!   the stars by itself, as it does in a real sky: a magnitude-0 star adds about one cd/m² to a
 //!   pixel, the day sky thousands.
 //! - **Gradient and seed skies** (display units, not radiance): the same light (a magnitude-0
@@ -15,11 +16,13 @@
 //!   display units, is scaled so a full moon's surface shows [`MOON_DISPLAY_RADIANCE`].
 //! - **Clear** skies draw no night sky.
 
+use std::sync::{Arc, Mutex};
+
 use firmament_core::Camera;
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
-use firmament_core::atmosphere::Sun;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::atmosphere::{Atmosphere, Sun};
 use firmament_core::frame::{AtmosphereSky, EmpiricalSky, MAX_SUNS, Sky};
 use firmament_core::sky::night::{HORIZON_CUTOFF_DEG, NightLayer};
 use glam::{DMat3, DVec3};
@@ -54,28 +57,46 @@ fn interpolate(xs: &[f64], ys: &[DVec3], x: f64) -> DVec3 {
     }
 }
 
+/// The last table [`atmosphere_transmittance`] built: the atmosphere, the camera in the planet
+/// frame and the table. A time-lapse or the viewer asks for the same one frame after frame, and
+/// each costs 129 adaptive quadratures (about 20 ms, most of building a frame; docs/PERFORMANCE.md).
+#[allow(
+    clippy::type_complexity,
+    reason = "a one-entry cache; a named type would say no more"
+)]
+static LAST_TABLE: Mutex<Option<(Atmosphere, DVec3, Arc<[DVec3]>)>> = Mutex::new(None);
+
 /// The physical sky's transmittance from the camera at `eye` (world frame) towards a world
 /// direction, per linear sRGB channel of sunlight (relative to sunlight above the air).
 fn atmosphere_transmittance(sky: &AtmosphereSky, eye: DVec3) -> impl Fn(DVec3) -> DVec3 {
     let atmosphere = &sky.atmosphere;
     let planet = &atmosphere.planet;
-    let reference = Reference::new(*atmosphere, &[], ReferenceSettings::default());
-    let conversion = atmosphere.spectral_conversion();
-    let sunlight = firmament_core::atmosphere::presets::earth_sun(DVec3::Z).irradiance;
-    let space = conversion.linear_srgb(sunlight);
     let at = planet.to_planet_frame(eye);
     let up = planet.up(at);
     let side = up.any_orthonormal_vector();
     let xs = table_elevations();
-    let ys: Vec<DVec3> = xs
-        .iter()
-        .map(|e| {
-            let (s, c) = e.to_radians().sin_cos();
-            let t = reference.transmittance_to_space(at, up * s + side * c);
-            let seen = conversion.linear_srgb(sunlight * t);
-            DVec3::new(seen.r / space.r, seen.g / space.g, seen.b / space.b).max(DVec3::ZERO)
-        })
-        .collect();
+    let mut last = LAST_TABLE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let ys = match &*last {
+        Some((medium, place, ys)) if medium == atmosphere && *place == at => Arc::clone(ys),
+        _ => {
+            let reference = Reference::new(*atmosphere, &[], ReferenceSettings::default());
+            let conversion = atmosphere.spectral_conversion();
+            let sunlight = firmament_core::atmosphere::presets::earth_sun(DVec3::Z).irradiance;
+            let space = conversion.linear_srgb(sunlight);
+            let ys: Arc<[DVec3]> = xs
+                .iter()
+                .map(|e| {
+                    let (s, c) = e.to_radians().sin_cos();
+                    let t = reference.transmittance_to_space(at, up * s + side * c);
+                    let seen = conversion.linear_srgb(sunlight * t);
+                    DVec3::new(seen.r / space.r, seen.g / space.g, seen.b / space.b).max(DVec3::ZERO)
+                })
+                .collect();
+            *last = Some((*atmosphere, at, Arc::clone(&ys)));
+            ys
+        }
+    };
+    drop(last);
     let planet = *planet;
     move |world: DVec3| {
         let d = planet.direction_to_planet_frame(world.normalize()).normalize();
@@ -199,6 +220,31 @@ fn scale_moon(mut layer: NightLayer) -> NightLayer {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_transmittance_table_follows_the_air_and_the_place() {
+        let mut earth = AtmosphereSky {
+            atmosphere: firmament_core::atmosphere::presets::earth(),
+            suns: vec![],
+        };
+        // The world is east-north-up at (0°, 0°) on the ground.
+        earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);
+        let mut hazy = earth.clone();
+        hazy.atmosphere.medium.mie.scattering *= 4.0;
+        hazy.atmosphere.medium.mie.extinction *= 4.0;
+        let eye = DVec3::new(0.0, 0.0, 2.0);
+        let towards = DVec3::new(0.3, 0.2, 0.4);
+        let clear = atmosphere_transmittance(&earth, eye)(towards);
+        let seen_hazy = atmosphere_transmittance(&hazy, eye)(towards);
+        let seen_higher = atmosphere_transmittance(&earth, eye * 1000.0)(towards);
+        assert!(seen_hazy.max_element() < clear.max_element(), "{seen_hazy} vs {clear}");
+        assert!(
+            seen_higher.min_element() > clear.min_element(),
+            "{seen_higher} vs {clear}"
+        );
+        // Back to the first: the same table as when it was first built.
+        assert_eq!(atmosphere_transmittance(&earth, eye)(towards), clear);
+    }
 
     #[test]
     fn airmass_and_darkness_follow_their_laws() {
