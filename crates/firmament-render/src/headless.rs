@@ -1,9 +1,14 @@
 //! Rendering to memory: 8-bit sRGB images for PNG and linear float images for EXR and tests.
+//!
+//! [`HeadlessRenderer::render_ldr`] and [`render_hdr`](HeadlessRenderer::render_hdr) render and
+//! wait. A sequence of frames overlaps instead: [`HeadlessRenderer::submit`] frame N + 1, then
+//! [`SubmittedFrame::collect`] frame N while the GPU renders N + 1.
 
 use firmament_core::Frame;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
+use crate::readback::{PendingRead, TextureCopy};
 pub use crate::readback::{decode_f16, read_texture};
 use crate::renderer::Renderer;
 
@@ -61,6 +66,85 @@ impl<T: Copy> Image<T> {
     }
 }
 
+impl Image<half::f16> {
+    /// The same image widened to `f32` (exact: every half float is an `f32`).
+    pub fn to_f32(&self) -> Image<f32> {
+        Image {
+            width: self.width,
+            height: self.height,
+            pixels: widen_f16(&self.pixels),
+        }
+    }
+}
+
+/// Half floats widened to `f32`, with the CPU's conversion instructions where it has them.
+fn widen_f16(values: &[half::f16]) -> Vec<f32> {
+    use half::slice::HalfFloatSliceExt as _;
+    let mut out = vec![0.0; values.len()];
+    values.convert_to_f32_slice(&mut out);
+    out
+}
+
+/// Which images [`HeadlessRenderer::submit`] reads back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Readback {
+    /// The display image ([`LDR_FORMAT`]: exposure, tone curve, sRGB; 8 bits).
+    pub ldr: bool,
+    /// The linear HDR radiance, as the half-float target holds it.
+    pub hdr: bool,
+}
+
+/// A frame [`HeadlessRenderer::submit`] sent to the GPU, its images on their way back.
+#[derive(Debug)]
+#[must_use = "a submitted frame's images come back only through collect"]
+pub struct SubmittedFrame {
+    width: u32,
+    height: u32,
+    ldr: Option<PendingRead>,
+    hdr: Option<PendingRead>,
+}
+
+/// The images of a [`SubmittedFrame`], each present when [`Readback`] asked for it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FramePixels {
+    /// The display image: exposure, tone curve, sRGB; 8 bits RGBA.
+    pub ldr: Option<Image<u8>>,
+    /// The linear HDR radiance (scene-referred), RGBA half floats as rendered; widen with
+    /// [`Image::to_f32`].
+    pub hdr: Option<Image<half::f16>>,
+}
+
+impl SubmittedFrame {
+    /// Waits for this frame's images (not for frames submitted after it) and returns them.
+    pub fn collect(self, ctx: &GpuContext) -> Result<FramePixels, RenderError> {
+        let (width, height) = (self.width, self.height);
+        let ldr = match self.ldr {
+            Some(read) => Some(Image {
+                width,
+                height,
+                pixels: read.wait::<u8>(ctx)?,
+            }),
+            None => None,
+        };
+        let hdr = match self.hdr {
+            Some(read) => {
+                let mut bits = read.wait::<u16>(ctx)?;
+                // The texture's bytes are little-endian; `wait` copied them as they are.
+                if cfg!(target_endian = "big") {
+                    bits.iter_mut().for_each(|b| *b = u16::from_le(*b));
+                }
+                Some(Image {
+                    width,
+                    height,
+                    pixels: half::vec::HalfBitsVecExt::reinterpret_into(bits),
+                })
+            }
+            None => None,
+        };
+        Ok(FramePixels { ldr, hdr })
+    }
+}
+
 /// A [`Renderer`] with its own output texture, for rendering without a window.
 #[derive(Debug)]
 pub struct HeadlessRenderer {
@@ -85,17 +169,11 @@ impl HeadlessRenderer {
         width: u32,
         height: u32,
     ) -> Result<Image<u8>, RenderError> {
-        crate::readback::check_readback(ctx, width, height, LDR_FORMAT)?;
-        self.render(ctx, frame, width, height)?;
-        let output = self
-            .output
-            .as_ref()
-            .ok_or_else(|| RenderError::Readback("no output texture".into()))?;
-        Ok(Image {
-            width,
-            height,
-            pixels: read_texture(ctx, output)?,
-        })
+        let readback = Readback { ldr: true, hdr: false };
+        let pixels = self.submit(ctx, frame, width, height, readback)?.collect(ctx)?;
+        pixels
+            .ldr
+            .ok_or_else(|| RenderError::Readback("no display image".into()))
     }
 
     /// Renders `frame` and returns the linear HDR radiance (scene-referred: no exposure, no
@@ -107,15 +185,36 @@ impl HeadlessRenderer {
         width: u32,
         height: u32,
     ) -> Result<Image<f32>, RenderError> {
-        crate::readback::check_readback(ctx, width, height, crate::targets::HDR_FORMAT)?;
-        self.render(ctx, frame, width, height)?;
-        let targets = self
-            .renderer
-            .targets()
-            .ok_or_else(|| RenderError::Readback("no HDR target".into()))?;
-        let bytes = read_texture(ctx, &targets.hdr)?;
-        let pixels = crate::readback::decode_f16(&bytes);
-        Ok(Image { width, height, pixels })
+        let readback = Readback { ldr: false, hdr: true };
+        let pixels = self.submit(ctx, frame, width, height, readback)?.collect(ctx)?;
+        let hdr = pixels.hdr.ok_or_else(|| RenderError::Readback("no HDR image".into()))?;
+        Ok(hdr.to_f32())
+    }
+
+    /// Renders `frame` and starts copying the images `readback` names back, without waiting:
+    /// submit the next frame, then [`SubmittedFrame::collect`] this one. Each submitted frame
+    /// holds its own staging buffers (its images' size) until collected.
+    pub fn submit(
+        &mut self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        width: u32,
+        height: u32,
+        readback: Readback,
+    ) -> Result<SubmittedFrame, RenderError> {
+        if readback.ldr {
+            crate::readback::check_readback(ctx, width, height, LDR_FORMAT)?;
+        }
+        if readback.hdr {
+            crate::readback::check_readback(ctx, width, height, crate::targets::HDR_FORMAT)?;
+        }
+        let (ldr, hdr) = self.render(ctx, frame, width, height, readback)?;
+        Ok(SubmittedFrame {
+            width,
+            height,
+            ldr,
+            hdr,
+        })
     }
 
     /// See [`Renderer::set_flare_interval`]: seconds between frames for the flares' fade rates
@@ -137,7 +236,16 @@ impl HeadlessRenderer {
             .collect())
     }
 
-    fn render(&mut self, ctx: &GpuContext, frame: &Frame, width: u32, height: u32) -> Result<(), RenderError> {
+    /// Renders `frame` into the output texture and records copies of the images `readback`
+    /// names in the same submission; returns them mapping.
+    fn render(
+        &mut self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        width: u32,
+        height: u32,
+        readback: Readback,
+    ) -> Result<(Option<PendingRead>, Option<PendingRead>), RenderError> {
         ctx.check_image_size(width, height)?;
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let oom = ctx.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
@@ -150,14 +258,31 @@ impl HeadlessRenderer {
             ));
         }
         self.renderer.prepare(ctx, frame, width, height)?;
-        if let Some(output) = &self.output {
-            let view = output.create_view(&wgpu::TextureViewDescriptor::default());
-            let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("firmament HeadlessRenderer encoder"),
-            });
-            self.renderer.record(&mut encoder, &view);
-            ctx.queue.submit([encoder.finish()]);
-        }
+        let output = self
+            .output
+            .as_ref()
+            .ok_or_else(|| RenderError::Readback("no output texture".into()))?;
+        let view = output.create_view(&wgpu::TextureViewDescriptor::default());
+        let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("firmament HeadlessRenderer encoder"),
+        });
+        self.renderer.record(&mut encoder, &view);
+        // The copies follow the render in the queue, so the next frame may reuse the targets.
+        let ldr = match readback.ldr {
+            true => Some(TextureCopy::record(ctx, &mut encoder, output)?),
+            false => None,
+        };
+        let hdr = match readback.hdr {
+            true => {
+                let targets = self
+                    .renderer
+                    .targets()
+                    .ok_or_else(|| RenderError::Readback("no HDR target".into()))?;
+                Some(TextureCopy::record(ctx, &mut encoder, &targets.hdr)?)
+            }
+            false => None,
+        };
+        let submission = ctx.queue.submit([encoder.finish()]);
         if let Some(error) = pollster::block_on(oom.pop()) {
             return Err(RenderError::Gpu {
                 during: "rendering",
@@ -170,6 +295,9 @@ impl HeadlessRenderer {
                 reason: error.to_string(),
             });
         }
-        Ok(())
+        Ok((
+            ldr.map(|copy| copy.map(submission.clone())),
+            hdr.map(|copy| copy.map(submission)),
+        ))
     }
 }

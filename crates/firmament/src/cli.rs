@@ -103,6 +103,9 @@ pub(crate) struct RenderArgs {
     /// Monte Carlo paths per pixel for `--reference`'s multiple scattering, 1 to 1000000.
     #[arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
     pub(crate) paths: u64,
+    /// How an `.exr` output is compressed, always lossless (default: zip).
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub(crate) exr_compression: Option<ExrCompression>,
 }
 
 #[derive(Debug, Args)]
@@ -247,6 +250,9 @@ pub(crate) struct TimelapseArgs {
     /// Also write each frame as linear, scene-referred EXR (frame_0001.exr …) beside its PNG.
     #[arg(long)]
     pub(crate) exr: bool,
+    /// How the --exr frames are compressed, always lossless (default: zip).
+    #[arg(long, value_enum, value_name = "KIND", requires = "exr")]
+    pub(crate) exr_compression: Option<ExrCompression>,
     /// Render every frame again, even those already in the folder (default: resume, skipping them).
     #[arg(long)]
     pub(crate) overwrite: bool,
@@ -271,6 +277,10 @@ pub(crate) struct ViewArgs {
     /// or EXR file (the panel not included).
     #[arg(long, value_name = "FILE")]
     pub(crate) screenshot: Option<PathBuf>,
+    /// How EXR screenshots (Shift+F12, an `.exr` --screenshot) are compressed, always lossless
+    /// (default: zip).
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub(crate) exr_compression: Option<ExrCompression>,
     /// Where the panel's "save scene" writes (it can be changed in the panel); with --frames, the
     /// scene on screen is also saved there after the last frame, as that button does.
     #[arg(long, value_name = "FILE")]
@@ -316,6 +326,23 @@ fn finite(text: &str) -> Result<f64, String> {
         Ok(_) => Err("must be a finite number".to_owned()),
         Err(e) => Err(e.to_string()),
     }
+}
+
+/// `--exr-compression` values: OpenEXR's lossless compressions. Files are 32-bit float RGBA in
+/// scan lines; every one reads back the same floats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub(crate) enum ExrCompression {
+    /// Uncompressed: the largest files, the least CPU.
+    None,
+    /// Run-length encoding: fast, but smooth float images hardly shrink.
+    Rle,
+    /// Deflate, 16 rows a block: small files, fast to write on every core.
+    #[default]
+    Zip,
+    /// Deflate, one row a block: a little larger than zip.
+    Zips,
+    /// Wavelet and Huffman, 32 rows a block: best on noisy images (grain, stars).
+    Piz,
 }
 
 /// `--backend` values.

@@ -7,10 +7,9 @@ use firmament_core::color::{LinearRgb, linear_to_srgb};
 use firmament_core::display::Encoding;
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
-use firmament_render::headless::HeadlessRenderer;
-use firmament_render::headless::Image;
+use firmament_render::headless::{HeadlessRenderer, Image, Readback};
 
-use crate::cli::RenderArgs;
+use crate::cli::{ExrCompression, RenderArgs};
 use crate::output::{OutputFormat, write_exr, write_png};
 
 /// Renders the scene to the output file; nothing is written unless everything succeeds.
@@ -18,6 +17,13 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     // Check the output before the slow parts, so a typo fails at once.
     let format = OutputFormat::from_path(&args.output)?;
     crate::output::check_parent_dir(&args.output)?;
+    if format == OutputFormat::Png && args.exr_compression.is_some() {
+        tracing::warn!(
+            "--exr-compression applies to .exr output only: {} is a PNG",
+            args.output.display()
+        );
+    }
+    let compression = args.exr_compression.unwrap_or_default();
 
     let mut extra = super::scene_input::size_overrides(args.width, args.height);
     if let Some(time) = &args.time {
@@ -60,7 +66,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
                 sky.radiance(camera.position, camera.view_direction(ndc))
             })
             .collect();
-        return write_reference(&args.output, format, &radiance, &frame, width, height);
+        return write_reference(&args.output, format, compression, &radiance, &frame, width, height);
     }
     if args.reference {
         let Sky::Atmosphere(sky) = &frame.sky else {
@@ -81,15 +87,22 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             .into_iter()
             .map(|s| conversion.linear_srgb(s))
             .collect();
-        return write_reference(&args.output, format, &radiance, &frame, width, height);
+        return write_reference(&args.output, format, compression, &radiance, &frame, width, height);
     }
     let ctx = GpuContext::headless(args.backend.into())?;
     let when = scene.time.date_time.as_deref().unwrap_or(&scene.time.time_of_day);
     tracing::info!("rendering {what} at {width}x{height}, {when}");
     let mut renderer = HeadlessRenderer::new(&ctx);
-    match format {
-        OutputFormat::Png => write_png(&args.output, &renderer.render_ldr(&ctx, &frame, width, height)?)?,
-        OutputFormat::Exr => write_exr(&args.output, &renderer.render_hdr(&ctx, &frame, width, height)?)?,
+    let readback = Readback {
+        ldr: format == OutputFormat::Png,
+        hdr: format == OutputFormat::Exr,
+    };
+    let pixels = renderer.submit(&ctx, &frame, width, height, readback)?.collect(&ctx)?;
+    // The EXR is written from the half floats themselves, widened as its blocks are filled.
+    match (format, &pixels.ldr, &pixels.hdr) {
+        (OutputFormat::Png, Some(ldr), _) => write_png(&args.output, ldr)?,
+        (OutputFormat::Exr, _, Some(hdr)) => write_exr(&args.output, hdr, compression)?,
+        _ => bail!("the renderer returned no image to write"),
     }
     tracing::info!("wrote {}", args.output.display());
     Ok(())
@@ -99,6 +112,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
 fn write_reference(
     output: &std::path::Path,
     format: OutputFormat,
+    compression: ExrCompression,
     radiance: &[LinearRgb],
     frame: &Frame,
     width: u32,
@@ -106,7 +120,7 @@ fn write_reference(
 ) -> Result<()> {
     match format {
         OutputFormat::Png => write_png(output, &reference_ldr(radiance, frame, width, height))?,
-        OutputFormat::Exr => write_exr(output, &reference_hdr(radiance, width, height))?,
+        OutputFormat::Exr => write_exr(output, &reference_hdr(radiance, width, height), compression)?,
     }
     tracing::info!("wrote {}", output.display());
     Ok(())

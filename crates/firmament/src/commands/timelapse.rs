@@ -3,12 +3,15 @@
 //! built from the frames on disk.
 //!
 //! Every file is written to a temporary file in the output folder and renamed, so only complete
-//! frames ever exist. Ctrl-C (or SIGTERM) stops after the frame in flight; a second run with the
-//! same arguments skips the frames already there and renders the rest (`--overwrite` renders all).
+//! frames ever exist. The GPU renders the next frame while the last one is read back, and frames
+//! are encoded on every core (`pipeline.rs`). Ctrl-C (or SIGTERM) stops after the frames in
+//! flight; a second run with the same arguments skips the frames already there and renders the
+//! rest (`--overwrite` renders all).
 
 mod animation;
 mod contact_sheet;
 mod frames;
+mod pipeline;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -19,11 +22,11 @@ use anyhow::{Context, Result, bail};
 use clap::CommandFactory;
 use firmament_core::astro::CivilDateTime;
 use firmament_render::GpuContext;
-use firmament_render::headless::HeadlessRenderer;
+use firmament_render::headless::{HeadlessRenderer, Readback, SubmittedFrame};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
 
 use crate::cli::TimelapseArgs;
-use crate::output::{write_exr, write_png};
+use pipeline::{EncodeJob, EncodeQueue};
 
 /// The animated GIF's name in the output folder.
 const GIF_NAME: &str = "timelapse.gif";
@@ -186,8 +189,9 @@ fn create_output_dir(dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The stop flag: set by the first Ctrl-C or SIGTERM; a second one exits at once (a frame being
-/// written then leaves only its temporary file, never a partial frame).
+/// The stop flag: set by the first Ctrl-C or SIGTERM, which lets the frames in flight finish; a
+/// second one exits at once (a frame being written then leaves only its temporary file, never a
+/// partial frame).
 fn install_stop_handler() -> Arc<AtomicBool> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
@@ -397,6 +401,32 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         setup_seconds = started.elapsed().as_secs_f64();
         let loop_started = WallClock::now();
         let bar = progress_bar(n, skipped);
+        let depth = pipeline::queue_depth(width, height, args.exr);
+        tracing::debug!(
+            "encoding on {} threads, at most {depth} frames queued",
+            rayon::current_num_threads()
+        );
+        let mut queue = EncodeQueue::new(depth);
+        let mut done = |_: u32| {
+            rendered += 1;
+            bar.inc(1);
+        };
+        let readback = Readback {
+            ldr: true,
+            hdr: args.exr,
+        };
+        let compression = args.exr_compression.unwrap_or_default();
+        let job = |k: u32, submitted: SubmittedFrame| -> Result<EncodeJob> {
+            Ok(EncodeJob {
+                index: k,
+                pixels: submitted.collect(&ctx)?,
+                png: pngs[k as usize].clone(),
+                exr: args.exr.then(|| (exr_path(k), compression)),
+            })
+        };
+        // Frame k is submitted before frame k − 1 is collected: the GPU renders one while the
+        // other comes back, and the encoders work on the ones before.
+        let mut in_flight: Option<(u32, SubmittedFrame)> = None;
         for &k in &todo {
             if stop.load(Ordering::SeqCst) {
                 break;
@@ -406,16 +436,16 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
             let frame = scene
                 .frame_at_date_time(civil)
                 .with_context(|| format!("cannot build {what} at {}", civil))?;
-            let png = &pngs[k as usize];
-            let image = renderer.render_ldr(&ctx, &frame, width, height)?;
-            if args.exr {
-                let hdr = renderer.render_hdr(&ctx, &frame, width, height)?;
-                write_exr(&exr_path(k), &hdr)?;
+            let submitted = renderer.submit(&ctx, &frame, width, height, readback)?;
+            if let Some((previous, submitted)) = in_flight.replace((k, submitted)) {
+                queue.push(job(previous, submitted)?, &mut done)?;
             }
-            write_png(png, &image)?;
-            rendered += 1;
-            bar.inc(1);
+            queue.poll(&mut done)?;
         }
+        if let Some((last, submitted)) = in_flight.take() {
+            queue.push(job(last, submitted)?, &mut done)?;
+        }
+        queue.finish(&mut done)?;
         bar.finish_and_clear();
         render_seconds = loop_started.elapsed().as_secs_f64();
     }

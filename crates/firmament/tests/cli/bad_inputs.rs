@@ -553,6 +553,15 @@ fn corpus() -> Vec<Case> {
             &["render", "--preset", "earth-noon", "--reference", "--paths", "2000000"],
             &["invalid value '2000000' for '--paths <N>'"],
         ),
+        case(
+            "render: --exr-compression lzma",
+            2,
+            &["render", "-o", "x.exr", "--exr-compression", "lzma"],
+            &[
+                "invalid value 'lzma' for '--exr-compression <KIND>'",
+                "[possible values: none, rle, zip, zips, piz]",
+            ],
+        ),
         // ---- render: broken meshes and textures ------------------------------------------------
         case(
             "render: a missing texture file",
@@ -1065,7 +1074,7 @@ fn every_bad_input_fails_with_one_clear_message_and_writes_nothing() {
     let scratch = tempfile::tempdir().expect("temp dir");
     let cases = corpus();
     // The count the corpus has (docs/RELIABILITY.md), so that no case can vanish unnoticed.
-    let floor = if cfg!(target_os = "linux") { 96 } else { 90 };
+    let floor = if cfg!(target_os = "linux") { 97 } else { 91 };
     assert!(cases.len() >= floor, "only {} cases", cases.len());
     let mut failures = Vec::new();
     for case in &cases {

@@ -297,6 +297,16 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
         ),
         (with(&[], &["--fps", "0"]), 2, "invalid value '0' for '--fps <FPS>'"),
         (
+            with(&[], &["--exr", "--exr-compression", "b44"]),
+            2,
+            "invalid value 'b44' for '--exr-compression <KIND>'\n  [possible values: none, rle, zip, zips, piz]",
+        ),
+        (
+            with(&[], &["--exr-compression", "zip"]),
+            2,
+            "the following required arguments were not provided:\n  --exr",
+        ),
+        (
             with(&[("-o", "a_file")], &[]),
             1,
             "output a_file: exists and is not a folder",
@@ -368,6 +378,116 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--output <DIR>"), "{}", stderr(&out));
     assert_eq!(files_in(d), before);
+}
+
+/// An image's floats, RGBA rows top first.
+type Floats = Vec<f32>;
+
+/// Every float of `path`'s first RGBA layer, read by the `exr` crate, rows top first.
+fn exr_floats(path: &Path) -> Floats {
+    let image = exr::prelude::read_first_rgba_layer_from_file(
+        path,
+        |size, _| (size.width(), vec![0.0_f32; size.width() * size.height() * 4]),
+        |(width, floats), at, (r, g, b, a): (f32, f32, f32, f32)| {
+            let i = (at.y() * *width + at.x()) * 4;
+            floats[i..i + 4].copy_from_slice(&[r, g, b, a]);
+        },
+    )
+    .unwrap_or_else(|e| panic!("{}: not an EXR the exr crate reads: {e}", path.display()));
+    image.layer_data.channel_data.pixels.1
+}
+
+/// `--exr` frames are compressed as `--exr-compression` says (zip by default), in 32-bit float,
+/// and every compression holds the same floats, read by the `exr` crate and by `image` alike —
+/// the floats and the PNG `render` writes for the same instant. The frames are in order (the sky
+/// darkens frame by frame) although they are encoded in parallel.
+#[test]
+fn exr_frames_are_compressed_as_chosen_and_hold_the_same_floats() {
+    use exr::compression::Compression;
+    use exr::meta::attribute::SampleType;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let frames = 4;
+    let cases = [
+        (None, Compression::ZIP16),
+        (Some("none"), Compression::Uncompressed),
+        (Some("rle"), Compression::RLE),
+        (Some("zip"), Compression::ZIP16),
+        (Some("zips"), Compression::ZIP1),
+        (Some("piz"), Compression::PIZ),
+    ];
+    // The first run's frames: each EXR's floats and each PNG's bytes.
+    let mut first: Option<(Vec<Floats>, Vec<Vec<u8>>)> = None;
+    for (flag, expected) in cases {
+        let name = flag.unwrap_or("default");
+        let mut run = tiny(name, &frames.to_string());
+        let size = run.iter().position(|a| a == "--width").expect("--width");
+        run.splice(size..size + 4, ["--width", "32", "--height", "18"].map(str::to_owned));
+        run.push("--exr".to_owned());
+        if let Some(flag) = flag {
+            run.extend(["--exr-compression".to_owned(), flag.to_owned()]);
+        }
+        let out = firmament(d, &args(&run));
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        let mut floats = Vec::new();
+        let mut pngs = Vec::new();
+        for k in 1..=frames {
+            let path = d.join(name).join(format!("frame_000{k}.exr"));
+            let meta = exr::meta::MetaData::read_from_file(&path, false).expect("an EXR header");
+            let header = &meta.headers[0];
+            assert_eq!(header.compression, expected, "{}", path.display());
+            assert_eq!(header.layer_size.0, 32);
+            let names: Vec<String> = header.channels.list.iter().map(|c| c.name.to_string()).collect();
+            assert_eq!(names, ["A", "B", "G", "R"], "{}", path.display());
+            assert!(header.channels.list.iter().all(|c| c.sample_type == SampleType::F32));
+            let exr = exr_floats(&path);
+            assert_eq!(exr.len(), 32 * 18 * 4);
+            let via_image = image::open(&path).expect("image reads it").to_rgba32f().into_raw();
+            assert!(exr == via_image, "{}: exr and image read other floats", path.display());
+            floats.push(exr);
+            pngs.push(std::fs::read(d.join(name).join(format!("frame_000{k}.png"))).expect("the PNG"));
+        }
+        let means: Vec<f64> = (1..=frames)
+            .map(|k| mean_png_luminance(&d.join(name).join(format!("frame_000{k}.png"))))
+            .collect();
+        assert!(means.windows(2).all(|m| m[1] < m[0]), "{name}: out of order: {means:?}");
+        match &first {
+            None => first = Some((floats, pngs)),
+            Some((f, p)) => {
+                assert!(*f == floats, "{name}: other floats than the default compression's");
+                assert!(*p == pngs, "{name}: other PNGs than the default compression's");
+            }
+        }
+    }
+    let (floats, _) = first.expect("a first run");
+    assert!(floats.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(floats[0] != floats[1], "frames 1 and 2 are the same image");
+
+    // `render` at frame 1's instant: the same floats (one render read back once) and PNG pixels.
+    let still = |file: &str| {
+        let out = firmament(
+            d,
+            &[
+                "render",
+                "--set",
+                "time.date_time=\"2024-03-20T16:00:00Z\"",
+                "--width",
+                "32",
+                "--height",
+                "18",
+                "-o",
+                file,
+            ],
+        );
+        assert!(out.status.success(), "{file}: {}", stderr(&out));
+        d.join(file)
+    };
+    assert!(
+        exr_floats(&still("still.exr")) == floats[0],
+        "render's EXR differs from frame 1's"
+    );
+    let png = |path: &Path| image::open(path).expect("a PNG").to_rgb8().into_raw();
+    assert_eq!(png(&still("still.png")), png(&d.join("default/frame_0001.png")));
 }
 
 /// The issue's check "Day/night: rendered sky luminance decreases monotonically through sunset
@@ -495,6 +615,9 @@ fn a_signal_stops_cleanly_and_the_same_command_resumes() {
         );
         let done = names.len();
         assert!((1..60).contains(&done), "{done} frames after SIG{signal}");
+        // Every frame in flight is finished: the frames kept are the first ones, without a gap.
+        let first: Vec<String> = (1..=done).map(|k| format!("frame_{k:04}.png")).collect();
+        assert_eq!(names, first, "SIG{signal}");
         for n in &names {
             image::open(d.join("lapse").join(n)).expect("every frame kept is a complete PNG");
         }

@@ -255,7 +255,7 @@ impl App {
         let gpu = self.gpu.as_ref().context("no window to take a screenshot of")?;
         match crate::output::OutputFormat::from_path(path)? {
             crate::output::OutputFormat::Png => write_png(path, &gpu.read_ldr()?),
-            crate::output::OutputFormat::Exr => write_exr(path, &gpu.read_hdr()?),
+            crate::output::OutputFormat::Exr => write_exr(path, &gpu.read_hdr()?, self.options.exr_compression),
         }
         .with_context(|| format!("cannot write the screenshot {}", path.display()))
     }

@@ -75,6 +75,7 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
         size: args.size,
         frames: args.frames,
         screenshot: args.screenshot.clone(),
+        exr_compression: args.exr_compression.unwrap_or_default(),
         save_path: args
             .save_scene
             .clone()

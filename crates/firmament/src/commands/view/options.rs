@@ -15,6 +15,8 @@ pub(crate) struct ViewOptions {
     pub(crate) frames: Option<u64>,
     /// Screenshot written after the last frame.
     pub(crate) screenshot: Option<PathBuf>,
+    /// How EXR screenshots are compressed.
+    pub(crate) exr_compression: crate::cli::ExrCompression,
     /// Where "save scene" writes by default.
     pub(crate) save_path: PathBuf,
     /// Save the scene to `save_path` after the last of `frames`.
