@@ -8,9 +8,10 @@ use crate::error::{LimitShortfall, RenderError};
 /// The device features firmament must have: none.
 ///
 /// Every pass runs on core WebGPU features (the transmittance LUT is `Rgba32Float`, written by a
-/// compute pass and read unfiltered, so not even `FLOAT32_FILTERABLE`). Optional: GPU
-/// timestamps ([`TIMESTAMP_FEATURES`]), used by pass timing and the benchmarks only when the
-/// device has them.
+/// compute pass and read unfiltered, so not even `FLOAT32_FILTERABLE`; the lens flares'
+/// indirect dispatches and draws are core, `DownlevelFlags::INDIRECT_EXECUTION` on GL ES 3.1).
+/// Optional: GPU timestamps ([`TIMESTAMP_FEATURES`]), used by pass timing and the benchmarks only
+/// when the device has them.
 pub fn required_features() -> wgpu::Features {
     wgpu::Features::empty()
 }
@@ -31,7 +32,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | `max_bind_groups` | 1 | every pipeline has one bind group |
 /// | `max_sampled_textures_per_shader_stage` | 11 | the atmosphere's sky as a compute pass: transmittance, irradiance, sky view, seven scattering moments and the depth buffer |
 /// | `max_samplers_per_shader_stage` | 1 | |
-/// | `max_storage_buffers_per_shader_stage` | 2 | lens-flare occlusion: its sources and their visibility |
+/// | `max_storage_buffers_per_shader_stage` | 2 | lens flares: their records and their state (occlusion, binning, elements) |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
 /// | `max_uniform_buffers_per_shader_stage` | 3 | the atmosphere's sky lighting |
 /// | `max_vertex_buffers` | 2 | objects: geometry and per-vertex shading |

@@ -1,41 +1,107 @@
 //! The lens-flare passes: an occlusion compute pass that samples the depth buffer (and the
-//! planet) over every source's disc and writes its visible share to a GPU buffer, and an element
-//! pass that adds each source's flare — glows, streaks, halos, ghosts along the axis through the
-//! screen centre — to the HDR target, scaled by that share. Nothing is read back to the CPU.
+//! planet) over every source's disc and writes its visible share to a GPU buffer, with the
+//! indirect arguments of the element and composite passes; a binning pass that marks which
+//! elements of the seen sources may light each bin of pixels; an element compute pass that sums
+//! each pixel's elements — glows, streaks, halos, ghosts along the axis through the screen centre
+//! — scaled by their source's share into the pass's own target; and a composite quad that adds
+//! that target to the HDR target. Nothing is read back to the CPU: a hidden source costs its
+//! occlusion samples and no more.
 //!
 //! Placement is the core's ([`firmament_core::flare`]): sources are projected and elements laid
-//! out in `f64` in `prepare`; the GPU only decides how much of each source is hidden.
+//! out, and clipped to where their light is above
+//! [`FLARE_NEGLIGIBLE`](crate::gpu_types::flare::FLARE_NEGLIGIBLE), in `f64` in `prepare`; the
+//! GPU only decides how much of each source is hidden. Why compute: docs/PERFORMANCE.md, "Lens
+//! flares".
 
 use firmament_core::atmosphere::Planet;
 use firmament_core::flare::{FlareLayer, MAX_FLARE_ELEMENTS, MAX_FLARE_SOURCES, element_centers, on_screen};
 use firmament_core::{Camera, DepthConvention};
 
 use super::flare_images::FlareImageArray;
+use crate::gpu_types::codes;
+use crate::gpu_types::flare::PixelRect;
 use crate::gpu_types::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
-use crate::passes::common::{uniform_buffer, uniform_entry, uniform_entry_in};
+use crate::passes::common::{uniform_buffer, uniform_entry_in};
 use crate::shaders;
 use crate::targets::HDR_FORMAT;
 
-/// Most element quads in a frame.
+/// Most element records in a frame (`MAX_INSTANCES` of `shaders/flare/bindings.wgsl`).
 const MAX_INSTANCES: usize = MAX_FLARE_SOURCES * MAX_FLARE_ELEMENTS;
 
-/// Binding numbers of both pipelines: those `shaders/flare/bindings.wgsl` declares (a test
+/// The pass's own target: each pixel's summed element light.
+const ACCUMULATION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The element pass's tile side, pixels (`FLARE_TILE` of `shaders/flare/bindings.wgsl`).
+const TILE: u32 = 16;
+
+/// Most bins: the bins' side grows (in powers of two) with the target to keep within this, so
+/// the state buffer has one size (4 MiB of bins).
+const MAX_BINS: u32 = 8192;
+
+/// Byte offsets in the records buffer of `FlareRecords`' members (`shaders/flare/bindings.wgsl`;
+/// a test compares them).
+mod records {
+    /// [`FlareSourceGpu`](crate::gpu_types::FlareSourceGpu) × `MAX_FLARE_SOURCES`.
+    pub(super) const SOURCES: u64 = 0;
+    /// [`FlareInstance`](crate::gpu_types::FlareInstance)s.
+    pub(super) const ELEMENTS: u64 = 2048;
+}
+
+/// Byte offsets in the state buffer of `FlareState`'s members (`shaders/flare/bindings.wgsl`; a
+/// test compares them).
+mod state {
+    /// One `f32` per source.
+    #[cfg(test)]
+    pub(super) const VISIBILITY: u64 = 0;
+    /// The element pass's `DispatchIndirectArgs`.
+    pub(super) const DISPATCH: u64 = 256;
+    /// The composite pass's `DrawIndirectArgs`.
+    pub(super) const DRAW: u64 = 272;
+    /// The lit rectangle (four `u32`), the composite quad's instance attribute.
+    pub(super) const RECT: u64 = 288;
+    /// The bin grid (four `u32`), written by `prepare`.
+    pub(super) const GRID: u64 = 304;
+    /// Which elements are images (a bin's bit set), written by `prepare`.
+    pub(super) const IMAGES: u64 = 320;
+    /// The bins' bit sets.
+    pub(super) const BINS: u64 = 832;
+}
+
+// One occlusion workgroup holds every source (it unions their rectangles); the WGSL structs
+// hold 64 sources and 4096 elements.
+const _: () = assert!(MAX_FLARE_SOURCES == 64 && MAX_INSTANCES == 4096);
+
+/// The bins of a `width` × `height` target for `elements` elements: side (pixels, a power of
+/// two from [`TILE`] up), bins across, bins down, words per bin (one bit per element).
+fn bin_grid((width, height): (u32, u32), elements: u32) -> [u32; 4] {
+    let mut side = TILE;
+    while width.div_ceil(side) * height.div_ceil(side) > MAX_BINS {
+        side *= 2;
+    }
+    [side, width.div_ceil(side), height.div_ceil(side), elements.div_ceil(32)]
+}
+
+/// Binding numbers of the four pipelines: those `shaders/flare/bindings.wgsl` declares (a test
 /// compares the two).
 mod binding {
-    /// The frame uniforms (both passes).
+    /// The frame uniforms (all).
     pub(super) const FRAME: u32 = 0;
-    /// The sources (occlusion).
-    pub(super) const SOURCES: u32 = 1;
-    /// The visibility buffer, written (occlusion).
-    pub(super) const VISIBILITY: u32 = 2;
+    /// The sources and elements (the compute passes).
+    pub(super) const RECORDS: u32 = 1;
+    /// The state buffer, written (occlusion, binning).
+    pub(super) const STATE: u32 = 2;
     /// The depth buffer (occlusion).
     pub(super) const DEPTH: u32 = 3;
-    /// The visibility buffer, read (elements).
-    pub(super) const ELEMENT_VISIBILITY: u32 = 4;
+    /// The state buffer, read (elements).
+    pub(super) const ELEMENT_STATE: u32 = 4;
     /// The element images (elements).
     pub(super) const IMAGES: u32 = 5;
     /// Their sampler (elements).
     pub(super) const IMAGE_SAMPLER: u32 = 6;
+    /// The pass's own target, written (elements).
+    pub(super) const ACCUMULATED_OUT: u32 = 7;
+    /// The pass's own target, read (composite).
+    pub(super) const ACCUMULATED: u32 = 8;
 }
 
 /// Lens flares of a frame's suns and lights.
@@ -45,19 +111,30 @@ pub struct FlarePass {
     occlusion_layout: wgpu::BindGroupLayout,
     /// Rebuilt by [`Self::bind_depth`].
     occlusion_bind_group: Option<wgpu::BindGroup>,
-    draw: wgpu::RenderPipeline,
-    draw_layout: wgpu::BindGroupLayout,
-    /// Rebuilt when the flare's images change.
-    draw_bind_group: wgpu::BindGroup,
+    /// Uses the occlusion pipeline's layout and bind group.
+    binning: wgpu::ComputePipeline,
+    elements: wgpu::ComputePipeline,
+    elements_layout: wgpu::BindGroupLayout,
+    /// Rebuilt by [`Self::bind_depth`] and when the flare's images change.
+    elements_bind_group: Option<wgpu::BindGroup>,
+    composite: wgpu::RenderPipeline,
+    composite_layout: wgpu::BindGroupLayout,
+    /// Rebuilt by [`Self::bind_depth`].
+    composite_bind_group: Option<wgpu::BindGroup>,
+    /// The pass's own target, the depth buffer's size: the elements' light summed per pixel.
+    accumulation: Option<wgpu::TextureView>,
     images: FlareImageArray,
     image_sampler: wgpu::Sampler,
     frame_uniforms: wgpu::Buffer,
-    sources: wgpu::Buffer,
-    /// One `f32` per source: the visible share, kept between frames for smoothing.
-    visibility: wgpu::Buffer,
-    instances: wgpu::Buffer,
+    /// `FlareRecords`: the kept sources, then their elements.
+    records: wgpu::Buffer,
+    /// `FlareState`: each source's visible share (kept between frames for smoothing), the
+    /// indirect arguments and lit rectangle the occlusion pass writes, the bins.
+    state: wgpu::Buffer,
     source_count: u32,
     instance_count: u32,
+    /// [`bin_grid`] of the last `prepare`.
+    grid: [u32; 4],
     depth_size: (u32, u32),
     /// Seconds between frames for the fade rates; `None` for stills.
     interval: Option<f64>,
@@ -87,14 +164,13 @@ fn buffer(device: &wgpu::Device, label: &str, size: usize, usage: wgpu::BufferUs
     })
 }
 
-/// The element pass's bind group: frame uniforms, visibility, the element images and their sampler.
-fn draw_bind_group(
+/// The element pass's bind group: frame uniforms, records, state, images and their sampler and
+/// the pass's own target.
+fn elements_bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
-    frame_uniforms: &wgpu::Buffer,
-    visibility: &wgpu::Buffer,
-    images: &wgpu::TextureView,
-    sampler: &wgpu::Sampler,
+    pass: &FlarePass,
+    accumulation: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("firmament FlarePass element bind group"),
@@ -102,59 +178,71 @@ fn draw_bind_group(
         entries: &[
             wgpu::BindGroupEntry {
                 binding: binding::FRAME,
-                resource: frame_uniforms.as_entire_binding(),
+                resource: pass.frame_uniforms.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
-                binding: binding::ELEMENT_VISIBILITY,
-                resource: visibility.as_entire_binding(),
+                binding: binding::ELEMENT_STATE,
+                resource: pass.state.as_entire_binding(),
             },
             wgpu::BindGroupEntry {
                 binding: binding::IMAGES,
-                resource: wgpu::BindingResource::TextureView(images),
+                resource: wgpu::BindingResource::TextureView(&pass.images.view),
             },
             wgpu::BindGroupEntry {
                 binding: binding::IMAGE_SAMPLER,
-                resource: wgpu::BindingResource::Sampler(sampler),
+                resource: wgpu::BindingResource::Sampler(&pass.image_sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: binding::RECORDS,
+                resource: pass.records.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: binding::ACCUMULATED_OUT,
+                resource: wgpu::BindingResource::TextureView(accumulation),
             },
         ],
     })
 }
 
 impl FlarePass {
-    /// Builds both pipelines for [`HDR_FORMAT`] targets.
+    /// Builds the four pipelines for [`HDR_FORMAT`] targets.
     pub fn new(device: &wgpu::Device) -> Self {
         Self::with_format(device, HDR_FORMAT)
     }
 
-    /// Builds both pipelines for colour targets of `format`.
+    /// Builds the four pipelines, the composite's for colour targets of `format`.
     pub fn with_format(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
         use wgpu::ShaderStages as S;
         let frame_uniforms = uniform_buffer::<FlareFrameUniforms>(device, "firmament FlarePass frame uniforms");
-        let sources = buffer(
+        let records = buffer(
             device,
-            "firmament FlarePass sources",
-            MAX_FLARE_SOURCES * std::mem::size_of::<FlareSourceGpu>(),
+            "firmament FlarePass records",
+            records::ELEMENTS as usize + MAX_INSTANCES * std::mem::size_of::<FlareInstance>(),
             wgpu::BufferUsages::STORAGE,
         );
-        let visibility = buffer(
+        let state = buffer(
             device,
-            "firmament FlarePass visibility",
-            MAX_FLARE_SOURCES * 4,
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            "firmament FlarePass state",
+            (state::BINS + u64::from(MAX_BINS) * MAX_INSTANCES as u64 / 8) as usize,
+            wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::VERTEX
+                | wgpu::BufferUsages::COPY_SRC,
         );
-        let instances = buffer(
-            device,
-            "firmament FlarePass element instances",
-            MAX_INSTANCES * std::mem::size_of::<FlareInstance>(),
-            wgpu::BufferUsages::VERTEX,
-        );
+        let pipeline_layout = |name: &str, layout: &wgpu::BindGroupLayout| {
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(&format!("firmament FlarePass {name} pipeline layout")),
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            })
+        };
 
         let occlusion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass occlusion bind group layout"),
             entries: &[
                 uniform_entry_in(binding::FRAME, S::COMPUTE),
-                storage_entry(binding::SOURCES, S::COMPUTE, true),
-                storage_entry(binding::VISIBILITY, S::COMPUTE, false),
+                storage_entry(binding::RECORDS, S::COMPUTE, true),
+                storage_entry(binding::STATE, S::COMPUTE, false),
                 wgpu::BindGroupLayoutEntry {
                     binding: binding::DEPTH,
                     visibility: S::COMPUTE,
@@ -172,27 +260,33 @@ impl FlarePass {
             label: Some("firmament FlarePass occlusion shader"),
             source: wgpu::ShaderSource::Wgsl(shaders::FLARE_OCCLUSION.source().into()),
         });
+        let occlusion_pipeline_layout = pipeline_layout("occlusion", &occlusion_layout);
         let occlusion = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("firmament FlarePass occlusion pipeline"),
-            layout: Some(&device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("firmament FlarePass occlusion pipeline layout"),
-                bind_group_layouts: &[Some(&occlusion_layout)],
-                immediate_size: 0,
-            })),
+            layout: Some(&occlusion_pipeline_layout),
             module: &module,
             entry_point: Some("cs_main"),
             compilation_options: Default::default(),
             cache: None,
         });
+        let binning = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("firmament FlarePass binning pipeline"),
+            layout: Some(&occlusion_pipeline_layout),
+            module: &module,
+            entry_point: Some("cs_bin"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
 
-        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let elements_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass element bind group layout"),
             entries: &[
-                uniform_entry(binding::FRAME),
-                storage_entry(binding::ELEMENT_VISIBILITY, S::FRAGMENT, true),
+                uniform_entry_in(binding::FRAME, S::COMPUTE),
+                storage_entry(binding::RECORDS, S::COMPUTE, true),
+                storage_entry(binding::ELEMENT_STATE, S::COMPUTE, true),
                 wgpu::BindGroupLayoutEntry {
                     binding: binding::IMAGES,
-                    visibility: S::FRAGMENT,
+                    visibility: S::COMPUTE,
                     ty: wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: true },
                         view_dimension: wgpu::TextureViewDimension::D2Array,
@@ -202,8 +296,18 @@ impl FlarePass {
                 },
                 wgpu::BindGroupLayoutEntry {
                     binding: binding::IMAGE_SAMPLER,
-                    visibility: S::FRAGMENT,
+                    visibility: S::COMPUTE,
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: binding::ACCUMULATED_OUT,
+                    visibility: S::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: ACCUMULATION_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
                     count: None,
                 },
             ],
@@ -212,23 +316,43 @@ impl FlarePass {
             label: Some("firmament FlarePass element shader"),
             source: wgpu::ShaderSource::Wgsl(shaders::FLARE.source().into()),
         });
-        let draw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let elements = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("firmament FlarePass element pipeline"),
-            layout: Some(&device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("firmament FlarePass element pipeline layout"),
-                bind_group_layouts: &[Some(&draw_layout)],
-                immediate_size: 0,
-            })),
+            layout: Some(&pipeline_layout("element", &elements_layout)),
+            module: &module,
+            entry_point: Some("cs_elements"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+
+        let composite_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("firmament FlarePass composite bind group layout"),
+            entries: &[
+                uniform_entry_in(binding::FRAME, S::VERTEX),
+                wgpu::BindGroupLayoutEntry {
+                    binding: binding::ACCUMULATED,
+                    visibility: S::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let composite = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("firmament FlarePass composite pipeline"),
+            layout: Some(&pipeline_layout("composite", &composite_layout)),
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("vs_main"),
+                entry_point: Some("vs_composite"),
                 compilation_options: Default::default(),
+                // The lit rectangle, read from the state buffer.
                 buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<FlareInstance>() as u64,
+                    array_stride: 16,
                     step_mode: wgpu::VertexStepMode::Instance,
-                    attributes: &wgpu::vertex_attr_array![
-                        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Uint32x4
-                    ],
+                    attributes: &wgpu::vertex_attr_array![0 => Uint32x4],
                 })],
             },
             primitive: wgpu::PrimitiveState {
@@ -239,7 +363,7 @@ impl FlarePass {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
-                entry_point: Some("fs_main"),
+                entry_point: Some("fs_composite"),
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState {
                     format,
@@ -258,29 +382,26 @@ impl FlarePass {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let draw_bind_group = draw_bind_group(
-            device,
-            &draw_layout,
-            &frame_uniforms,
-            &visibility,
-            &images.view,
-            &image_sampler,
-        );
         Self {
             occlusion,
             occlusion_layout,
             occlusion_bind_group: None,
-            draw,
-            draw_layout,
-            draw_bind_group,
+            binning,
+            elements,
+            elements_layout,
+            elements_bind_group: None,
+            composite,
+            composite_layout,
+            composite_bind_group: None,
+            accumulation: None,
             images,
             image_sampler,
             frame_uniforms,
-            sources,
-            visibility,
-            instances,
+            records,
+            state,
             source_count: 0,
             instance_count: 0,
+            grid: [0; 4],
             depth_size: (0, 0),
             interval: None,
             convention: DepthConvention::Reversed,
@@ -288,10 +409,11 @@ impl FlarePass {
     }
 
     /// Binds the depth buffer (`width` × `height`, in the convention of
-    /// [`Self::set_depth_convention`]; reversed-Z by default) whose geometry hides sources.
-    /// Call again when the depth texture changes.
+    /// [`Self::set_depth_convention`]; reversed-Z by default) whose geometry hides sources, and
+    /// sizes the pass's own target to it: the colour targets of [`Self::record`] and
+    /// [`Self::draw`] must be that size. Call again when the depth texture changes, before
+    /// [`Self::prepare`].
     pub fn bind_depth(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView, width: u32, height: u32) {
-        self.depth_size = (width, height);
         self.occlusion_bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("firmament FlarePass occlusion bind group"),
             layout: &self.occlusion_layout,
@@ -301,12 +423,12 @@ impl FlarePass {
                     resource: self.frame_uniforms.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: binding::SOURCES,
-                    resource: self.sources.as_entire_binding(),
+                    binding: binding::RECORDS,
+                    resource: self.records.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
-                    binding: binding::VISIBILITY,
-                    resource: self.visibility.as_entire_binding(),
+                    binding: binding::STATE,
+                    resource: self.state.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: binding::DEPTH,
@@ -314,14 +436,54 @@ impl FlarePass {
                 },
             ],
         }));
+        if self.accumulation.is_some() && self.depth_size == (width, height) {
+            return;
+        }
+        self.depth_size = (width, height);
+        let accumulation = device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("firmament FlarePass accumulation"),
+                size: wgpu::Extent3d {
+                    width: width.max(1),
+                    height: height.max(1),
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: ACCUMULATION_FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+            .create_view(&wgpu::TextureViewDescriptor {
+                label: Some("firmament FlarePass accumulation view"),
+                ..Default::default()
+            });
+        self.composite_bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("firmament FlarePass composite bind group"),
+            layout: &self.composite_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: binding::FRAME,
+                    resource: self.frame_uniforms.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: binding::ACCUMULATED,
+                    resource: wgpu::BindingResource::TextureView(&accumulation),
+                },
+            ],
+        }));
+        self.elements_bind_group = Some(elements_bind_group(device, &self.elements_layout, self, &accumulation));
+        self.accumulation = Some(accumulation);
     }
 
     /// Lays out `layer`'s flares for `camera` (whose aspect must be the target's): which sources
     /// can flare (in front, within the margin), where each element goes, its colour over the
-    /// display's `exposure` multiplier (so 1 is white on screen). `planet`, when the sky has one,
-    /// hides sources behind it. Visibility fades at the flare's rates over the interval of
-    /// [`Self::set_interval`]. Sources and elements past the limits are dropped (scenes validate
-    /// the counts).
+    /// display's `exposure` multiplier (so 1 is white on screen), and the pixels of the bound
+    /// depth buffer's size it can light ([`FlareInstance::clipped`]; elements too faint to
+    /// matter are dropped). `planet`, when the sky has one, hides sources behind it. Visibility
+    /// fades at the flare's rates over the interval of [`Self::set_interval`]. Sources and
+    /// elements past the limits are dropped (scenes validate the counts).
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -337,14 +499,9 @@ impl FlarePass {
             return;
         };
         if self.images.update(device, queue, &flare.images) {
-            self.draw_bind_group = draw_bind_group(
-                device,
-                &self.draw_layout,
-                &self.frame_uniforms,
-                &self.visibility,
-                &self.images.view,
-                &self.image_sampler,
-            );
+            if let Some(accumulation) = &self.accumulation {
+                self.elements_bind_group = Some(elements_bind_group(device, &self.elements_layout, self, accumulation));
+            }
         }
         let positions: Vec<f64> = flare.elements.iter().map(|e| e.position).collect();
         let scale = flare.intensity / if exposure > 0.0 { exposure } else { 1.0 };
@@ -355,14 +512,20 @@ impl FlarePass {
                 continue;
             };
             let index = sources.len() as u32;
-            sources.push(FlareSourceGpu::in_convention(camera, source, &at, self.convention));
             let centers = element_centers(camera, source, &positions);
+            let mut lit = PixelRect::default();
             for (element, center) in flare.elements.iter().take(MAX_FLARE_ELEMENTS).zip(centers) {
-                if let Some(center) = center {
-                    let color = element.color * source.color * element.intensity * scale;
-                    instances.push(FlareInstance::new(element, center, color, at.edge_fade, index));
+                let Some(center) = center else {
+                    continue;
+                };
+                let color = element.color * source.color * element.intensity * scale;
+                let instance = FlareInstance::new(element, center, color, at.edge_fade, index);
+                if let Some((instance, rect)) = instance.clipped(self.depth_size) {
+                    instances.push(instance);
+                    lit = lit.union(rect);
                 }
             }
+            sources.push(FlareSourceGpu::in_convention(camera, source, &at, self.convention).with_rect(lit));
         }
         let uniforms = FlareFrameUniforms::new(
             camera,
@@ -372,14 +535,24 @@ impl FlarePass {
             self.depth_size,
             self.interval,
         )
-        .for_depth_convention(self.convention);
+        .for_depth_convention(self.convention)
+        .with_elements(instances.len() as u32);
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
         if !sources.is_empty() {
-            queue.write_buffer(&self.sources, 0, bytemuck::cast_slice(&sources));
+            queue.write_buffer(&self.records, records::SOURCES, bytemuck::cast_slice(&sources));
         }
         if !instances.is_empty() {
-            queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&instances));
+            queue.write_buffer(&self.records, records::ELEMENTS, bytemuck::cast_slice(&instances));
         }
+        self.grid = bin_grid(self.depth_size, instances.len() as u32);
+        let mut images = [0u32; MAX_INSTANCES / 32];
+        for (k, instance) in instances.iter().enumerate() {
+            if instance.shape[0] == codes::FLARE_IMAGE as f32 {
+                images[k / 32] |= 1 << (k % 32);
+            }
+        }
+        queue.write_buffer(&self.state, state::GRID, bytemuck::cast_slice(&self.grid));
+        queue.write_buffer(&self.state, state::IMAGES, bytemuck::cast_slice(&images));
         self.source_count = sources.len() as u32;
         self.instance_count = instances.len() as u32;
     }
@@ -396,13 +569,14 @@ impl FlarePass {
         self.interval = seconds;
     }
 
-    /// Whether the last `prepare` left any flare to draw.
+    /// Whether the last `prepare` left no element that could light the target.
     pub fn is_empty(&self) -> bool {
         self.instance_count == 0
     }
 
     /// Encodes the occlusion pass: each source's visible share from the bound depth buffer,
-    /// after the geometry that hides sources is drawn. Nothing without [`Self::bind_depth`].
+    /// after the geometry that hides sources is drawn, and the element and composite passes'
+    /// indirect arguments. Nothing without [`Self::bind_depth`].
     pub fn record_occlusion(&self, encoder: &mut wgpu::CommandEncoder) {
         let Some(bind_group) = &self.occlusion_bind_group else {
             return;
@@ -416,28 +590,61 @@ impl FlarePass {
         });
         pass.set_pipeline(&self.occlusion);
         pass.set_bind_group(0, bind_group, &[]);
-        pass.dispatch_workgroups(self.source_count.div_ceil(64), 1, 1);
+        // One workgroup of MAX_FLARE_SOURCES invocations.
+        pass.dispatch_workgroups(1, 1, 1);
     }
 
-    /// Draws the elements into a render pass the caller already began (additive; no depth).
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+    /// Encodes the binning and element passes, after [`Self::record_occlusion`]: the seen
+    /// sources' elements summed into the pass's own target over the rectangle they light (no
+    /// element work when none is seen).
+    pub fn record_elements(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (Some(occlusion), Some(elements)) = (&self.occlusion_bind_group, &self.elements_bind_group) else {
+            return;
+        };
         if self.instance_count == 0 {
             return;
         }
-        pass.set_pipeline(&self.draw);
-        pass.set_bind_group(0, &self.draw_bind_group, &[]);
-        pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.draw(0..4, 0..self.instance_count);
+        let [_, across, down, words] = self.grid;
+        let bins = u64::from(across * down * words) * 4;
+        encoder.clear_buffer(&self.state, state::BINS, Some(bins));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("firmament FlarePass elements"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.binning);
+        pass.set_bind_group(0, occlusion, &[]);
+        pass.dispatch_workgroups(self.instance_count.div_ceil(64), 1, 1);
+        pass.set_pipeline(&self.elements);
+        pass.set_bind_group(0, elements, &[]);
+        pass.dispatch_workgroups_indirect(&self.state, state::DISPATCH);
     }
 
-    /// Encodes occlusion, then the elements added onto `color` (loaded, e.g. the HDR target).
+    /// Adds the elements' light to a render pass the caller already began on a target of the
+    /// bound depth buffer's size (additive; no depth), after [`Self::record_occlusion`] and
+    /// [`Self::record_elements`]: one quad over the lit rectangle, none when no source is seen.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let Some(bind_group) = &self.composite_bind_group else {
+            return;
+        };
+        if self.instance_count == 0 {
+            return;
+        }
+        pass.set_pipeline(&self.composite);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.set_vertex_buffer(0, self.state.slice(state::RECT..state::RECT + 16));
+        pass.draw_indirect(&self.state, state::DRAW);
+    }
+
+    /// Encodes occlusion and the elements, then adds them onto `color` (loaded, e.g. the HDR
+    /// target, the bound depth buffer's size).
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) {
         if self.instance_count == 0 {
             return;
         }
         self.record_occlusion(encoder);
+        self.record_elements(encoder);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("firmament FlarePass elements"),
+            label: Some("firmament FlarePass composite"),
             color_attachments: &[Some(super::common::load_color_attachment(color))],
             depth_stencil_attachment: None,
             timestamp_writes: None,
@@ -447,10 +654,11 @@ impl FlarePass {
         self.draw(&mut pass);
     }
 
-    /// The visibility buffer (one `f32` per prepared source, in the order they were kept), for
-    /// tests and tools that copy it out; the rendering path never reads it back.
+    /// The buffer whose first bytes are the visibilities (one `f32` per prepared source, in the
+    /// order they were kept), for tests and tools that copy them out; the rendering path never
+    /// reads it back.
     pub fn visibility_buffer(&self) -> &wgpu::Buffer {
-        &self.visibility
+        &self.state
     }
 
     /// How many sources the last `prepare` kept.
@@ -461,22 +669,98 @@ impl FlarePass {
 
 #[cfg(test)]
 mod tests {
-    use super::binding;
+    use super::{MAX_BINS, TILE, bin_grid, binding, records, state};
 
     #[test]
     fn the_binding_numbers_are_those_of_the_wgsl() {
         let mut rust: Vec<(String, u32)> = [
             ("frame", binding::FRAME),
-            ("sources", binding::SOURCES),
-            ("visibility", binding::VISIBILITY),
+            ("records", binding::RECORDS),
+            ("state", binding::STATE),
             ("depth_buffer", binding::DEPTH),
-            ("element_visibility", binding::ELEMENT_VISIBILITY),
+            ("element_state", binding::ELEMENT_STATE),
             ("images", binding::IMAGES),
             ("image_sampler", binding::IMAGE_SAMPLER),
+            ("accumulated_out", binding::ACCUMULATED_OUT),
+            ("accumulated", binding::ACCUMULATED),
         ]
         .map(|(name, number)| (name.to_owned(), number))
         .into();
         rust.sort();
         assert_eq!(crate::shaders::declared_bindings("flare/bindings"), rust);
+    }
+
+    /// `name`'s members and their byte offsets in `module`.
+    fn members(module: &naga::Module, name: &str) -> Vec<(String, u64)> {
+        let (_, ty) = module
+            .types
+            .iter()
+            .find(|(_, ty)| ty.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("{name}"));
+        let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+            panic!("{name} is a struct");
+        };
+        members
+            .iter()
+            .map(|m| (m.name.clone().unwrap_or_default(), u64::from(m.offset)))
+            .collect()
+    }
+
+    /// The literal value of the constant `name` in `module`.
+    fn constant(module: &naga::Module, name: &str) -> naga::Literal {
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("{name}"));
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(literal) => literal,
+            ref other => panic!("{name} = {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_offsets_and_constants_are_those_of_the_wgsl() {
+        let parse = |shader: &crate::shaders::Shader| {
+            naga::front::wgsl::parse_str(shader.source()).unwrap_or_else(|e| panic!("{e}"))
+        };
+        let occlusion = parse(&crate::shaders::FLARE_OCCLUSION);
+        let flare = parse(&crate::shaders::FLARE);
+        let named = |list: &[(&str, u64)]| -> Vec<(String, u64)> {
+            list.iter().map(|&(n, o)| (n.to_owned(), o)).collect()
+        };
+        let state = named(&[
+            ("visibility", state::VISIBILITY),
+            ("dispatch", state::DISPATCH),
+            ("draw", state::DRAW),
+            ("rect", state::RECT),
+            ("grid", state::GRID),
+            ("images", state::IMAGES),
+            ("bins", state::BINS),
+        ]);
+        assert_eq!(members(&occlusion, "FlareState"), state);
+        assert_eq!(members(&flare, "FlareStateView"), state);
+        let records = named(&[("sources", records::SOURCES), ("elements", records::ELEMENTS)]);
+        assert_eq!(members(&occlusion, "FlareRecords"), records);
+        assert_eq!(constant(&flare, "FLARE_TILE"), naga::Literal::U32(TILE));
+        assert_eq!(constant(&flare, "MAX_INSTANCES"), naga::Literal::U32(4096));
+        // `1.0 / 8192.0` folds to a literal.
+        let naga::Literal::F32(negligible) = constant(&occlusion, "NEGLIGIBLE") else {
+            panic!("NEGLIGIBLE is an f32");
+        };
+        assert_eq!(f64::from(negligible), crate::gpu_types::flare::FLARE_NEGLIGIBLE);
+    }
+
+    #[test]
+    fn bins_grow_with_the_target_to_stay_within_their_buffer() {
+        assert_eq!(bin_grid((1280, 720), 1024), [16, 80, 45, 32]);
+        assert_eq!(bin_grid((1920, 1080), 4096), [16, 120, 68, 128]);
+        assert_eq!(bin_grid((3840, 2160), 1), [32, 120, 68, 1]);
+        for size in [(1, 1), (1536, 1536), (16384, 16384), (65535, 3)] {
+            let [side, across, down, _] = bin_grid(size, 16);
+            assert!(side.is_power_of_two() && side >= TILE, "{size:?}");
+            assert!(across * down <= MAX_BINS, "{size:?}");
+            assert!(across * side >= size.0 && down * side >= size.1, "{size:?}");
+        }
     }
 }

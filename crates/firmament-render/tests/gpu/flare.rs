@@ -1,7 +1,8 @@
 //! Lens flares on the GPU against the core's geometry: the occlusion pass's visible share against
 //! the covered share of the source's disc computed in `f64`, the flare's energy following it,
-//! nothing drawn for hidden, behind-camera or far off-screen sources, element positions against
-//! NeHe's construction, and a sun half behind the planet's limb.
+//! nothing drawn for hidden, behind-camera or far off-screen sources (and not a bit of the
+//! others' light changed by them), every pixel of the procedural shapes against their formulas in
+//! `f64`, element positions against NeHe's construction, and a sun half behind the planet's limb.
 
 use crate::support;
 
@@ -16,6 +17,7 @@ use firmament_core::flare::{FlareElement, FlareLayer, FlareShape, FlareSource, L
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::{Ray, Sphere};
 use firmament_core::{Camera, Frame};
+use firmament_render::gpu_types::flare::FLARE_NEGLIGIBLE;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 const WIDTH: u32 = 160;
@@ -367,4 +369,181 @@ fn a_sun_on_the_horizon_is_half_hidden_by_the_planet() {
         (f64::from(visibility[0]) - expected).abs() <= 1.0 / f64::from(samples) + 0.02,
         "{visibility:?} vs {expected}"
     );
+}
+
+/// A light up and to the right, 1 m in radius, clear of the occluder at the centre.
+fn side_light() -> FlareSource {
+    FlareSource {
+        position: DVec4::new(20.0, 8.0, -50.0, 1.0),
+        radius: 1.0,
+        color: DVec3::new(1.0, 0.8, 0.6),
+    }
+}
+
+#[test]
+fn a_hidden_source_changes_no_bit_of_the_others_light() {
+    let mut gpu = support::gpu();
+    let support::Gpu { ctx, renderer } = &mut *gpu;
+    let mut render = |sources: Vec<FlareSource>| {
+        let image = renderer
+            .render_hdr(ctx, &frame(vec![occluder(0.0)], sources, flare(32)), WIDTH, HEIGHT)
+            .expect("render");
+        let visibility = renderer.flare_visibility(ctx).expect("visibility");
+        (image.pixels, visibility)
+    };
+    let (alone, visibility) = render(vec![side_light()]);
+    assert_eq!(visibility, [1.0]);
+    assert!(alone.iter().any(|&c| c > 0.0), "the visible light drew nothing");
+    // The centre light is behind the sphere, first or last in the list.
+    for sources in [vec![light(), side_light()], vec![side_light(), light()]] {
+        let hidden_first = sources[0] == light();
+        let (both, visibility) = render(sources);
+        assert_eq!(visibility, if hidden_first { [0.0, 1.0] } else { [1.0, 0.0] });
+        let differing = alone
+            .iter()
+            .zip(&both)
+            .filter(|(a, b)| a.to_bits() != b.to_bits())
+            .count();
+        assert_eq!(differing, 0, "the hidden light changed {differing} channels");
+    }
+}
+
+/// What the quads drew before the flare became a compute pass: the light of one procedural
+/// element at `uv` (units of its radius), per the shapes of `shaders/flare.wgsl`, in `f64`.
+fn falloff(shape: FlareShape, uv: DVec2) -> f64 {
+    let r = uv.length();
+    let glow = (1.0 - r).max(0.0).powi(2);
+    match shape {
+        FlareShape::Glow => glow,
+        FlareShape::Streaks {
+            points,
+            rotation,
+            sharpness,
+        } => {
+            let a = uv.y.atan2(uv.x) - rotation.to_radians();
+            (0.5 * f64::from(points) * a).cos().abs().powf(sharpness) * glow
+        }
+        FlareShape::Halo { thickness } => {
+            let half_width = 0.5 * thickness;
+            let t = (r - (1.0 - half_width)) / half_width;
+            (1.0 - t * t).max(0.0)
+        }
+        FlareShape::Ghost {
+            sides,
+            rotation,
+            softness,
+        } => {
+            let edge = if sides < 3 {
+                r
+            } else {
+                let sector = std::f64::consts::TAU / f64::from(sides);
+                let a = uv.y.atan2(uv.x) - rotation.to_radians();
+                let local = a - sector * (a / sector).floor() - 0.5 * sector;
+                r * local.cos() / (0.5 * sector).cos()
+            };
+            let x = ((edge - (1.0 - softness)) / softness).clamp(0.0, 1.0);
+            1.0 - x * x * (3.0 - 2.0 * x)
+        }
+        FlareShape::Image { .. } => unreachable!("procedural shapes only"),
+    }
+}
+
+/// Every pixel of two seen lights' flares — each procedural shape, round and stretched, near the
+/// centre and past it, one light fading at the screen's edge, one element too faint to draw — is
+/// the sum of the shapes' formulas in `f64`, as the quads drew it: within the HDR target's
+/// half-float step, and within the light left out where each element is negligible.
+#[test]
+fn seen_elements_light_every_pixel_as_their_formulas_say() {
+    let camera = camera();
+    let streaks = FlareShape::Streaks {
+        points: 6,
+        rotation: 10.0,
+        sharpness: 8.0,
+    };
+    let ghost = |sides| FlareShape::Ghost {
+        sides,
+        rotation: 15.0,
+        softness: 0.3,
+    };
+    let shapes = LensFlare {
+        elements: vec![
+            FlareElement::new(FlareShape::Glow, [1.0, 0.9, 0.8], 0.8, 0.3, 0.0),
+            FlareElement::new(streaks, [0.6, 0.7, 1.0], 0.5, 0.4, 0.0),
+            FlareElement::new(FlareShape::Halo { thickness: 0.3 }, [0.9, 0.4, 0.3], 0.3, 0.25, 0.5),
+            FlareElement::new(ghost(6), [0.3, 0.9, 0.5], 0.2, 0.15, 1.4),
+            FlareElement::new(ghost(0), [0.8, 0.5, 1.0], 1e-4, 0.2, 1.8),
+            FlareElement {
+                stretch: 3.0,
+                ..FlareElement::new(FlareShape::Glow, [0.4, 0.6, 1.0], 0.4, 0.1, 0.8)
+            },
+        ],
+        margin: 0.5,
+        ..flare(16)
+    };
+    // The second light's disc is past the left edge, inside the margin: it fades.
+    let edge = FlareSource {
+        position: DVec4::new(-30.0, -6.0, -50.0, 1.0),
+        radius: 1.0,
+        color: DVec3::new(0.5, 1.0, 0.7),
+    };
+    let fade = on_screen(&camera, &edge, shapes.margin)
+        .expect("within the margin")
+        .edge_fade;
+    assert!(fade > 0.1 && fade < 0.9, "{fade}");
+    let sources = vec![side_light(), edge];
+    let positions: Vec<f64> = shapes.elements.iter().map(|e| e.position).collect();
+    let placed: Vec<(DVec2, DVec3, &FlareElement)> = sources
+        .iter()
+        .flat_map(|source| {
+            let at = on_screen(&camera, source, shapes.margin).expect("on screen");
+            let centers = element_centers(&camera, source, &positions);
+            shapes.elements.iter().zip(centers).map(move |(element, center)| {
+                let color = element.color * source.color * element.intensity * at.edge_fade;
+                (center.expect("placed"), color, element)
+            })
+        })
+        .collect();
+    assert!(
+        placed.iter().any(|(_, c, _)| c.max_element() < FLARE_NEGLIGIBLE),
+        "one element is faint enough to be left out"
+    );
+    let mut gpu = support::gpu();
+    let support::Gpu { ctx, renderer } = &mut *gpu;
+    // 1760 × 1320 has more 16-pixel bins than the pass keeps: its bins are 32 pixels wide.
+    for (width, height) in [(WIDTH, HEIGHT), (1760, 1320)] {
+        let image = renderer
+            .render_hdr(ctx, &frame(vec![], sources.clone(), shapes.clone()), width, height)
+            .expect("render");
+        assert_eq!(renderer.flare_visibility(ctx).expect("visibility"), [1.0, 1.0]);
+        let (mut worst, mut lit) = (0.0f64, 0);
+        for y in 0..height {
+            for x in 0..width {
+                let ndc = DVec2::new(
+                    (f64::from(x) + 0.5) / f64::from(width) * 2.0 - 1.0,
+                    1.0 - (f64::from(y) + 0.5) / f64::from(height) * 2.0,
+                );
+                let expected: DVec3 = placed
+                    .iter()
+                    .map(|(center, color, element)| {
+                        let d = ndc - *center;
+                        let uv = DVec2::new(d.x * camera.aspect / element.stretch, d.y) / element.size;
+                        *color * falloff(element.shape, uv)
+                    })
+                    .sum();
+                let got = image.pixel(x, y).expect("inside");
+                let got = DVec3::new(f64::from(got[0]), f64::from(got[1]), f64::from(got[2]));
+                // Half-float rounding of the sum, and the elements' left-out tails: each under half
+                // an 8-bit step where the sRGB curve is steepest (12.92 at black).
+                let tails = placed.len() as f64 * 0.5 / (255.0 * 12.92);
+                let allowed = expected * 2f64.powi(-10) + DVec3::splat(tails);
+                worst = worst.max(((got - expected).abs() / allowed).max_element());
+                if expected.max_element() > 1e-3 {
+                    lit += 1;
+                }
+            }
+        }
+        println!("procedural shapes at {width}×{height}: {lit} lit pixels, worst error {worst:.3} of the allowance");
+        assert!(lit > 2000 * (width / WIDTH).pow(2), "{lit}");
+        assert!(worst <= 1.0, "worst {worst}");
+    }
 }
