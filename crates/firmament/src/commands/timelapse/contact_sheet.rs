@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use image::{Rgb, RgbImage};
+use rayon::prelude::*;
 
 use super::frames::{fit_within, read_frame};
 use crate::output::write_atomically;
@@ -49,17 +50,24 @@ pub(super) fn write_contact_sheet(path: &Path, frames: &[PathBuf]) -> Result<()>
     let columns = count.min(COLUMNS);
     let rows = count.div_ceil(columns);
     let mut sheet = RgbImage::from_pixel(GAP + columns * (tw + GAP), GAP + rows * (th + GAP), BACKGROUND);
-    for (i, &k) in picks.iter().enumerate() {
-        let frame = read_frame(&frames[k])?.to_rgb8();
-        let thumb = if frame.dimensions() == (tw, th) {
-            frame
-        } else {
-            image::imageops::thumbnail(&frame, tw, th)
-        };
+    // Frames are decoded and shrunk on every core (a frame at a time per thread), then placed in
+    // order: the sheet's bytes do not depend on the thread count.
+    let thumbs: Vec<RgbImage> = picks
+        .par_iter()
+        .map(|&k| -> Result<RgbImage> {
+            let frame = read_frame(&frames[k])?.to_rgb8();
+            Ok(if frame.dimensions() == (tw, th) {
+                frame
+            } else {
+                image::imageops::thumbnail(&frame, tw, th)
+            })
+        })
+        .collect::<Result<_>>()?;
+    for (i, thumb) in thumbs.iter().enumerate() {
         let (col, row) = (i as u32 % columns, i as u32 / columns);
         image::imageops::replace(
             &mut sheet,
-            &thumb,
+            thumb,
             i64::from(GAP + col * (tw + GAP)),
             i64::from(GAP + row * (th + GAP)),
         );
