@@ -204,7 +204,7 @@ impl Renderer {
             self.own.bind_depth(&ctx.device, &targets.depth_view, (width, height));
             self.own
                 .atmosphere
-                .bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
+                .bind_sky_target(&ctx.device, &targets.hdr, &targets.depth_view);
             self.targets = Some(targets);
         }
         let camera = firmament_core::Camera {
@@ -276,8 +276,10 @@ impl Renderer {
         timing.mark(encoder, PHASE_SKY_AND_OBJECTS);
         if self.sky == SkyKind::Atmosphere {
             if !self.objects.is_empty() {
-                // Builds the volume too.
-                own.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+                // Builds the volume too; compute on the own targets (bound in `prepare`).
+                if !own.atmosphere.record_aerial_perspective_on_target(encoder) {
+                    own.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
+                }
                 timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
             } else if self.aerial_volume_wanted {
                 own.atmosphere.record_aerial_perspective_volume(encoder);

@@ -53,11 +53,13 @@ impl FrameTargets {
         let hdr = make(
             "firmament FrameTargets hdr",
             HDR_FORMAT,
-            // Storage: the atmosphere's sky is a compute pass here.
+            // Storage and copies in: the atmosphere's sky and aerial perspective are compute
+            // passes here.
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
         );
         let depth = make(
             "firmament FrameTargets depth",

@@ -18,8 +18,24 @@ fn depth_value(camera: &Camera, depth: f64) -> f32 {
 }
 
 /// What the aerial-perspective pass makes of a wall of linear-sRGB radiance `wall` at view depth
-/// `depth` filling a `width`×`height` image: every pixel, row by row.
+/// `depth` filling a `width`×`height` image: every pixel, row by row (the two full-screen draws
+/// callers' passes get).
 fn wall_pixels(
+    ctx: &GpuContext,
+    pass: &mut AtmospherePass,
+    sky: &AtmosphereSky,
+    camera: &Camera,
+    size: (u32, u32),
+    wall: f64,
+    depth: f64,
+) -> Vec<DVec3> {
+    applied_to_wall(ctx, pass, sky, camera, size, wall, depth, false)
+}
+
+/// [`wall_pixels`] by the draws or, with `compute`, by the compute pass of the renderer's own
+/// targets.
+#[allow(clippy::too_many_arguments, reason = "a test helper: the wall's whole description")]
+fn applied_to_wall(
     ctx: &GpuContext,
     pass: &mut AtmospherePass,
     sky: &AtmosphereSky,
@@ -27,10 +43,12 @@ fn wall_pixels(
     (width, height): (u32, u32),
     wall: f64,
     depth: f64,
+    compute: bool,
 ) -> Vec<DVec3> {
     let targets = FrameTargets::new(&ctx.device, width, height);
     pass.prepare(&ctx.queue, sky, camera);
     pass.bind_depth(&ctx.device, &targets.depth_view);
+    pass.bind_sky_target(&ctx.device, &targets.hdr, &targets.depth_view);
     let mut encoder = ctx
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
@@ -42,7 +60,14 @@ fn wall_pixels(
         a: 1.0,
     };
     clear_targets(&mut encoder, &targets, color, depth_value(camera, depth));
-    pass.record_aerial_perspective(&mut encoder, &targets.hdr_view);
+    if compute {
+        assert!(
+            pass.record_aerial_perspective_on_target(&mut encoder),
+            "a target is bound"
+        );
+    } else {
+        pass.record_aerial_perspective(&mut encoder, &targets.hdr_view);
+    }
     ctx.queue.submit([encoder.finish()]);
     let texels = decode_f16(&read_texture(ctx, &targets.hdr).expect("readback"));
     texels
@@ -198,22 +223,30 @@ fn the_sky_and_far_geometry_are_left_alone() {
     let targets = FrameTargets::new(&ctx.device, 2, 2);
     pass.prepare(&ctx.queue, &sky, &camera);
     pass.bind_depth(&ctx.device, &targets.depth_view);
-    let mut encoder = ctx
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
-    pass.record_luts(&mut encoder);
-    let wall = wgpu::Color {
-        r: 1.0,
-        g: 2.0,
-        b: 3.0,
-        a: 1.0,
-    };
-    clear_targets(&mut encoder, &targets, wall, 0.0);
-    pass.record_aerial_perspective(&mut encoder, &targets.hdr_view);
-    ctx.queue.submit([encoder.finish()]);
-    let texels = decode_f16(&read_texture(ctx, &targets.hdr).expect("readback"));
-    for texel in texels.chunks_exact(4) {
-        assert_eq!(texel[..3], [1.0, 2.0, 3.0]);
+    pass.bind_sky_target(&ctx.device, &targets.hdr, &targets.depth_view);
+    // The draws callers' passes get, and the compute pass of the renderer's own targets.
+    for compute in [false, true] {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("test") });
+        pass.record_luts(&mut encoder);
+        let wall = wgpu::Color {
+            r: 1.0,
+            g: 2.0,
+            b: 3.0,
+            a: 1.0,
+        };
+        clear_targets(&mut encoder, &targets, wall, 0.0);
+        if compute {
+            assert!(pass.record_aerial_perspective_on_target(&mut encoder));
+        } else {
+            pass.record_aerial_perspective(&mut encoder, &targets.hdr_view);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        let texels = decode_f16(&read_texture(ctx, &targets.hdr).expect("readback"));
+        for texel in texels.chunks_exact(4) {
+            assert_eq!(texel[..3], [1.0, 2.0, 3.0], "compute: {compute}");
+        }
     }
 }
 
@@ -235,5 +268,39 @@ fn aerial_perspective_grows_with_distance() {
             "{distance} m: {scattered} after {previous}"
         );
         previous = scattered;
+    }
+}
+
+/// The compute application on the renderer's own targets gives the pixels of the two draws
+/// callers' passes get (which the reference tests above measure), over walls near and far.
+#[test]
+fn the_compute_application_matches_the_draws() {
+    let gpu = gpu();
+    let ctx = &gpu.ctx;
+    let sky = street_sky(90.0, 25.0);
+    let mut pass = AtmospherePass::new(&ctx.device);
+    let camera = Camera {
+        aspect: 16.0 / 9.0,
+        ..camera(DVec3::Z * 2.0, direction(30.0, 3.0)).with_fov_y(60_f64.to_radians())
+    };
+    for (wall, depth) in [(0.0, 700.0), (50.0, 5_000.0), (2.0, 40_000.0)] {
+        let drawn = applied_to_wall(ctx, &mut pass, &sky, &camera, (32, 18), wall, depth, false);
+        let computed = applied_to_wall(ctx, &mut pass, &sky, &camera, (32, 18), wall, depth, true);
+        let worst = drawn
+            .iter()
+            .zip(&computed)
+            .map(|(a, b)| ((*a - *b).abs() / a.abs().max(DVec3::splat(1e-3))).max_element())
+            .fold(0.0, f64::max);
+        // The draws round colour · T to half floats before adding S; the pass rounds once.
+        assert!(
+            worst < 2e-3,
+            "wall {wall} at {depth} m: worst relative difference {worst}"
+        );
+        assert!(
+            drawn
+                .iter()
+                .any(|p| (*p - DVec3::splat(wall)).abs().max_element() > 1e-2),
+            "the air changed the wall at {depth} m: the comparison proves something"
+        );
     }
 }

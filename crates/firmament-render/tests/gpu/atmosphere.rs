@@ -637,7 +637,7 @@ fn the_compute_sky_matches_the_drawn_sky_and_spares_geometry() {
         ..camera(DVec3::new(0.0, 0.0, 2.0), direction(180.0, 10.0), 90f64.to_radians())
     };
     let mut pass = AtmospherePass::new(&ctx.device);
-    pass.bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
+    pass.bind_sky_target(&ctx.device, &targets.hdr, &targets.depth_view);
     let background = wgpu::Color {
         r: 1.0,
         g: 2.0,

@@ -147,8 +147,12 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
         ("sky pass (fragment, callers' render passes)", b.sky_fragment_ms),
         ("aerial-perspective volume", b.aerial_volume_ms),
         (
-            "aerial perspective applied (geometry in every pixel)",
+            "aerial perspective applied, geometry everywhere (compute, own targets)",
             b.aerial_apply_ms,
+        ),
+        (
+            "aerial perspective applied, geometry everywhere (fragment, callers')",
+            b.aerial_apply_fragment_ms,
         ),
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
@@ -176,6 +180,7 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         "sky_fragment_ms": b.sky_fragment_ms,
         "aerial_volume_ms": b.aerial_volume_ms,
         "aerial_apply_ms": b.aerial_apply_ms,
+        "aerial_apply_fragment_ms": b.aerial_apply_fragment_ms,
         "lut_frame_ms": b.lut_frame_ms,
         "march_frame_ms": b.march_frame_ms,
         "difference_median": b.difference.0,
@@ -189,6 +194,7 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         ("sky_fragment_ms", b.sky_fragment_ms),
         ("aerial_volume_ms", b.aerial_volume_ms),
         ("aerial_apply_ms", b.aerial_apply_ms),
+        ("aerial_apply_fragment_ms", b.aerial_apply_fragment_ms),
         ("lut_frame_ms", b.lut_frame_ms),
         ("march_frame_ms", b.march_frame_ms),
     ];

@@ -397,6 +397,7 @@ fn bench_reports_every_pass_as_json() {
         "sky_fragment_ms",
         "aerial_volume_ms",
         "aerial_apply_ms",
+        "aerial_apply_fragment_ms",
         "lut_frame_ms",
         "march_frame_ms",
         "difference_median",

@@ -3,7 +3,10 @@
 //! whatever a depth buffer holds as `colour · T + S`, per channel.
 //!
 //! Per-channel `colour · T` and `+ S` cannot both be one blend without dual-source blending
-//! (not on every adapter), so the application is two full-screen draws: multiply, then add.
+//! (not on every adapter), so the application into callers' render passes is two full-screen
+//! draws: multiply, then add. On the renderer's own targets it is one compute pass instead, from
+//! the HDR target into a scratch texture copied back over it (`Rgba16Float` cannot be read and
+//! written as storage in one pass everywhere).
 
 use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
 use super::stages::{
@@ -132,6 +135,17 @@ pub(super) struct AerialPerspectiveStages {
     apply: Vec<(wgpu::RenderPipeline, wgpu::BindGroupLayout)>,
     /// One bind group per draw, for the depth view of the last `bind_depth`.
     bind_groups: Vec<wgpu::BindGroup>,
+    /// The compute form, once a target is bound (`bind_target`).
+    on_target: Option<OnTarget>,
+}
+
+/// The compute application bound to one HDR target.
+#[derive(Debug)]
+struct OnTarget {
+    stage: ComputeStage,
+    /// The HDR target, copied over from `scratch` after the pass.
+    target: wgpu::Texture,
+    scratch: wgpu::Texture,
 }
 
 /// Everything the stages bind besides the depth buffer.
@@ -240,7 +254,92 @@ impl AerialPerspectiveStages {
             volume,
             apply,
             bind_groups: Vec::new(),
+            on_target: None,
         }
+    }
+
+    /// Binds `target` (an [`HDR_FORMAT`](crate::targets::HDR_FORMAT) texture with
+    /// `TEXTURE_BINDING | COPY_DST`) and its depth buffer for [`record_on_target`](Self::record_on_target).
+    pub(super) fn bind_target(
+        &mut self,
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        target: &wgpu::Texture,
+        depth: &wgpu::TextureView,
+    ) {
+        let scratch = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("firmament AtmospherePass aerial-perspective scratch"),
+            size: target.size(),
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: crate::targets::HDR_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
+        let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
+        let luts = resources.luts;
+        let mut all = resources.common().to_vec();
+        all.extend([
+            (
+                binding::AERIAL_SCATTERING,
+                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
+            ),
+            (
+                binding::AERIAL_TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
+            ),
+            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
+            (binding::HDR_IN, wgpu::BindingResource::TextureView(&target_view)),
+            (binding::HDR_OUT, wgpu::BindingResource::TextureView(&scratch_view)),
+        ]);
+        let entries = [
+            uniform_entry(binding::PARAMS),
+            uniform_entry(binding::VIEW),
+            sampler_entry(binding::SAMPLER),
+            texture_entry(binding::AERIAL_SCATTERING, true),
+            texture_entry(binding::AERIAL_TRANSMITTANCE, true),
+            depth_entry(),
+            texture_entry(binding::HDR_IN, false),
+            storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
+        ];
+        let stage = match self.on_target.take() {
+            Some(OnTarget { mut stage, .. }) => {
+                stage.rebind(device, &all);
+                stage
+            }
+            None => ComputeStage::new(
+                device,
+                "AtmospherePass compute aerial perspective",
+                &shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
+                &entries,
+                &all,
+            ),
+        };
+        self.on_target = Some(OnTarget {
+            stage,
+            target: target.clone(),
+            scratch,
+        });
+    }
+
+    /// Whether a target is bound (`bind_target`).
+    pub(super) fn bound_to_target(&self) -> bool {
+        self.on_target.is_some()
+    }
+
+    /// Encodes the compute application over the target bound by `bind_target` and the copy back;
+    /// false, encoding nothing, when none is bound.
+    pub(super) fn record_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        let Some(on) = &self.on_target else {
+            return false;
+        };
+        let size = on.target.size();
+        on.stage
+            .dispatch(encoder, (size.width.div_ceil(8), size.height.div_ceil(8), 1));
+        encoder.copy_texture_to_texture(on.scratch.as_image_copy(), on.target.as_image_copy(), size);
+        true
     }
 
     /// Encodes the volume's compute pass (after the transmittance and multiple-scattering LUTs).

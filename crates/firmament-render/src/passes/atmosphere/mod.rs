@@ -515,18 +515,23 @@ impl AtmospherePass {
         self.draw(&mut pass);
     }
 
-    /// Binds a target for [`record_sky`](Self::record_sky): `color` an [`HDR_FORMAT`] view with
-    /// `STORAGE_BINDING` usage, `depth` the depth buffer the sky stays behind (of this pass's
-    /// convention), both `size` pixels. Rebinding after a resize keeps the pipelines.
+    /// Binds the renderer's own target for the compute passes, [`record_sky`](Self::record_sky)
+    /// and [`record_aerial_perspective_on_target`](Self::record_aerial_perspective_on_target):
+    /// `color` an [`HDR_FORMAT`] texture with `STORAGE_BINDING | TEXTURE_BINDING | COPY_DST`
+    /// usage, `depth` a view of the depth buffer of its size the sky stays behind (of this pass's
+    /// convention). Rebinding after a resize keeps the pipelines.
     ///
     /// [`HDR_FORMAT`]: crate::targets::HDR_FORMAT
-    pub fn bind_sky_target(
-        &mut self,
-        device: &wgpu::Device,
-        color: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
-        size: (u32, u32),
-    ) {
+    pub fn bind_sky_target(&mut self, device: &wgpu::Device, color: &wgpu::Texture, depth: &wgpu::TextureView) {
+        let size = (color.width(), color.height());
+        let aerial_resources = AerialPerspectiveResources {
+            params: &self.params,
+            view: &self.view,
+            luts: &self.luts,
+            sampler: &self.sampler,
+        };
+        self.aerial.bind_target(device, &aerial_resources, color, depth);
+        let color = &color.create_view(&wgpu::TextureViewDescriptor::default());
         let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler);
         resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
         resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
@@ -554,6 +559,24 @@ impl AtmospherePass {
                 self.sky_compute = Some((stages, size));
             }
         }
+    }
+
+    /// Encodes the aerial-perspective volume and its application over the target bound by
+    /// [`bind_sky_target`](Self::bind_sky_target) as compute passes (what
+    /// [`record_aerial_perspective`](Self::record_aerial_perspective) draws into a caller's
+    /// target). Returns false, encoding nothing, when no target is bound.
+    pub fn record_aerial_perspective_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        if !self.aerial.bound_to_target() {
+            return false;
+        }
+        self.aerial.record_volume(encoder);
+        self.aerial.record_on_target(encoder)
+    }
+
+    /// The application alone over the bound target, from the volume last encoded (for
+    /// benchmarks); false when no target is bound.
+    pub fn record_aerial_perspective_apply_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        self.aerial.record_on_target(encoder)
     }
 
     /// Encodes the sky as a compute pass into the target bound by

@@ -25,6 +25,8 @@ pub(super) mod binding {
     pub(crate) const IRRADIANCE_OUT: u32 = 16;
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_OUT: u32 = 20;
+    pub(crate) const HDR_IN: u32 = 23;
+    pub(crate) const HDR_OUT: u32 = 24;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
     /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
@@ -261,6 +263,8 @@ mod tests {
             ("irradiance_out", binding::IRRADIANCE_OUT),
             ("sky_view_out", binding::SKY_VIEW_OUT),
             ("sky_out", binding::SKY_OUT),
+            ("hdr_in", binding::HDR_IN),
+            ("hdr_out", binding::HDR_OUT),
             ("lighting", binding::SKY_LIGHTING_PARAMS),
             ("sky_lighting", binding::SKY_LIGHTING_OUT),
         ]

@@ -10,7 +10,9 @@
 // blended `dst · src`, then the scattered light, blended `dst + src`. Pixels at the far plane (the
 // sky, which already holds its own scattering) are discarded. So is everything when the camera is
 // far away (`view.center.w`): f32 distances there are no better than the planet's size. The
-// volume lookup (aerial_lookup.wgsl) is the one users' shaders get.
+// volume lookup (aerial_lookup.wgsl) is the one users' shaders get. On the renderer's own targets
+// `cs_main` does both in one compute pass instead (data-centre GPUs run fragment work on a few
+// SMs; docs/PERFORMANCE.md).
 
 #import common/fullscreen
 #import atmosphere/bindings
@@ -26,26 +28,66 @@ fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
     return fullscreen_vertex(index, FAR_DEPTH);
 }
 
-@fragment
-fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
-    let depth = textureLoad(scene_depth, vec2<i32>(in.clip.xy), 0).x;
+// The aerial perspective of the pixel at `pixel` (framebuffer coordinates, pixel centres at .5)
+// and `ndc` with scene depth `depth`: the transmittance and the scattered light (linear sRGB) to
+// lay over it, and whether any applies (not at the far plane, nor from far away).
+struct Aerial {
+    applies: bool,
+    transmittance: vec3<f32>,
+    scattered: vec3<f32>,
+}
+
+fn aerial_at(pixel: vec2<f32>, ndc: vec2<f32>, depth: f32) -> Aerial {
+    var out: Aerial;
     // The far plane: 0 (reversed-Z) or 1 (standard), as `view.aerial.w` says.
     let at_far = select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5);
-    if at_far || view.center.w > 0.5 {
-        discard;
+    out.applies = !(at_far || view.center.w > 0.5);
+    if !out.applies {
+        return out;
     }
-    let ray = view_ray(in.ndc);
+    let ray = view_ray(ndc);
     // The point's distance along the ray: its view depth times the length of the ray's
     // direction at depth 1, (ndc · tan half-fov, −1).
     let view_depth = view.aerial.z / (depth + view.aerial.y);
-    let t = ray.near + view_depth * length(vec3<f32>(in.ndc * view.camera_shape.zw, -1.0));
+    let t = ray.near + view_depth * length(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
     let span = aerial_span(ray);
     let through_air = clamp(t, span.x, span.y) - span.x;
-    let screen_uv = in.clip.xy / vec2<f32>(textureDimensions(scene_depth));
+    let screen_uv = pixel / vec2<f32>(textureDimensions(scene_depth));
     let coordinates = firmament_aerial_coordinates(screen_uv, through_air, view.aerial.x);
-    if OUTPUT == AERIAL_OUTPUT_TRANSMITTANCE {
-        return vec4<f32>(firmament_aerial_transmittance_at(aerial_transmittance, lut_sampler, coordinates), 1.0);
-    }
+    out.transmittance = firmament_aerial_transmittance_at(aerial_transmittance, lut_sampler, coordinates);
     let scattered = firmament_aerial_scattering_at(aerial_scattering, lut_sampler, coordinates);
-    return vec4<f32>(min(to_linear_srgb(scattered), vec3<f32>(HDR_MAX)), 0.0);
+    out.scattered = min(to_linear_srgb(scattered), vec3<f32>(HDR_MAX));
+    return out;
+}
+
+@fragment
+fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+    let depth = textureLoad(scene_depth, vec2<i32>(in.clip.xy), 0).x;
+    let aerial = aerial_at(in.clip.xy, in.ndc, depth);
+    if !aerial.applies {
+        discard;
+    }
+    if OUTPUT == AERIAL_OUTPUT_TRANSMITTANCE {
+        return vec4<f32>(aerial.transmittance, 1.0);
+    }
+    return vec4<f32>(aerial.scattered, 0.0);
+}
+
+// The compute form for the renderer's own targets: one pass, colour · T + S from `hdr_in` into
+// `hdr_out` (every pixel: the rest copied), which the caller copies back over `hdr_in`.
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(scene_depth);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let color = textureLoad(hdr_in, id.xy, 0);
+    let pixel = vec2<f32>(id.xy) + 0.5;
+    let ndc = vec2<f32>(2.0 * pixel.x / f32(size.x) - 1.0, 1.0 - 2.0 * pixel.y / f32(size.y));
+    let aerial = aerial_at(pixel, ndc, textureLoad(scene_depth, id.xy, 0).x);
+    var out = color;
+    if aerial.applies {
+        out = vec4<f32>(color.rgb * aerial.transmittance + aerial.scattered, color.a);
+    }
+    textureStore(hdr_out, id.xy, out);
 }

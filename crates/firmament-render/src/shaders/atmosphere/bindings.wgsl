@@ -5,7 +5,7 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (23, 24, 28 or from 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (28 or from 29) here and in `stages.rs`.
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -118,6 +118,10 @@ struct SkyLighting {
 @group(0) @binding(19) var sky_view_out: texture_storage_2d<rgba16float, write>;
 // The renderer's own HDR target (targets.rs HDR_FORMAT), for the compute sky (sky.wgsl).
 @group(0) @binding(20) var sky_out: texture_storage_2d<rgba16float, write>;
+// The same target read, and a scratch copy of it written, by the compute aerial perspective
+// (aerial_perspective.wgsl).
+@group(0) @binding(23) var hdr_in: texture_2d<f32>;
+@group(0) @binding(24) var hdr_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
 // An iterate's moments and ground row as packed Rgba16Float texels (multiscattering_lut.wgsl).
 @group(0) @binding(13) var<storage, read_write> multiscattering_out: array<vec2<u32>>;

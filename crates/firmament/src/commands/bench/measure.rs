@@ -76,8 +76,10 @@ pub(crate) struct AtmosphereBench {
     /// The aerial-perspective volume (froxels).
     pub(crate) aerial_volume_ms: f64,
     /// Applying aerial perspective to a depth buffer covered by geometry everywhere (the worst
-    /// case: no pixel is skipped).
+    /// case: no pixel is skipped), as the renderer's own targets do it (compute and a copy).
     pub(crate) aerial_apply_ms: f64,
+    /// The same as the two full-screen draws callers' render passes get.
+    pub(crate) aerial_apply_fragment_ms: f64,
     /// A whole LUT-path frame: sky-view LUT and sky.
     pub(crate) lut_frame_ms: f64,
     /// A brute-force frame: every pixel marches its ray.
@@ -195,7 +197,7 @@ pub(crate) fn bench_atmosphere(
     };
     let targets = FrameTargets::new(&ctx.device, width, height);
     let mut pass = AtmospherePass::new(&ctx.device);
-    pass.bind_sky_target(&ctx.device, &targets.hdr_view, &targets.depth_view, (width, height));
+    pass.bind_sky_target(&ctx.device, &targets.hdr, &targets.depth_view);
     pass.prepare(&ctx.queue, sky, &camera);
     let luts = pass.luts();
     let medium_luts_ms = median_ms(ctx, frames, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
@@ -230,9 +232,13 @@ pub(crate) fn bench_atmosphere(
     pass.bind_depth(&ctx.device, &targets.depth_view);
     // Last, since it covers the depth buffer: geometry 1 km away (at the centre) in every pixel.
     let geometry_depth = (camera.projection_matrix() * glam::DVec4::new(0.0, 0.0, -1_000.0, 1.0)).z / 1_000.0;
-    let aerial_apply_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+    let aerial_apply_fragment_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         clear_depth(e, &targets, geometry_depth as f32);
         pass.record_aerial_perspective_apply(e, &targets.hdr_view);
+    });
+    let aerial_apply_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        clear_depth(e, &targets, geometry_depth as f32);
+        pass.record_aerial_perspective_apply_on_target(e);
     });
     let mut differences: Vec<f64> = lut_image
         .chunks_exact(4)
@@ -265,6 +271,7 @@ pub(crate) fn bench_atmosphere(
         sky_fragment_ms,
         aerial_volume_ms,
         aerial_apply_ms,
+        aerial_apply_fragment_ms,
         lut_frame_ms,
         march_frame_ms,
         difference,
