@@ -156,14 +156,44 @@ pub(super) struct AerialPerspectiveResources<'a> {
     pub(super) sampler: &'a wgpu::Sampler,
 }
 
-impl AerialPerspectiveResources<'_> {
-    fn common(&self) -> [(u32, wgpu::BindingResource<'_>); 3] {
+impl<'a> AerialPerspectiveResources<'a> {
+    /// What applying the volume over `depth` binds (the draws; the compute pass adds its target).
+    fn apply(&self, depth: &'a wgpu::TextureView) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+        let luts = self.luts;
+        let mut all = self.common().to_vec();
+        all.extend([
+            (
+                binding::AERIAL_SCATTERING,
+                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
+            ),
+            (
+                binding::AERIAL_TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
+            ),
+            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
+        ]);
+        all
+    }
+
+    fn common(&self) -> [(u32, wgpu::BindingResource<'a>); 3] {
         [
             (binding::PARAMS, self.params.as_entire_binding()),
             (binding::VIEW, self.view.as_entire_binding()),
             (binding::SAMPLER, wgpu::BindingResource::Sampler(self.sampler)),
         ]
     }
+}
+
+/// The layout entries of [`AerialPerspectiveResources::apply`]'s resources.
+fn apply_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
+    [
+        uniform_entry(binding::PARAMS),
+        uniform_entry(binding::VIEW),
+        sampler_entry(binding::SAMPLER),
+        texture_entry(binding::AERIAL_SCATTERING, true),
+        texture_entry(binding::AERIAL_TRANSMITTANCE, true),
+        depth_entry(),
+    ]
 }
 
 /// The depth buffer, read as an unfilterable float texture: GLSL cannot `textureLoad` a depth
@@ -216,14 +246,7 @@ impl AerialPerspectiveStages {
             &volume_entries,
             &volume_resources,
         );
-        let apply_entries = [
-            uniform_entry(binding::PARAMS),
-            uniform_entry(binding::VIEW),
-            sampler_entry(binding::SAMPLER),
-            texture_entry(binding::AERIAL_SCATTERING, true),
-            texture_entry(binding::AERIAL_TRANSMITTANCE, true),
-            depth_entry(),
-        ];
+        let apply_entries = apply_entries();
         let apply = APPLY_DRAWS
             .iter()
             .map(|&(owner, output, component)| {
@@ -279,31 +302,16 @@ impl AerialPerspectiveStages {
         });
         let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
         let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let luts = resources.luts;
-        let mut all = resources.common().to_vec();
+        let mut all = resources.apply(depth);
         all.extend([
-            (
-                binding::AERIAL_SCATTERING,
-                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
-            ),
-            (
-                binding::AERIAL_TRANSMITTANCE,
-                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
-            ),
-            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
             (binding::HDR_IN, wgpu::BindingResource::TextureView(&target_view)),
             (binding::HDR_OUT, wgpu::BindingResource::TextureView(&scratch_view)),
         ]);
-        let entries = [
-            uniform_entry(binding::PARAMS),
-            uniform_entry(binding::VIEW),
-            sampler_entry(binding::SAMPLER),
-            texture_entry(binding::AERIAL_SCATTERING, true),
-            texture_entry(binding::AERIAL_TRANSMITTANCE, true),
-            depth_entry(),
+        let mut entries = apply_entries().to_vec();
+        entries.extend([
             texture_entry(binding::HDR_IN, false),
             storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
-        ];
+        ]);
         let stage = match self.on_target.take() {
             Some(OnTarget { mut stage, .. }) => {
                 stage.rebind(device, &all);
@@ -355,19 +363,7 @@ impl AerialPerspectiveStages {
         resources: &AerialPerspectiveResources<'_>,
         depth: &wgpu::TextureView,
     ) {
-        let luts = resources.luts;
-        let mut all = resources.common().to_vec();
-        all.extend([
-            (
-                binding::AERIAL_SCATTERING,
-                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
-            ),
-            (
-                binding::AERIAL_TRANSMITTANCE,
-                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
-            ),
-            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
-        ]);
+        let all = resources.apply(depth);
         self.bind_groups = self
             .apply
             .iter()
