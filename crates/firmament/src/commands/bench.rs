@@ -268,16 +268,7 @@ fn run_flares(args: &BenchArgs) -> Result<()> {
     let result = bench_flares(&ctx, args.width, args.height, args.frames, 32)?;
     let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
     if args.json {
-        let ratio_rows: Vec<(String, f64)> = result
-            .rows
-            .iter()
-            .flat_map(|r| {
-                [
-                    (format!("sources_{}_occlusion_ms", r.sources), r.occlusion_ms),
-                    (format!("sources_{}_total_ms", r.sources), r.total_ms),
-                ]
-            })
-            .collect();
+        let ratio_rows = flare_rows(&result, |sources, pass| format!("sources_{sources}_{pass}_ms"));
         let rows: Vec<_> = result
             .rows
             .iter()
@@ -304,19 +295,28 @@ fn run_flares(args: &BenchArgs) -> Result<()> {
         );
     } else {
         print_flares(&result);
-        let labels: Vec<(String, f64)> = result
-            .rows
-            .iter()
-            .flat_map(|r| {
-                [
-                    (format!("{} sources: occlusion", r.sources), r.occlusion_ms),
-                    (format!("{} sources: occlusion and elements", r.sources), r.total_ms),
-                ]
-            })
-            .collect();
+        let labels = flare_rows(&result, |sources, pass| match pass {
+            "occlusion" => format!("{sources} sources: occlusion"),
+            _ => format!("{sources} sources: occlusion and elements"),
+        });
         baselines.print_rows(&labels);
     }
     Ok(())
+}
+
+/// Each source count's two times (occlusion, total), named by `name(sources, "occlusion" |
+/// "total")`, for the baseline ratios.
+fn flare_rows(result: &FlareBench, name: impl Fn(usize, &str) -> String) -> Vec<(String, f64)> {
+    result
+        .rows
+        .iter()
+        .flat_map(|r| {
+            [
+                (name(r.sources, "occlusion"), r.occlusion_ms),
+                (name(r.sources, "total"), r.total_ms),
+            ]
+        })
+        .collect()
 }
 
 fn print_flares(b: &FlareBench) {

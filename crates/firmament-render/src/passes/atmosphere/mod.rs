@@ -479,7 +479,7 @@ impl AtmospherePass {
                     .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
                 self.multiscattering.record_start(encoder, &self.build);
             }
-            BuildStep::Iterate(_) => self.multiscattering.record_iterate(encoder, &self.build),
+            BuildStep::Iterate => self.multiscattering.record_iterate(encoder, &self.build),
             BuildStep::IrradianceAndSwap => {
                 let (width, height) = luts::IRRADIANCE_SIZE;
                 // One workgroup per texel (irradiance_lut.wgsl).

@@ -23,8 +23,8 @@ pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ITERATIONS + 3;
 pub(super) enum BuildStep {
     /// The transmittance LUT, then the multiple-scattering iteration's starting zero.
     Transmittance,
-    /// Multiple-scattering iterate `k` (0 to [`MULTISCATTERING_ITERATIONS`]).
-    Iterate(u32),
+    /// The next multiple-scattering iterate (of [`MULTISCATTERING_ITERATIONS`] + 1, in order).
+    Iterate,
     /// The sky irradiance LUT, then the copy of the set and the medium into the live ones.
     IrradianceAndSwap,
 }
@@ -33,7 +33,7 @@ impl BuildStep {
     pub(super) fn of(step: u32) -> Self {
         match step {
             0 => Self::Transmittance,
-            s if s <= MULTISCATTERING_ITERATIONS + 1 => Self::Iterate(s - 1),
+            s if s <= MULTISCATTERING_ITERATIONS + 1 => Self::Iterate,
             _ => Self::IrradianceAndSwap,
         }
     }

@@ -39,9 +39,7 @@ struct Aerial {
 
 fn aerial_at(pixel: vec2<f32>, ndc: vec2<f32>, depth: f32) -> Aerial {
     var out: Aerial;
-    // The far plane: 0 (reversed-Z) or 1 (standard), as `view.aerial.w` says.
-    let at_far = select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5);
-    out.applies = !(at_far || view.center.w > 0.5);
+    out.applies = !(at_far_plane(depth) || view.center.w > 0.5);
     if !out.applies {
         return out;
     }
@@ -83,8 +81,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let color = textureLoad(hdr_in, id.xy, 0);
     let pixel = vec2<f32>(id.xy) + 0.5;
-    let ndc = vec2<f32>(2.0 * pixel.x / f32(size.x) - 1.0, 1.0 - 2.0 * pixel.y / f32(size.y));
-    let aerial = aerial_at(pixel, ndc, textureLoad(scene_depth, id.xy, 0).x);
+    let aerial = aerial_at(pixel, pixel_ndc(id.xy, size), textureLoad(scene_depth, id.xy, 0).x);
     var out = color;
     if aerial.applies {
         out = vec4<f32>(color.rgb * aerial.transmittance + aerial.scattered, color.a);

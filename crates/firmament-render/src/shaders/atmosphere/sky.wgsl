@@ -101,13 +101,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    // The far plane: 0 (reversed-Z) or 1 (standard), as `view.aerial.w` says.
-    let depth = textureLoad(scene_depth, id.xy, 0).r;
-    if !select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5) {
+    if !at_far_plane(textureLoad(scene_depth, id.xy, 0).r) {
         return; // geometry stands here
     }
-    let uv = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(size);
-    textureStore(sky_out, id.xy, sky_color(vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y)));
+    textureStore(sky_out, id.xy, sky_color(pixel_ndc(id.xy, size)));
 }
 
 // The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`.

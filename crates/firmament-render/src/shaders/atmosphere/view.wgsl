@@ -95,6 +95,19 @@ fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
     return frame.up * cos(zenith) + horizontal * sin(zenith);
 }
 
+// Whether a depth-buffer value is the far plane: 0 (reversed-Z) or 1 (standard), as
+// `view.aerial.w` says.
+fn at_far_plane(depth: f32) -> bool {
+    return select(depth <= 0.0, depth >= 1.0, view.aerial.w > 0.5);
+}
+
+// The normalised device coordinates (x right, y up) of the centre of pixel `id` of a `size`-pixel
+// image, for the compute passes (a full-screen draw gets them from common/fullscreen).
+fn pixel_ndc(id: vec2<u32>, size: vec2<u32>) -> vec2<f32> {
+    let uv = (vec2<f32>(id) + 0.5) / vec2<f32>(size);
+    return vec2<f32>(2.0 * uv.x - 1.0, 1.0 - 2.0 * uv.y);
+}
+
 // This pass's view ray (common/view_ray.wgsl).
 fn view_ray(ndc: vec2<f32>) -> ViewRay {
     let planet = PlanetView(view.view_to_planet, view.camera, view.camera_shape, view.center);
