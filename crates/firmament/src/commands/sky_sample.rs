@@ -4,7 +4,7 @@
 mod probe;
 
 use anyhow::{Context, Result, bail};
-use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings, TALLIED_ORDERS};
 use firmament_core::atmosphere::{Spectrum, presets};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::Ray;
@@ -17,6 +17,10 @@ use crate::cli::SkySampleArgs;
 /// Everything sky-sample reports, for one method.
 struct Sample {
     radiance: Spectrum,
+    /// `radiance` by the number of times its light was scattered or reflected, [`ORDER_BANDS`].
+    by_order: [Spectrum; 4],
+    /// The part of `radiance` reflected by the ground at least once.
+    via_ground: Spectrum,
     /// Standard error of `radiance` (the reference's Monte Carlo multiple scattering; zero for
     /// the GPU, whose error is bias, not noise).
     radiance_standard_error: Spectrum,
@@ -24,6 +28,10 @@ struct Sample {
     sky_irradiance: Spectrum,
     sun_irradiance: Spectrum,
 }
+
+/// The bands of scattering orders reported, by name: once (with any sun disc in view), twice,
+/// three or four times, five times or more.
+const ORDER_BANDS: [&str; 4] = ["1", "2", "3-4", "5+"];
 
 /// A unit ENU direction at `zenith` degrees from up and `azimuth` degrees from north, clockwise.
 fn enu(zenith: f64, azimuth: f64) -> DVec3 {
@@ -83,6 +91,8 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
         let s = sample_sky(&ctx, &sky, eye, view, DVec3::ZERO)?;
         Some(Sample {
             radiance: s.radiance,
+            by_order: s.by_order,
+            via_ground: s.via_ground,
             radiance_standard_error: Spectrum::ZERO,
             transmittance: s.transmittance,
             sky_irradiance: s.sky_irradiance,
@@ -94,8 +104,15 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     if args.json {
         let describe = |s: &Sample| {
             let rgb = conversion.linear_srgb(s.radiance);
+            let by_order: serde_json::Map<_, _> = ORDER_BANDS
+                .iter()
+                .zip(s.by_order)
+                .map(|(band, radiance)| ((*band).to_owned(), radiance.to_array().into()))
+                .collect();
             serde_json::json!({
                 "radiance": s.radiance.to_array(),
+                "radiance_by_order": by_order,
+                "radiance_via_ground": s.via_ground.to_array(),
                 "radiance_standard_error": s.radiance_standard_error.to_array(),
                 "luminance": conversion.luminance(s.radiance),
                 "linear_srgb": [rgb.r, rgb.g, rgb.b],
@@ -136,6 +153,16 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     for (i, nm) in wavelengths.iter().enumerate() {
         let (r, g) = pick(&|s| s.radiance, i);
         row(format!("radiance {nm} nm, W/(m² sr nm)"), r, g);
+    }
+    for (band, name) in ORDER_BANDS.iter().enumerate() {
+        for (i, nm) in wavelengths.iter().enumerate() {
+            let (r, g) = pick(&|s| s.by_order[band], i);
+            row(format!("  scattered {name} times, {nm} nm"), r, g);
+        }
+    }
+    for (i, nm) in wavelengths.iter().enumerate() {
+        let (r, g) = pick(&|s| s.via_ground, i);
+        row(format!("  reflected by the ground, {nm} nm"), r, g);
     }
     let luminance = |s: &Sample| conversion.luminance(s.radiance);
     row(
@@ -187,8 +214,19 @@ fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, paths: usize) 
         direction: view,
     });
     let ground = reference.ground_irradiance(DVec3::ZERO);
+    let order = |range: std::ops::Range<usize>| -> Spectrum {
+        parts.multiple.per_order.get(range).into_iter().flatten().copied().sum()
+    };
+    let by_order = [
+        parts.single + parts.ground + parts.sun_discs,
+        order(2..3),
+        order(3..5),
+        order(5..TALLIED_ORDERS),
+    ];
     Sample {
         radiance: parts.total(),
+        by_order,
+        via_ground: parts.ground + parts.multiple.via_ground,
         radiance_standard_error: parts.multiple.standard_error,
         transmittance: reference
             .transmittance_to_space(planet.to_planet_frame(eye), planet.direction_to_planet_frame(view)),

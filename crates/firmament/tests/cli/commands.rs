@@ -582,6 +582,10 @@ fn sky_sample_prints_both_methods_as_json() {
         "\"luminance\":",
         "\"transmittance\":",
         "\"sky_irradiance\":",
+        "\"radiance_by_order\":{\"1\":[",
+        "\"3-4\":[",
+        "\"5+\":[",
+        "\"radiance_via_ground\":[",
     ] {
         assert!(stdout.contains(key), "{key} missing from {stdout}");
     }

@@ -46,8 +46,46 @@ pub struct MultipleScattering {
     /// `per_order[k]`: light scattered or reflected exactly `k` times (the last entry holds
     /// every order from `TALLIED_ORDERS − 1` up).
     pub per_order: Vec<Spectrum>,
+    /// The part of `total` whose paths were reflected by the ground at least once.
+    pub via_ground: Spectrum,
     /// Standard error of `total`'s mean, per wavelength.
     pub standard_error: Spectrum,
+}
+
+/// One path's contributions, by order, and the part of them that met the ground.
+#[derive(Debug, Clone, Copy)]
+struct Tally {
+    by_order: [Spectrum; TALLIED_ORDERS],
+    via_ground: Spectrum,
+}
+
+impl Tally {
+    const ZERO: Self = Self {
+        by_order: [Spectrum::ZERO; TALLIED_ORDERS],
+        via_ground: Spectrum::ZERO,
+    };
+
+    /// Adds a contribution of `order` when it counts (order ≥ `min_order`).
+    fn add(&mut self, min_order: usize, order: usize, value: Spectrum, via_ground: bool) {
+        if order >= min_order && value.is_finite() {
+            self.by_order[order.min(TALLIED_ORDERS - 1)] += value;
+            if via_ground {
+                self.via_ground += value;
+            }
+        }
+    }
+
+    /// Adds another tally (of contributions already counted).
+    fn merge(&mut self, other: &Self) {
+        for (mine, add) in self.by_order.iter_mut().zip(other.by_order) {
+            *mine += add;
+        }
+        self.via_ground += other.via_ground;
+    }
+
+    fn total(&self) -> Spectrum {
+        self.by_order.iter().copied().sum()
+    }
 }
 
 /// Multiple scattering (contributions of order ≥ `min_order`) along a planet-frame ray that
@@ -67,19 +105,22 @@ pub(super) fn multiple_scattering(
             min_order,
             split_first: min_order >= 2,
             limit,
+            grounded: false,
         };
         trace(reference, *ray, Spectrum::ONE, start, &mut rng)
     })
 }
 
 /// Where a path starts: events so far, the first order tallied, whether the first segment is
-/// split (see [`trace`]) and where an opaque surface ends the first segment.
+/// split (see [`trace`]), where an opaque surface ends the first segment and whether the path
+/// was already reflected by the ground.
 #[derive(Debug, Clone, Copy)]
 struct PathStart {
     events: usize,
     min_order: usize,
     split_first: bool,
     limit: f64,
+    grounded: bool,
 }
 
 impl PathStart {
@@ -90,6 +131,7 @@ impl PathStart {
             min_order,
             split_first: false,
             limit: f64::INFINITY,
+            grounded: false,
         }
     }
 }
@@ -116,35 +158,35 @@ pub(super) fn sky_irradiance(reference: &Reference, p: DVec3, up: DVec3, paths: 
 /// floating-point sums do not depend on how rayon splits the work.
 const BLOCK: usize = 64;
 
-fn estimate(paths: usize, path: impl Fn(usize) -> [Spectrum; TALLIED_ORDERS] + Sync) -> MultipleScattering {
-    type Sums = (Spectrum, Spectrum, [Spectrum; TALLIED_ORDERS]);
+fn estimate(paths: usize, path: impl Fn(usize) -> Tally + Sync) -> MultipleScattering {
+    /// The sums of the paths' totals, of their squares and of their tallies.
+    type Sums = (Spectrum, Spectrum, Tally);
     let paths = paths.max(1);
     let add = |mut a: Sums, b: Sums| {
-        for (o, add) in a.2.iter_mut().zip(b.2) {
-            *o += add;
-        }
+        a.2.merge(&b.2);
         (a.0 + b.0, a.1 + b.1, a.2)
     };
-    let zero = || (Spectrum::ZERO, Spectrum::ZERO, [Spectrum::ZERO; TALLIED_ORDERS]);
+    let zero = || (Spectrum::ZERO, Spectrum::ZERO, Tally::ZERO);
     let blocks: Vec<Sums> = (0..paths.div_ceil(BLOCK))
         .into_par_iter()
         .map(|block| {
             (block * BLOCK..((block + 1) * BLOCK).min(paths))
                 .map(|index| {
-                    let orders = path(index);
-                    let total: Spectrum = orders.iter().copied().sum();
-                    (total, total * total, orders)
+                    let tally = path(index);
+                    let total = tally.total();
+                    (total, total * total, tally)
                 })
                 .fold(zero(), add)
         })
         .collect();
-    let (sum, sum_squares, per_order) = blocks.into_iter().fold(zero(), add);
+    let (sum, sum_squares, tally) = blocks.into_iter().fold(zero(), add);
     let n = paths as f64;
     let mean = sum / n;
     let variance = (sum_squares / n - mean * mean).max(Spectrum::ZERO);
     MultipleScattering {
         total: mean,
-        per_order: per_order.iter().map(|o| *o / n).collect(),
+        per_order: tally.by_order.iter().map(|o| *o / n).collect(),
+        via_ground: tally.via_ground / n,
         standard_error: (variance / n).sqrt(),
     }
 }
@@ -159,13 +201,7 @@ fn estimate(paths: usize, path: impl Fn(usize) -> [Spectrum; TALLIED_ORDERS] + S
 ///
 /// An opaque black surface at `start.limit` along the first segment ends it: nothing behind it
 /// (ground, background) is seen.
-fn trace(
-    reference: &Reference,
-    mut ray: Ray,
-    mut weight: Spectrum,
-    start: PathStart,
-    rng: &mut Pcg64Mcg,
-) -> [Spectrum; TALLIED_ORDERS] {
+fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathStart, rng: &mut Pcg64Mcg) -> Tally {
     let atmosphere = &reference.atmosphere;
     let planet = &atmosphere.planet;
     let medium = &atmosphere.medium;
@@ -174,8 +210,9 @@ fn trace(
         min_order,
         mut split_first,
         mut limit,
+        mut grounded,
     } = start;
-    let mut tally = [Spectrum::ZERO; TALLIED_ORDERS];
+    let mut tally = Tally::ZERO;
     loop {
         let (found, walled) = match segment(planet, &ray) {
             Some(s) => s.before(limit),
@@ -184,7 +221,7 @@ fn trace(
         limit = f64::INFINITY;
         let Some(segment) = found else {
             if !walled {
-                add(&mut tally, min_order, events, weight * reference.settings.background);
+                tally.add(min_order, events, weight * reference.settings.background, grounded);
             }
             return tally;
         };
@@ -198,10 +235,14 @@ fn trace(
                     origin: ray.at(segment.end),
                     direction: ray.direction,
                 };
-                let branch = reflect_and_trace(reference, ground, ground_weight, events, min_order, rng);
-                for (order, value) in branch.into_iter().enumerate() {
-                    add(&mut tally, 0, order, value);
-                }
+                tally.merge(&reflect_and_trace(
+                    reference,
+                    ground,
+                    ground_weight,
+                    events,
+                    min_order,
+                    rng,
+                ));
             }
             if matches!(flight, Flight::Nothing) {
                 return tally;
@@ -220,12 +261,8 @@ fn trace(
                 for sun in &reference.suns {
                     let nu = ray.direction.dot(sun.direction);
                     let light = sun.irradiance * transmittance_to_sun(reference, p, sun.direction);
-                    add(
-                        &mut tally,
-                        min_order,
-                        events,
-                        weight * medium.scattering_phase(&coefficients, nu) * light,
-                    );
+                    let value = weight * medium.scattering_phase(&coefficients, nu) * light;
+                    tally.add(min_order, events, value, grounded);
                 }
                 // Pick the next direction from a Rayleigh / Henyey–Greenstein mixture.
                 let rayleigh = coefficients.rayleigh_scattering.y;
@@ -250,13 +287,14 @@ fn trace(
                 weight *= w;
                 if !segment.ends_on_ground {
                     if !walled {
-                        add(&mut tally, min_order, events, weight * reference.settings.background);
+                        tally.add(min_order, events, weight * reference.settings.background, grounded);
                     }
                     return tally;
                 }
                 events += 1;
+                grounded = true;
                 let (start, direct) = ground_event(reference, ray.at(segment.end));
-                add(&mut tally, min_order, events, weight * direct);
+                tally.add(min_order, events, weight * direct, grounded);
                 weight *= medium.ground_albedo;
                 ray = Ray {
                     origin: start,
@@ -300,11 +338,11 @@ fn reflect_and_trace(
     events: usize,
     min_order: usize,
     rng: &mut Pcg64Mcg,
-) -> [Spectrum; TALLIED_ORDERS] {
-    let mut tally = [Spectrum::ZERO; TALLIED_ORDERS];
+) -> Tally {
+    let mut tally = Tally::ZERO;
     let (start, direct) = ground_event(reference, ground.origin);
     let order = events + 1;
-    add(&mut tally, min_order, order, weight * direct);
+    tally.add(min_order, order, weight * direct, true);
     let direction = cosine_sample(reference.atmosphere.planet.up(start), rng);
     let rest = trace(
         reference,
@@ -313,20 +351,14 @@ fn reflect_and_trace(
             direction,
         },
         weight * reference.atmosphere.medium.ground_albedo,
-        PathStart::after(order, min_order),
+        PathStart {
+            grounded: true,
+            ..PathStart::after(order, min_order)
+        },
         rng,
     );
-    for (order, value) in rest.into_iter().enumerate() {
-        add(&mut tally, 0, order, value);
-    }
+    tally.merge(&rest);
     tally
-}
-
-/// Adds a contribution of `order` to the tally when it counts (order ≥ `min_order`).
-fn add(tally: &mut [Spectrum; TALLIED_ORDERS], min_order: usize, order: usize, value: Spectrum) {
-    if order >= min_order && value.is_finite() {
-        tally[order.min(TALLIED_ORDERS - 1)] += value;
-    }
 }
 
 /// Optical depth of the piecewise-constant medium [`sample_distance`] uses along a segment.
@@ -517,5 +549,39 @@ mod tests {
             .sum::<f64>()
             / n as f64;
         assert!((second - 0.4).abs() < 1e-5, "{second}");
+    }
+
+    /// The share that met the ground is what a black ground removes, within the noise of the
+    /// two estimates; a black ground leaves none.
+    #[test]
+    fn the_ground_share_is_what_a_black_ground_removes() {
+        use crate::atmosphere::{Sun, presets};
+        let sun = Sun {
+            direction: DVec3::new(0.5, 0.0, 0.75f64.sqrt()),
+            ..presets::earth_sun(DVec3::Z)
+        };
+        let radius = presets::earth().planet.radii.z;
+        let ray = Ray {
+            origin: DVec3::new(0.0, 0.0, radius + 1.0),
+            direction: DVec3::new(-0.5, 0.0, 0.75f64.sqrt()),
+        };
+        let settings = super::super::ReferenceSettings {
+            paths: 8192,
+            ..Default::default()
+        };
+        let run = |albedo: f64| {
+            let mut atmosphere = presets::earth();
+            atmosphere.medium.ground_albedo = Spectrum::splat(albedo);
+            let reference = Reference::new(atmosphere, &[sun], settings);
+            multiple_scattering(&reference, &ray, 2, settings.paths, f64::INFINITY)
+        };
+        let (bright, black) = (run(0.3), run(0.0));
+        assert_eq!(black.via_ground, Spectrum::ZERO);
+        assert!(bright.via_ground.min_element() > 0.0);
+        let removed = bright.total - black.total;
+        let noise =
+            (bright.standard_error * bright.standard_error + black.standard_error * black.standard_error).sqrt();
+        let off = (bright.via_ground - removed).abs() / noise;
+        assert!(off.max_element() < 4.0, "{} vs {removed} (±{noise})", bright.via_ground);
     }
 }

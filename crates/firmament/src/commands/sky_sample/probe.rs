@@ -1,9 +1,18 @@
 //! What the GPU path gives for one view ray, in the reference's terms: spectral radiance,
 //! transmittance to space and ground irradiance (for `firmament sky-sample` and checks).
 //!
-//! The radiance is a 1 × 1 render of the atmosphere pass converted back from linear sRGB to the model wavelengths; the
-//! transmittance and irradiances are read from the pass's own LUTs with the shaders' mappings
-//! (mirrored here in `f64`, `atmosphere/common.wgsl` and `luts.wgsl` being the originals).
+//! The radiance is a 1 × 1 render of the atmosphere pass converted back from linear sRGB to the
+//! model wavelengths; the transmittance and irradiances are read from the pass's own LUTs with
+//! the shaders' mappings (mirrored here in `f64`, `atmosphere/common.wgsl` and `luts.wgsl` being
+//! the originals).
+//!
+//! The radiance by order comes from renders whose multiple-scattering LUT holds fewer iterates:
+//! after `n` iterates it holds the light arriving at a point after at most `n` scattering or
+//! reflection events, so the view (which adds one more) sees orders up to `n + 1`; differences
+//! of such renders give each band of orders. The part reflected by the ground is what a black
+//! ground removes. These renders march the view ray ([`SkyMethod::March`]): the sky-view LUT
+//! scales its texels by the multiple-scattering LUT's level, which is zero before the first
+//! iterate. The LUT path's radiance differs from the march's by the sky-view LUT's filtering.
 
 use firmament_core::Camera;
 use firmament_core::atmosphere::Spectrum;
@@ -14,8 +23,9 @@ use firmament_render::FrameTargets;
 use firmament_render::GpuContext;
 use firmament_render::RenderError;
 use firmament_render::gpu_types::atmosphere::lut_bottom_radius;
-use firmament_render::passes::AtmospherePass;
 use firmament_render::passes::atmosphere::luts::{IRRADIANCE_SIZE, LOG_FLOOR, TRANSMITTANCE_SIZE};
+use firmament_render::passes::atmosphere::{MEDIUM_BUILD_STEPS, MULTISCATTERING_ITERATIONS};
+use firmament_render::passes::{AtmospherePass, SkyMethod};
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::wgpu;
 
@@ -24,6 +34,11 @@ use firmament_render::wgpu;
 pub(crate) struct GpuSkySample {
     /// Spectral radiance along the view, W·m⁻²·sr⁻¹·nm⁻¹ (sun discs included).
     pub(crate) radiance: Spectrum,
+    /// The marched radiance by the number of times its light was scattered or reflected: once
+    /// (with any sun disc in view), twice, three or four times, five times or more.
+    pub(crate) by_order: [Spectrum; 4],
+    /// The part of the marched radiance reflected by the ground at least once.
+    pub(crate) via_ground: Spectrum,
     /// Transmittance from the eye along the view to space (0 when the view meets the ground).
     pub(crate) transmittance: Spectrum,
     /// Sky irradiance on the horizontal ground below the eye, W·m⁻²·nm⁻¹.
@@ -115,22 +130,28 @@ pub(crate) fn sample_sky(
         fov_y: 0.01f64.to_radians(),
         ..camera
     };
-    // One pass renders the pixel and holds the LUTs read below: the tables are built once.
     let camera = Camera { aspect: 1.0, ..camera };
-    let targets = FrameTargets::new(&ctx.device, 1, 1);
     let mut pass = AtmospherePass::new(&ctx.device);
-    pass.prepare(&ctx.queue, sky, &camera);
-    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("firmament sample_sky encoder"),
-    });
-    // New textures start zeroed: black, and depth at the far plane, so the sky fills the pixel.
-    pass.record_luts(&mut encoder);
-    pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
-    ctx.queue.submit([encoder.finish()]);
-    let pixel = decode_f16(&read_texture(ctx, &targets.hdr)?);
-    let rgb = DVec3::new(f64::from(pixel[0]), f64::from(pixel[1]), f64::from(pixel[2]));
     let atmosphere = &sky.atmosphere;
-    let radiance = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse() * rgb;
+    let to_spectrum = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse();
+    let mut render = |sky: &AtmosphereSky, method: SkyMethod, iterates: u32| -> Result<Spectrum, RenderError> {
+        pass.set_method(method);
+        pass.prepare(&ctx.queue, sky, &camera);
+        Ok(to_spectrum * render_pixel(ctx, &pass, iterates)?)
+    };
+    // Iterates of the multiple-scattering LUT, the first holding single scattering.
+    let all = MULTISCATTERING_ITERATIONS + 1;
+    let mut black_ground = sky.clone();
+    black_ground.atmosphere.medium.ground_albedo = Spectrum::ZERO;
+    let without_ground = render(&black_ground, SkyMethod::March, all)?;
+    let mut marched = [Spectrum::ZERO; 4];
+    for (radiance, iterates) in marched.iter_mut().zip([0, 1, 3, all]) {
+        *radiance = render(sky, SkyMethod::March, iterates)?;
+    }
+    let [up_to_1, up_to_2, up_to_4, total] = marched;
+    // Last, so that the LUTs read below are the whole build's.
+    let radiance = render(sky, SkyMethod::Lut, all)?;
+    let by_order = [up_to_1, up_to_2 - up_to_1, up_to_4 - up_to_2, total - up_to_4];
 
     let transmittance_lut = CpuLut::read(ctx, &pass.luts().transmittance.texture, TRANSMITTANCE_SIZE)?;
     let irradiance_lut = CpuLut::read(ctx, &pass.luts().irradiance.texture, IRRADIANCE_SIZE)?;
@@ -167,8 +188,36 @@ pub(crate) fn sample_sky(
     }
     Ok(GpuSkySample {
         radiance,
+        by_order,
+        via_ground: total - without_ground,
         transmittance,
         sky_irradiance,
         sun_irradiance,
     })
+}
+
+/// Renders the pixel of the view `pass` was last prepared with, its medium's LUTs built with
+/// `iterates` multiple-scattering iterates (at most [`MULTISCATTERING_ITERATIONS`] + 1: all);
+/// linear sRGB.
+fn render_pixel(ctx: &GpuContext, pass: &AtmospherePass, iterates: u32) -> Result<DVec3, RenderError> {
+    // New textures start zeroed: black, and depth at the far plane, so the sky fills the pixel.
+    let targets = FrameTargets::new(&ctx.device, 1, 1);
+    let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("firmament sample_sky encoder"),
+    });
+    // Step 0 is the transmittance LUT and the iteration's zero, steps 1 to `iterates` the
+    // iterates, the last the sky irradiance and the copy into the live set.
+    for step in 0..=iterates.min(MULTISCATTERING_ITERATIONS + 1) {
+        pass.record_medium_lut_step(&mut encoder, step);
+    }
+    pass.record_medium_lut_step(&mut encoder, MEDIUM_BUILD_STEPS - 1);
+    pass.record_sky_view_lut(&mut encoder);
+    pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
+    ctx.queue.submit([encoder.finish()]);
+    let pixel = decode_f16(&read_texture(ctx, &targets.hdr)?);
+    Ok(DVec3::new(
+        f64::from(pixel[0]),
+        f64::from(pixel[1]),
+        f64::from(pixel[2]),
+    ))
 }
