@@ -83,7 +83,12 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     let eye = DVec3::new(0.0, 0.0, args.altitude);
     let view = enu(args.view_zenith, args.view_azimuth);
 
-    let reference = (!args.gpu).then(|| reference_sample(&sky, eye, view, args.paths as usize));
+    let settings = ReferenceSettings {
+        paths: args.paths as usize,
+        line_samples: args.line_samples as usize,
+        ..ReferenceSettings::default()
+    };
+    let reference = (!args.gpu).then(|| reference_sample(&sky, eye, view, settings));
     let gpu = if args.reference {
         None
     } else {
@@ -202,11 +207,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     Ok(())
 }
 
-fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, paths: usize) -> Sample {
-    let settings = ReferenceSettings {
-        paths,
-        ..ReferenceSettings::default()
-    };
+fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, settings: ReferenceSettings) -> Sample {
     let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
     let planet = &sky.atmosphere.planet;
     let parts = reference.radiance(&Ray {

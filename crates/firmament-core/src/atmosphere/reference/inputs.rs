@@ -14,6 +14,10 @@ pub struct ReferenceSettings {
     pub view_steps: usize,
     /// Monte Carlo paths per estimate of multiple scattering.
     pub paths: usize,
+    /// Points per path segment at which the path tracer gathers once-scattered sunlight along
+    /// the whole segment (0: only at the path's next collision, the default). Costs about this
+    /// many sun transmittances per segment; worth it where little air is sunlit (twilight).
+    pub line_samples: usize,
     /// Seed of the path tracer's random numbers.
     pub seed: u64,
     /// Radiance arriving from space in every direction, W·m⁻²·sr⁻¹·nm⁻¹ (zero for a real sky; a
@@ -26,6 +30,7 @@ impl Default for ReferenceSettings {
         Self {
             view_steps: 1024,
             paths: 4096,
+            line_samples: 0,
             seed: 0x5EED_F1A7,
             background: Spectrum::ZERO,
         }

@@ -14,6 +14,14 @@
 //! the fourth event (and a path is cut after 1000 events, which no realistic path reaches), so no
 //! order is cut off.
 //!
+//! With [`ReferenceSettings::line_samples`](super::ReferenceSettings::line_samples) the light a
+//! path gathers after each event is estimated along the whole next segment instead of at the next
+//! collision: sunlight scattered once anywhere on the segment, at that many points jittered in
+//! equal strata, and the sunlit ground at its end (Rao–Blackwellised next-event estimation; the
+//! collision then adds nothing of its own). Unbiased like the default, and far less noisy where
+//! only a thin shell of distant air is sunlit — at twilight a collision rarely lands there, while
+//! most segments cross it.
+//!
 //! Each path has its own random stream seeded from (seed, ray, path index): results do not
 //! depend on the number of threads.
 
@@ -24,7 +32,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 
-use super::inputs::{Reference, segment};
+use super::inputs::{Reference, Segment, segment};
 use crate::atmosphere::medium::{LocalCoefficients, henyey_greenstein, rayleigh_phase};
 use crate::atmosphere::spectrum::Spectrum;
 use crate::geometry::Ray;
@@ -225,6 +233,12 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
             }
             return tally;
         };
+        let along_segment = reference.settings.line_samples > 0;
+        if along_segment {
+            let (air, ground) = line_light(reference, &ray, segment, rng);
+            tally.add(min_order, events + 1, weight * air, grounded);
+            tally.add(min_order, events + 1, weight * ground, true);
+        }
         let flight = sample_distance(reference, &ray, segment.start, segment.end, weight, split_first, rng);
         if split_first {
             split_first = false;
@@ -258,13 +272,15 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                 weight *= w;
                 events += 1;
                 let p = ray.at(t);
-                for sun in &reference.suns {
+                let suns = if along_segment { &[][..] } else { &reference.suns[..] };
+                for sun in suns {
                     let nu = ray.direction.dot(sun.direction);
                     let light = sun.irradiance * transmittance_to_sun(reference, p, sun.direction);
                     let value = weight * medium.scattering_phase(&coefficients, nu) * light;
                     tally.add(min_order, events, value, grounded);
                 }
-                // Pick the next direction from a Rayleigh / Henyey–Greenstein mixture.
+                // Pick the next direction from a Rayleigh / Henyey–Greenstein mixture, and
+                // along segments also towards the sunlit air of suns below the horizon.
                 let rayleigh = coefficients.rayleigh_scattering.y;
                 let mie = coefficients.mie_scattering.y;
                 let mie_share = if rayleigh + mie > 0.0 {
@@ -273,13 +289,32 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                     0.5
                 };
                 let g = medium.mie.phase.g();
-                let cos = if rng.random::<f64>() < mie_share {
-                    sample_henyey_greenstein(g, rng.random())
+                let guides = if along_segment {
+                    twilight_guides(reference, p)
                 } else {
-                    sample_rayleigh(rng.random())
+                    Vec::new()
                 };
-                let direction = rotate_to(ray.direction, cos, 2.0 * PI * rng.random::<f64>());
-                let pdf = (1.0 - mie_share) * rayleigh_phase(cos) + mie_share * henyey_greenstein(g, cos);
+                let guide_share = if guides.is_empty() { 0.0 } else { GUIDE_SHARE };
+                let direction = if rng.random::<f64>() < guide_share {
+                    let guide = guides[rng.random_range(0..guides.len())];
+                    let cos = sample_henyey_greenstein(GUIDE_G, rng.random());
+                    rotate_to(guide, cos, 2.0 * PI * rng.random::<f64>())
+                } else {
+                    let cos = if rng.random::<f64>() < mie_share {
+                        sample_henyey_greenstein(g, rng.random())
+                    } else {
+                        sample_rayleigh(rng.random())
+                    };
+                    rotate_to(ray.direction, cos, 2.0 * PI * rng.random::<f64>())
+                };
+                let cos = ray.direction.dot(direction).clamp(-1.0, 1.0);
+                let phase_pdf = (1.0 - mie_share) * rayleigh_phase(cos) + mie_share * henyey_greenstein(g, cos);
+                let guide_pdf = guides
+                    .iter()
+                    .map(|guide| henyey_greenstein(GUIDE_G, guide.dot(direction)))
+                    .sum::<f64>()
+                    / guides.len().max(1) as f64;
+                let pdf = (1.0 - guide_share) * phase_pdf + guide_share * guide_pdf;
                 weight *= medium.scattering_phase(&coefficients, cos) / pdf;
                 ray = Ray { origin: p, direction };
             }
@@ -294,7 +329,9 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                 events += 1;
                 grounded = true;
                 let (start, direct) = ground_event(reference, ray.at(segment.end));
-                tally.add(min_order, events, weight * direct, grounded);
+                if !along_segment {
+                    tally.add(min_order, events, weight * direct, grounded);
+                }
                 weight *= medium.ground_albedo;
                 ray = Ray {
                     origin: start,
@@ -342,7 +379,10 @@ fn reflect_and_trace(
     let mut tally = Tally::ZERO;
     let (start, direct) = ground_event(reference, ground.origin);
     let order = events + 1;
-    tally.add(min_order, order, weight * direct, true);
+    // Along segments, the segment that ended here already counted the ground's sunlight.
+    if reference.settings.line_samples == 0 {
+        tally.add(min_order, order, weight * direct, true);
+    }
     let direction = cosine_sample(reference.atmosphere.planet.up(start), rng);
     let rest = trace(
         reference,
@@ -377,6 +417,75 @@ fn segment_depth(reference: &Reference, ray: &Ray, start: f64, end: f64) -> Spec
         })
         .sum::<Spectrum>()
         * dt
+}
+
+/// The share of new directions drawn towards the twilight guides (when there are any).
+const GUIDE_SHARE: f64 = 0.5;
+
+/// Henyey–Greenstein asymmetry of the lobe about each twilight guide.
+const GUIDE_G: f64 = 0.9;
+
+/// Where the sunlit air lies from planet-frame point `p` for each sun below its horizon: level,
+/// towards the sun's azimuth (the air over the terminator, far away and low in the sky). Paths
+/// gathering along segments draw some of their directions about these (one-sample multiple
+/// importance sampling with the phase function), so that more segments cross that air.
+fn twilight_guides(reference: &Reference, p: DVec3) -> Vec<DVec3> {
+    let up = reference.atmosphere.planet.up(p);
+    reference
+        .suns
+        .iter()
+        .filter(|sun| sun.direction.dot(up) < 0.0)
+        .filter_map(|sun| (sun.direction - up * sun.direction.dot(up)).try_normalize())
+        .collect()
+}
+
+/// The light reaching the start of `segment` (of `ray`) after one scattering or reflection: the
+/// sunlight scattered once in its air, at `line_samples` points jittered in equal strata, and
+/// the directly sunlit ground at its end, each attenuated on the way back.
+fn line_light(reference: &Reference, ray: &Ray, segment: Segment, rng: &mut Pcg64Mcg) -> (Spectrum, Spectrum) {
+    let planet = &reference.atmosphere.planet;
+    let medium = &reference.atmosphere.medium;
+    let (start, end) = (segment.start, segment.end);
+    // Optical depth from the segment's start at the table's nodes, by trapezoids as
+    // `segment_depth`, interpolated linearly between them.
+    let dt = (end - start) / TABLE_STEPS as f64;
+    let extinction = |i: usize| {
+        medium
+            .at(planet.approximate_altitude(ray.at(start + dt * i as f64)))
+            .extinction
+    };
+    let mut depth = Vec::with_capacity(TABLE_STEPS + 1);
+    depth.push(Spectrum::ZERO);
+    let mut previous = extinction(0);
+    for i in 1..=TABLE_STEPS {
+        let next = extinction(i);
+        depth.push(depth[i - 1] + (previous + next) * (0.5 * dt));
+        previous = next;
+    }
+    let depth_at = |t: f64| {
+        let x = ((t - start) / dt).clamp(0.0, TABLE_STEPS as f64);
+        let i = (x as usize).min(TABLE_STEPS - 1);
+        depth[i].lerp(depth[i + 1], x - i as f64)
+    };
+    let samples = reference.settings.line_samples;
+    let stratum = (end - start) / samples as f64;
+    let mut air = Spectrum::ZERO;
+    for j in 0..samples {
+        let t = start + stratum * (j as f64 + rng.random::<f64>());
+        let p = ray.at(t);
+        let coefficients = medium.at(planet.approximate_altitude(p));
+        for sun in &reference.suns {
+            let nu = ray.direction.dot(sun.direction);
+            let light = sun.irradiance * transmittance_to_sun(reference, p, sun.direction);
+            air += medium.scattering_phase(&coefficients, nu) * light * (-depth_at(t)).exp();
+        }
+    }
+    let ground = if segment.ends_on_ground {
+        ground_event(reference, ray.at(end)).1 * (-depth[TABLE_STEPS]).exp()
+    } else {
+        Spectrum::ZERO
+    };
+    (air * stratum, ground)
 }
 
 enum Flight {
@@ -549,6 +658,48 @@ mod tests {
             .sum::<f64>()
             / n as f64;
         assert!((second - 0.4).abs() < 1e-5, "{second}");
+    }
+
+    /// Gathering along segments estimates what collisions do, by day and at twilight, with
+    /// less noise where little air is sunlit.
+    #[test]
+    fn gathering_along_segments_agrees_with_collisions() {
+        use crate::atmosphere::{Sun, presets};
+        let radius = presets::earth().planet.radii.z;
+        let ray = Ray {
+            origin: DVec3::new(0.0, 0.0, radius + 2.0),
+            direction: DVec3::new(-(0.8f64.sqrt()), 0.0, 0.2f64.sqrt()),
+        };
+        for (elevation, paths) in [(30f64, 4096), (-6.0, 16384)] {
+            let (s, c) = elevation.to_radians().sin_cos();
+            let sun = Sun {
+                direction: DVec3::new(c, 0.0, s),
+                ..presets::earth_sun(DVec3::Z)
+            };
+            let run = |line_samples: usize| {
+                let settings = super::super::ReferenceSettings {
+                    paths,
+                    line_samples,
+                    ..Default::default()
+                };
+                let reference = Reference::new(presets::earth(), &[sun], settings);
+                multiple_scattering(&reference, &ray, 2, paths, f64::INFINITY)
+            };
+            let (collisions, along) = (run(0), run(8));
+            let noise = (collisions.standard_error * collisions.standard_error
+                + along.standard_error * along.standard_error)
+                .sqrt();
+            let off = (along.total - collisions.total).abs() / noise;
+            println!(
+                "sun {elevation}°: collisions {} ± {}, along segments {} ± {}",
+                collisions.total, collisions.standard_error, along.total, along.standard_error
+            );
+            assert!(off.max_element() < 4.0, "sun {elevation}°: {off}");
+            if elevation < 0.0 {
+                let relative = |m: &MultipleScattering| (m.standard_error / m.total).max_element();
+                assert!(relative(&along) < relative(&collisions) / 2.0);
+            }
+        }
     }
 
     /// The share that met the ground is what a black ground removes, within the noise of the
