@@ -12,7 +12,9 @@
 //! `n ⊙ VP_pli ≠ 0`, `ĥ_i` the normalised half vector `VP_pli + VP_e` (local viewer) or
 //! `VP_pli + (0, 0, 1)` (infinite viewer). With separate specular colour the specular sum goes to
 //! a secondary colour added after texturing. Alpha is the material's diffuse alpha. Both colours
-//! are clamped to `[0, 1]`.
+//! are clamped to `[0, 1]` after lighting unless vertex colour clamping is off
+//! ([`LightModel::clamp_vertex_color`]); the fragment stage clamps what it receives either way
+//! ([`LitColor::clamped`]), so the switch only changes what Gouraud shading interpolates.
 
 use glam::{DVec3, DVec4};
 
@@ -117,6 +119,12 @@ pub struct LightModel {
     pub two_side: bool,
     /// `GL_LIGHT_MODEL_COLOR_CONTROL = GL_SEPARATE_SPECULAR_COLOR`.
     pub separate_specular: bool,
+    /// `GL_CLAMP_VERTEX_COLOR` (`glClampColor`, OpenGL 3.0 "Clamping or Masking"): lit colours
+    /// are clamped to [0, 1] at the vertex, before interpolation. On is GL's initial state and
+    /// all that fixed-function GL before 3.0 does; off is what a vertex shader's own outputs get
+    /// (GLSL never clamps user-defined varyings), so colours above 1 at the vertices reach the
+    /// fragments at full weight, as in the SuperBible's ADSGouraud shader.
+    pub clamp_vertex_color: bool,
 }
 
 impl Default for LightModel {
@@ -126,11 +134,12 @@ impl Default for LightModel {
             local_viewer: false,
             two_side: false,
             separate_specular: false,
+            clamp_vertex_color: true,
         }
     }
 }
 
-/// The result of lighting one point: primary and secondary (separate specular) colours, clamped.
+/// The result of lighting one point: primary and secondary (separate specular) colours.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LitColor {
     /// Emission, ambient, diffuse (and specular unless separate); alpha = material diffuse alpha.
@@ -144,6 +153,31 @@ impl LitColor {
     pub fn sum(&self) -> DVec4 {
         let c = self.primary + DVec4::new(self.secondary.x, self.secondary.y, self.secondary.z, 0.0);
         c.clamp(DVec4::ZERO, DVec4::ONE)
+    }
+
+    /// Both colours clamped to [0, 1]. GL clamps them after lighting when vertex colour clamping
+    /// is on, and again as the fragment stage takes them: fragment colour clamping, on for a
+    /// fixed-point framebuffer (`GL_CLAMP_FRAGMENT_COLOR`'s initial `GL_FIXED_ONLY`), clamps the
+    /// texture environment's inputs and the colour sum, and a shader's output on write.
+    pub fn clamped(&self) -> Self {
+        let clamp = |c: DVec4| c.clamp(DVec4::ZERO, DVec4::ONE);
+        Self {
+            primary: clamp(self.primary),
+            secondary: clamp(self.secondary),
+        }
+    }
+
+    /// Smooth (Gouraud) shading: the colours lit at a triangle's three `vertices`, blended by a
+    /// fragment's barycentric `weights` (perspective-correct, as GL interpolates). Colours blend
+    /// as lighting left them — above 1 when vertex clamping is off — and the fragment stage then
+    /// clamps the blend ([`Self::clamped`]).
+    pub fn blend(vertices: [Self; 3], weights: [f64; 3]) -> Self {
+        let [a, b, c] = vertices;
+        let [wa, wb, wc] = weights;
+        Self {
+            primary: wa * a.primary + wb * b.primary + wc * c.primary,
+            secondary: wa * a.secondary + wb * b.secondary + wc * c.secondary,
+        }
     }
 }
 
@@ -168,13 +202,14 @@ fn dot_clamped(a: DVec3, b: DVec3) -> f64 {
 
 impl Lighting<'_> {
     /// Lights a point at eye-space `position` with eye-space `normal` (normalised here, like
-    /// `GL_NORMALIZE`). `front_facing` selects the material when two-sided lighting is on.
+    /// `GL_NORMALIZE`). `front_facing` selects the material when two-sided lighting is on. The
+    /// colours are clamped to [0, 1] when `model.clamp_vertex_color` is on (GL's default).
     pub fn shade(&self, position: DVec3, normal: DVec3, front_facing: bool) -> LitColor {
         let lit = self.shade_unclamped(position, normal, front_facing);
-        let clamp = |c: DVec4| c.clamp(DVec4::ZERO, DVec4::ONE);
-        LitColor {
-            primary: clamp(lit.primary),
-            secondary: clamp(lit.secondary),
+        if self.model.clamp_vertex_color {
+            lit.clamped()
+        } else {
+            lit
         }
     }
 
@@ -338,6 +373,7 @@ mod tests {
             separate_specular: true,
             local_viewer: true,
             two_side: true,
+            clamp_vertex_color: true,
         };
         let lights = [light];
         let l = Lighting {
@@ -361,6 +397,43 @@ mod tests {
         // Two-sided: a back face uses the back material and the flipped normal.
         let back = l.shade(DVec3::new(0.0, 0.0, -2.0), DVec3::NEG_Z, false);
         assert!((back.primary.y - 0.8 / 3.0).abs() < 1e-12, "{back:?}");
+    }
+
+    #[test]
+    fn unclamped_vertex_colours_interpolate_at_full_value() {
+        // Diffuse 1.6 under a white light along +z: a vertex facing the light is lit 1.6, one
+        // whose normal makes cos θ = 1/4 with it 0.4. Half way between them GL interpolates
+        // (1.6 + 0.4)/2 = 1.0 when vertex colours are not clamped, (1 + 0.4)/2 = 0.7 when they are.
+        let lights = [Light::gl_default(0)];
+        let material = Material {
+            ambient: DVec4::ZERO,
+            diffuse: rgb(1.6, 1.6, 1.6),
+            ..Material::default()
+        };
+        let midpoint = |clamp_vertex_color: bool| {
+            let l = Lighting {
+                lights: &lights,
+                model: LightModel {
+                    ambient: DVec4::ZERO,
+                    clamp_vertex_color,
+                    ..LightModel::default()
+                },
+                front: material,
+                back: material,
+                specular: SpecularModel::Blinn,
+            };
+            let p = DVec3::new(0.0, 0.0, -4.0);
+            let oblique = DVec3::new(15f64.sqrt(), 0.0, 1.0);
+            let (bright, dim) = (l.shade(p, DVec3::Z, true), l.shade(p, oblique, true));
+            assert!((dim.primary.x - 0.4).abs() < 1e-12, "{dim:?}");
+            LitColor::blend([bright, dim, dim], [0.5, 0.5, 0.0]).clamped()
+        };
+        let unclamped = midpoint(false);
+        assert!((unclamped.primary.x - 1.0).abs() < 1e-12, "{unclamped:?}");
+        let clamped = midpoint(true);
+        assert!((clamped.primary.x - 0.7).abs() < 1e-12, "{clamped:?}");
+        // Alpha (the material's diffuse alpha) is 1 either way; nothing reaches the secondary.
+        assert_eq!((unclamped.primary.w, unclamped.secondary), (1.0, DVec4::ZERO));
     }
 
     #[test]

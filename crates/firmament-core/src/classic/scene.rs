@@ -65,7 +65,8 @@ pub enum Shading {
     /// GL's `GL_FLAT`: the triangle takes the colour lit at its provoking vertex, which in GL is
     /// the **last** vertex of the triangle.
     Flat,
-    /// GL's `GL_SMOOTH`: lit per vertex in eye space, colours clamped then interpolated.
+    /// GL's `GL_SMOOTH`: lit per vertex in eye space, colours clamped (unless
+    /// `LightModel::clamp_vertex_color` is off) then interpolated.
     #[default]
     Gouraud,
     /// The same equation per fragment with interpolated normals (the SuperBible's Phong shader).

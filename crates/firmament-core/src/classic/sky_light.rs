@@ -95,6 +95,8 @@ impl<'a> SkyLight<'a> {
                 local_viewer: true,
                 two_side: false,
                 separate_specular: false,
+                // Radiance: no stage clamps it (`ObjectLighting::clamps`).
+                clamp_vertex_color: false,
             },
             shading,
             specular,

@@ -58,7 +58,8 @@ pub struct ClassicFrameUniforms {
     /// Light count, local viewer, two-sided, separate specular.
     pub model_flags: [u32; 4],
     /// Shading (a `SHADING_*` of [`codes`]), specular model (a `SPECULAR_*`), radiance (1: no
-    /// clamping to [0, 1], objects under a physical sky).
+    /// clamping to [0, 1], objects under a physical sky), unclamped vertex colours (1:
+    /// `GL_CLAMP_VERTEX_COLOR` off, only the fragment stage clamps).
     pub mode: [u32; 4],
     /// Fog equation (a `FOG_*` of [`codes`]), coordinate (a `FOG_COORDINATE_*`), sun
     /// in-scattering (1 on, height fog).
@@ -174,7 +175,7 @@ impl ClassicFrameUniforms {
                         SpecularModel::Phong => codes::SPECULAR_PHONG,
                     },
                     u32::from(!lighting.clamps()),
-                    0,
+                    u32::from(!m.clamp_vertex_color),
                 ];
             }
         }

@@ -39,7 +39,8 @@ struct ClassicFrame {
     // x = light count, y = local viewer, z = two-sided, w = separate specular
     model_flags: vec4<u32>,
     // x = shading (SHADING_*), y = specular model (SPECULAR_*), z = 1: radiance under a physical
-    // sky, never clamped to [0, 1]
+    // sky, never clamped to [0, 1], w = 1: vertex colours are not clamped (GL_CLAMP_VERTEX_COLOR
+    // off): Gouraud interpolates them as lit, and only the fragment stage clamps
     mode: vec4<u32>,
     // Fog: x = equation (FOG_*: GL 2.1 §3.10's, or height fog), y = coordinate (FOG_COORDINATE_*:
     // eye-plane depth |z_eye|, eye distance, or the vertex's own fog coordinate, GL_FOG_COORD),
@@ -164,10 +165,15 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
         out.primary = vec4<f32>(color.rgb + spec.rgb, m.diffuse.a);
         out.secondary = vec4<f32>(0.0);
     }
-    if frame.mode.z == 0u {
-        out.primary = clamp(out.primary, vec4<f32>(0.0), vec4<f32>(1.0));
-        out.secondary = clamp(out.secondary, vec4<f32>(0.0), vec4<f32>(1.0));
-    }
+    return out;
+}
+
+// GL's clamp of both colours to [0, 1]: after lighting (vertex colour clamping) and as the
+// fragment stage takes them (fragment colour clamping, on for fixed-point framebuffers).
+fn clamped(lit: Lit) -> Lit {
+    var out: Lit;
+    out.primary = clamp(lit.primary, vec4<f32>(0.0), vec4<f32>(1.0));
+    out.secondary = clamp(lit.secondary, vec4<f32>(0.0), vec4<f32>(1.0));
     return out;
 }
 
@@ -192,12 +198,19 @@ fn vs_main(in: VertexIn) -> VertexOut {
         let shade_eye = object.model_view * vec4<f32>(in.shade_position, 1.0);
         let p = shade_eye.xyz / shade_eye.w;
         let n = object.normal_matrix * in.shade_normal;
-        let front = shade(p, n, false);
+        let clamp_vertex = frame.mode.z == 0u && frame.mode.w == 0u;
+        var front = shade(p, n, false);
+        if clamp_vertex {
+            front = clamped(front);
+        }
         out.front_primary = front.primary;
         out.front_secondary = front.secondary;
         // The back colours are only read with two-sided lighting; don't pay for them otherwise.
         if frame.model_flags.z != 0u {
-            let back = shade(p, n, true);
+            var back = shade(p, n, true);
+            if clamp_vertex {
+                back = clamped(back);
+            }
             out.back_primary = back.primary;
             out.back_secondary = back.secondary;
         } else {
@@ -218,9 +231,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
     } else if frame.mode.x == SHADING_PHONG {
         lit = shade(in.eye_position, in.eye_normal, back);
     } else {
-        // Lighting off: the current colour, clamped; no secondary colour.
-        lit.primary = clamp(object.front.diffuse, vec4<f32>(0.0), vec4<f32>(1.0));
+        // Lighting off: the current colour (clamped below); no secondary colour.
+        lit.primary = object.front.diffuse;
         lit.secondary = vec4<f32>(0.0);
+    }
+    // The fragment stage's clamp; for Gouraud colours it only acts when the vertices left them
+    // unclamped (GL_CLAMP_VERTEX_COLOR off), so values above 1 took full part in interpolation.
+    if frame.mode.z == 0u {
+        lit = clamped(lit);
     }
     // Sampled unconditionally (uniform control flow), used only when textured.
     let texel = textureSample(object_texture, object_sampler, in.tex_coord);

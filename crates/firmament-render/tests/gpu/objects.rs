@@ -214,6 +214,58 @@ fn superbible_ads_and_phong() {
 }
 
 #[test]
+fn vertex_colours_above_one_interpolate_unclamped_when_asked() {
+    // The SuperBible's ADSGouraud shader: near the highlight blue is 0.1 + n·L + specular > 1 at
+    // the vertices. With GL_CLAMP_VERTEX_COLOR off (a shader's varyings) that interpolates as it
+    // is and only the fragment clamps; with it on (fixed function) each vertex clamps first.
+    let mesh = glt_sphere();
+    let layer = |model: LightModel, fog: SceneFog| ObjectLayer {
+        objects: vec![sphere(&mesh, superbible_material())],
+        lighting: classic(vec![superbible_light()], model, Shading::Gouraud, SpecularModel::Phong),
+        fog,
+    };
+    let ads = |clamp_vertex_color| LightModel {
+        ambient: DVec4::ONE,
+        local_viewer: true,
+        clamp_vertex_color,
+        ..LightModel::default()
+    };
+    let (clamped, unclamped) = (layer(ads(true), SceneFog::None), layer(ads(false), SceneFog::None));
+    check("superbible gouraud, vertex colours clamped", &clamped);
+    check("superbible gouraud, vertex colours unclamped", &unclamped);
+    // The two must differ visibly, or the checks above would not tell them apart.
+    let (a, b) = (
+        Reference::new(&clamped, eye_camera()),
+        Reference::new(&unclamped, eye_camera()),
+    );
+    let differing = (0..SIZE * SIZE)
+        .filter_map(|i| {
+            let ndc = |k: u32| (f64::from(k) + 0.5) / f64::from(SIZE) * 2.0 - 1.0;
+            let p = DVec2::new(ndc(i % SIZE), -ndc(i / SIZE));
+            Some((b.pixel(p)? - a.pixel(p)?).truncate().max_element())
+        })
+        .filter(|d| *d > 2.0 / 255.0)
+        .count();
+    eprintln!("clamped and unclamped vertex colours differ by more than 2/255 at {differing} pixels");
+    assert!(differing > 10, "only {differing} pixels tell the two apart");
+    // Separate specular and fog after the fragment's clamp: primary and secondary are each
+    // interpolated unclamped, summed, clamped, then fogged.
+    let separate = LightModel {
+        separate_specular: true,
+        ..ads(false)
+    };
+    let fog = SceneFog::Classic(Fog {
+        mode: FogMode::Linear { start: 3.0, end: 5.5 },
+        coordinate: FogCoordinate::EyePlaneDepth,
+        color: rgba(0.3, 0.2, 0.1),
+    });
+    check(
+        "superbible gouraud, unclamped, separate specular, fog",
+        &layer(separate, fog),
+    );
+}
+
+#[test]
 fn spots_attenuation_and_viewers() {
     let mesh = glt_sphere();
     let local = LightModel {

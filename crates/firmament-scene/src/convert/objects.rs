@@ -358,6 +358,7 @@ fn lighting(scene: &Scene, sky_light: Option<&SkyLight<'_>>) -> Result<ObjectLig
         local_viewer: l.local_viewer,
         two_side: l.two_side,
         separate_specular: l.separate_specular,
+        clamp_vertex_color: l.clamp_vertex_color,
     };
     Ok(match l.model {
         LightingModelName::Unlit => ObjectLighting::Unlit,
@@ -382,6 +383,7 @@ fn lighting(scene: &Scene, sky_light: Option<&SkyLight<'_>>) -> Result<ObjectLig
             let mut lit = sky_light.lighting(camera, shading, specular);
             lit.model.two_side = l.two_side;
             lit.model.separate_specular = l.separate_specular;
+            // `clamp_vertex_color` has no say here: radiance is clamped nowhere.
             ObjectLighting::Sky(lit)
         }
     })

@@ -80,6 +80,9 @@ pub struct LightingSection {
     pub two_side: bool,
     /// `GL_SEPARATE_SPECULAR_COLOR` (specular added after texturing).
     pub separate_specular: bool,
+    /// `GL_CLAMP_VERTEX_COLOR`: lit vertex colours clamped to [0, 1] before Gouraud
+    /// interpolation (GL's default); `false` for a shader program's unclamped varyings.
+    pub clamp_vertex_color: bool,
 }
 
 /// `space` of a light.

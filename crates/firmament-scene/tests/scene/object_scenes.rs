@@ -32,6 +32,7 @@ fn absent_values_are_gl_initial_values() {
     };
     assert_eq!(lighting.shading, Shading::Gouraud);
     assert_eq!(lighting.model.ambient, DVec4::new(0.2, 0.2, 0.2, 1.0));
+    assert!(lighting.model.clamp_vertex_color, "GL clamps vertex colours by default");
     // Light 0 white, light 1 black; both at GL's defaults otherwise.
     assert_eq!(lighting.lights[0].light.diffuse, DVec4::ONE);
     assert_eq!(lighting.lights[0].light.position, DVec4::new(0.0, 0.0, 1.0, 0.0));
@@ -120,11 +121,44 @@ fn classic_presets_state_the_superbible_scene() {
         panic!("classic")
     };
     assert_eq!(lighting.lights[0].light.position, DVec4::new(-100.0, 100.0, 100.0, 1.0));
+    // The book's shaders pass colours in varyings, which GL does not clamp.
+    assert!(!lighting.model.clamp_vertex_color);
     let phong = load(SceneSource::Preset("superbible-phong"), None, &[]).expect("valid");
     let ObjectLighting::Classic(lighting) = phong.frame_at(None).expect("frame").objects.lighting else {
         panic!("classic")
     };
     assert_eq!(lighting.shading, Shading::Phong);
+}
+
+#[test]
+fn clamp_vertex_color_is_a_boolean_key() {
+    let lighting = |text: &str| {
+        let frame = from_text(text).expect("valid").frame_at(None).expect("frame");
+        let ObjectLighting::Classic(lighting) = frame.objects.lighting else {
+            panic!("classic lighting is the default")
+        };
+        lighting.model
+    };
+    assert!(!lighting("[lighting]\nclamp_vertex_color = false\n").clamp_vertex_color);
+    assert!(lighting("[lighting]\nclamp_vertex_color = true\n").clamp_vertex_color);
+    // `--set` reaches it like any key.
+    let scene = load(
+        SceneSource::Preset("superbible-ads"),
+        None,
+        &["lighting.clamp_vertex_color=true".to_owned()],
+    )
+    .expect("valid");
+    let ObjectLighting::Classic(lighting) = scene.frame_at(None).expect("frame").objects.lighting else {
+        panic!("classic")
+    };
+    assert!(lighting.model.clamp_vertex_color);
+    for value in ["1", "\"no\"", "[true]"] {
+        let message = error(&format!("[lighting]\nclamp_vertex_color = {value}\n"));
+        assert!(
+            message.contains("lighting.clamp_vertex_color") && message.contains("bool"),
+            "clamp_vertex_color = {value} gave: {message}"
+        );
+    }
 }
 
 #[test]

@@ -1,12 +1,12 @@
 //! The CPU reference for the object pass: casts each pixel's eye ray at the frame's triangles in
 //! `f64` and evaluates the core's statement of the GL equations there — lighting
 //! (`Lighting::shade`), texturing (`TextureImage::sample`, `GL_MODULATE`), colour sum and fog —
-//! with the interpolation GL does: Gouraud colours and fog coordinates perspective-correct
-//! between the vertices (ray barycentrics are exactly that), Phong normals the same way, flat
-//! shading the colour of the triangle's last vertex.
+//! with the interpolation GL does: Gouraud colours (`LitColor::blend`) and fog coordinates
+//! perspective-correct between the vertices (ray barycentrics are exactly that), Phong normals
+//! the same way, flat shading the colour of the triangle's last vertex.
 
 use firmament_core::Camera;
-use firmament_core::classic::lighting::{Light, Lighting, Material};
+use firmament_core::classic::lighting::{Light, Lighting, LitColor, Material};
 use firmament_core::classic::scene::{ObjectLayer, SceneFog, SceneObject, Shading};
 use glam::{DMat3, DVec2, DVec3, DVec4};
 
@@ -117,8 +117,11 @@ impl<'a> Reference<'a> {
         // Counter-clockwise seen from the eye: the face normal points back along the ray.
         let front_facing = (pb - pa).cross(pc - pa).dot(pa) < 0.0;
         let m: &Material = &object.object.front;
-        let (primary, secondary) = match self.lighting(object) {
-            None => (m.diffuse.clamp(DVec4::ZERO, DVec4::ONE), DVec4::ZERO),
+        let LitColor { primary, secondary } = match self.lighting(object) {
+            None => LitColor {
+                primary: m.diffuse.clamp(DVec4::ZERO, DVec4::ONE),
+                secondary: DVec4::ZERO,
+            },
             Some(lighting) => {
                 let shading = self.layer.lighting.equations().map_or(Shading::Gouraud, |c| c.shading);
                 let clamps = self.layer.lighting.clamps();
@@ -130,18 +133,17 @@ impl<'a> Reference<'a> {
                     }
                 };
                 let lit = |i: usize| shade(object.positions[i], object.normals[i]);
-                match shading {
-                    Shading::Flat => {
-                        let l = lit(c);
-                        (l.primary, l.secondary)
-                    }
-                    Shading::Gouraud => (interpolate(&|i| lit(i).primary), interpolate(&|i| lit(i).secondary)),
+                let fragment = match shading {
+                    Shading::Flat => lit(c),
+                    Shading::Gouraud => LitColor::blend([lit(a), lit(b), lit(c)], w),
                     Shading::Phong => {
                         let n = interpolate(&|i| object.normals[i].extend(0.0)).truncate();
-                        let l = shade(d * t, n);
-                        (l.primary, l.secondary)
+                        shade(d * t, n)
                     }
-                }
+                };
+                // The fragment stage clamps what it receives: colours a vertex left above 1
+                // (`clamp_vertex_color` off) only now.
+                if clamps { fragment.clamped() } else { fragment }
             }
         };
         let primary = match &object.object.texture {
