@@ -4,7 +4,7 @@
 mod probe;
 
 use anyhow::{Context, Result, bail};
-use firmament_core::atmosphere::reference::{Reference, ReferenceSettings, TALLIED_ORDERS};
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings, SecondOrderSettings, TALLIED_ORDERS};
 use firmament_core::atmosphere::{Spectrum, presets};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::geometry::Ray;
@@ -21,6 +21,8 @@ struct Sample {
     by_order: [Spectrum; 4],
     /// The part of `radiance` reflected by the ground at least once.
     via_ground: Spectrum,
+    /// Order 2 by the reference's deterministic quadrature (`--second-order`).
+    second_order: Option<Spectrum>,
     /// Standard error of `radiance` (the reference's Monte Carlo multiple scattering; zero for
     /// the GPU, whose error is bias, not noise).
     radiance_standard_error: Spectrum,
@@ -88,7 +90,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
         line_samples: args.line_samples as usize,
         ..ReferenceSettings::default()
     };
-    let reference = (!args.gpu).then(|| reference_sample(&sky, eye, view, settings));
+    let reference = (!args.gpu).then(|| reference_sample(&sky, eye, view, settings, args.second_order));
     let gpu = if args.reference {
         None
     } else {
@@ -98,6 +100,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             radiance: s.radiance,
             by_order: s.by_order,
             via_ground: s.via_ground,
+            second_order: None,
             radiance_standard_error: Spectrum::ZERO,
             transmittance: s.transmittance,
             sky_irradiance: s.sky_irradiance,
@@ -118,6 +121,7 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
                 "radiance": s.radiance.to_array(),
                 "radiance_by_order": by_order,
                 "radiance_via_ground": s.via_ground.to_array(),
+                "radiance_order_2_quadrature": s.second_order.map(|o| o.to_array()),
                 "radiance_standard_error": s.radiance_standard_error.to_array(),
                 "luminance": conversion.luminance(s.radiance),
                 "linear_srgb": [rgb.r, rgb.g, rgb.b],
@@ -165,6 +169,12 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             row(format!("  scattered {name} times, {nm} nm"), r, g);
         }
     }
+    if let Some(second_order) = reference.as_ref().and_then(|r| r.second_order) {
+        for (i, nm) in wavelengths.iter().enumerate() {
+            let g = gpu.as_ref().map(|s| s.by_order[1][i]);
+            row(format!("  order 2 by quadrature, {nm} nm"), Some(second_order[i]), g);
+        }
+    }
     for (i, nm) in wavelengths.iter().enumerate() {
         let (r, g) = pick(&|s| s.via_ground, i);
         row(format!("  reflected by the ground, {nm} nm"), r, g);
@@ -207,13 +217,21 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     Ok(())
 }
 
-fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, settings: ReferenceSettings) -> Sample {
+fn reference_sample(
+    sky: &AtmosphereSky,
+    eye: DVec3,
+    view: DVec3,
+    settings: ReferenceSettings,
+    second_order: bool,
+) -> Sample {
     let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
     let planet = &sky.atmosphere.planet;
-    let parts = reference.radiance(&Ray {
+    let ray = Ray {
         origin: eye,
         direction: view,
-    });
+    };
+    let parts = reference.radiance(&ray);
+    let second_order = second_order.then(|| reference.second_order(&ray, &SecondOrderSettings::default()));
     let ground = reference.ground_irradiance(DVec3::ZERO);
     let order = |range: std::ops::Range<usize>| -> Spectrum {
         parts.multiple.per_order.get(range).into_iter().flatten().copied().sum()
@@ -228,6 +246,7 @@ fn reference_sample(sky: &AtmosphereSky, eye: DVec3, view: DVec3, settings: Refe
         radiance: parts.total(),
         by_order,
         via_ground: parts.ground + parts.multiple.via_ground,
+        second_order,
         radiance_standard_error: parts.multiple.standard_error,
         transmittance: reference
             .transmittance_to_space(planet.to_planet_frame(eye), planet.direction_to_planet_frame(view)),

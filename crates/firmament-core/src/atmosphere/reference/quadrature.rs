@@ -1,4 +1,7 @@
-//! Adaptive Simpson quadrature for spectrum-valued integrands.
+//! Quadrature rules: adaptive Simpson for spectrum-valued integrands, and Gauss–Legendre with
+//! the integration matrix of its nodes.
+
+use std::f64::consts::PI;
 
 use crate::atmosphere::spectrum::Spectrum;
 
@@ -55,6 +58,78 @@ fn refine(
     }
     refine(f, a, m, fa, flm, fm, left, 0.5 * tolerance, depth - 1)
         + refine(f, m, b, fm, frm, fb, right, 0.5 * tolerance, depth - 1)
+}
+
+/// Gauss–Legendre nodes and weights on [−1, 1], and the integration matrix of the nodes.
+#[derive(Debug, Clone)]
+pub(super) struct GaussRule {
+    pub(super) nodes: Vec<f64>,
+    pub(super) weights: Vec<f64>,
+    /// `partial[j·n + k] = ∫_{−1}^{x_j} ℓ_k(x) dx`, `ℓ_k` the Lagrange basis polynomials of the
+    /// nodes: integrating a function's interpolant from −1 to each node.
+    pub(super) partial: Vec<f64>,
+}
+
+impl GaussRule {
+    pub(super) fn new(n: usize) -> Self {
+        let n = n.max(1);
+        let mut nodes = Vec::with_capacity(n);
+        let mut weights = Vec::with_capacity(n);
+        for i in 0..n {
+            // Newton's method on P_n from the usual estimate of its i-th root (Numerical
+            // Recipes' gauleg), largest first.
+            let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            for _ in 0..100 {
+                let (p, dp) = legendre(n, x);
+                let step = p / dp;
+                x -= step;
+                if step.abs() < 1e-16 || !step.is_finite() {
+                    break;
+                }
+            }
+            let (_, dp) = legendre(n, x);
+            nodes.push(-x);
+            weights.push(2.0 / ((1.0 - x * x) * dp * dp));
+        }
+        let lagrange = |k: usize, x: f64| {
+            (0..n)
+                .filter(|&m| m != k)
+                .map(|m| (x - nodes[m]) / (nodes[k] - nodes[m]))
+                .product::<f64>()
+        };
+        // The interpolant has degree n − 1, which the n-point rule on [−1, x_j] integrates exactly.
+        let mut partial = vec![0.0; n * n];
+        for j in 0..n {
+            let half = 0.5 * (nodes[j] + 1.0);
+            for k in 0..n {
+                partial[j * n + k] = (0..n)
+                    .map(|m| weights[m] * half * lagrange(k, -1.0 + half * (nodes[m] + 1.0)))
+                    .sum();
+            }
+        }
+        Self {
+            nodes,
+            weights,
+            partial,
+        }
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.nodes.len()
+    }
+}
+
+/// The Legendre polynomial `P_n(x)` and its derivative.
+fn legendre(n: usize, x: f64) -> (f64, f64) {
+    let (mut previous, mut current) = (1.0, x);
+    for k in 1..n {
+        let k = k as f64;
+        (previous, current) = (current, ((2.0 * k + 1.0) * x * current - k * previous) / (k + 1.0));
+    }
+    if n == 0 {
+        return (1.0, 0.0);
+    }
+    (current, n as f64 * (x * current - previous) / (x * x - 1.0))
 }
 
 #[cfg(test)]
