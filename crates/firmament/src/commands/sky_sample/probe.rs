@@ -10,7 +10,7 @@
 //! after `n` iterates it holds the light arriving at a point after at most `n` scattering or
 //! reflection events, so the view (which adds one more) sees orders up to `n + 1`; differences
 //! of such renders give each band of orders. The part reflected by the ground is what a black
-//! ground removes. These renders march the view ray ([`SkyMethod::March`]): the sky-view LUT
+//! ground removes. These renders march the view ray (`SkyMethod::March`): the sky-view LUT
 //! scales its texels by the multiple-scattering LUT's level, which is zero before the first
 //! iterate. The LUT path's radiance differs from the march's by the sky-view LUT's filtering.
 
