@@ -295,7 +295,8 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                     Vec::new()
                 };
                 let guide_share = if guides.is_empty() { 0.0 } else { GUIDE_SHARE };
-                let direction = if rng.random::<f64>() < guide_share {
+                // No draw without guides: the default paths keep their random sequence.
+                let direction = if guide_share > 0.0 && rng.random::<f64>() < guide_share {
                     let guide = guides[rng.random_range(0..guides.len())];
                     let cos = sample_henyey_greenstein(GUIDE_G, rng.random());
                     rotate_to(guide, cos, 2.0 * PI * rng.random::<f64>())
