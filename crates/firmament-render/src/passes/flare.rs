@@ -236,6 +236,17 @@ impl FlarePass {
                 immediate_size: 0,
             })
         };
+        let compute_pipeline =
+            |name: &str, layout: &wgpu::PipelineLayout, module: &wgpu::ShaderModule, entry_point: &str| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(&format!("firmament FlarePass {name} pipeline")),
+                    layout: Some(layout),
+                    module,
+                    entry_point: Some(entry_point),
+                    compilation_options: Default::default(),
+                    cache: None,
+                })
+            };
 
         let occlusion_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass occlusion bind group layout"),
@@ -261,22 +272,8 @@ impl FlarePass {
             source: wgpu::ShaderSource::Wgsl(shaders::FLARE_OCCLUSION.source().into()),
         });
         let occlusion_pipeline_layout = pipeline_layout("occlusion", &occlusion_layout);
-        let occlusion = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("firmament FlarePass occlusion pipeline"),
-            layout: Some(&occlusion_pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let binning = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("firmament FlarePass binning pipeline"),
-            layout: Some(&occlusion_pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_bin"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let occlusion = compute_pipeline("occlusion", &occlusion_pipeline_layout, &module, "cs_main");
+        let binning = compute_pipeline("binning", &occlusion_pipeline_layout, &module, "cs_bin");
 
         let elements_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass element bind group layout"),
@@ -316,14 +313,12 @@ impl FlarePass {
             label: Some("firmament FlarePass element shader"),
             source: wgpu::ShaderSource::Wgsl(shaders::FLARE.source().into()),
         });
-        let elements = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("firmament FlarePass element pipeline"),
-            layout: Some(&pipeline_layout("element", &elements_layout)),
-            module: &module,
-            entry_point: Some("cs_elements"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let elements = compute_pipeline(
+            "element",
+            &pipeline_layout("element", &elements_layout),
+            &module,
+            "cs_elements",
+        );
 
         let composite_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("firmament FlarePass composite bind group layout"),

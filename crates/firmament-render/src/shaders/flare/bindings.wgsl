@@ -85,7 +85,8 @@ struct FlareState {
     bins: array<atomic<u32>>,
 }
 
-// FlareState as the element pass reads it.
+// FlareState as the element pass reads it: read-only storage cannot hold atomics, so the bins
+// are plain words here (the layouts are the same).
 struct FlareStateView {
     visibility: array<f32, 64>,
     dispatch: vec4<u32>,

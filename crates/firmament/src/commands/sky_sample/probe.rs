@@ -14,6 +14,8 @@
 //! scales its texels by the multiple-scattering LUT's level, which is zero before the first
 //! iterate. The LUT path's radiance differs from the march's by the sky-view LUT's filtering.
 
+use std::ops::Range;
+
 use firmament_core::Camera;
 use firmament_core::atmosphere::Spectrum;
 use firmament_core::frame::AtmosphereSky;
@@ -128,29 +130,33 @@ pub(crate) fn sample_sky(
         .ok_or_else(|| RenderError::Readback("the view direction must be finite and non-zero".into()))?;
     let camera = Camera {
         fov_y: 0.01f64.to_radians(),
+        aspect: 1.0,
         ..camera
     };
-    let camera = Camera { aspect: 1.0, ..camera };
     let mut pass = AtmospherePass::new(&ctx.device);
     let atmosphere = &sky.atmosphere;
     let to_spectrum = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse();
-    let mut render = |sky: &AtmosphereSky, method: SkyMethod, iterates: u32| -> Result<Spectrum, RenderError> {
+    let mut render = |sky: &AtmosphereSky, method: SkyMethod, steps: Range<u32>| -> Result<Spectrum, RenderError> {
         pass.set_method(method);
         pass.prepare(&ctx.queue, sky, &camera);
-        Ok(to_spectrum * render_pixel(ctx, &pass, iterates)?)
+        Ok(to_spectrum * render_pixel(ctx, &pass, steps)?)
     };
-    // Iterates of the multiple-scattering LUT, the first holding single scattering.
+    // Build steps: 0 is the transmittance LUT and the iteration's zero, k the k-th iterate of
+    // the multiple-scattering LUT (the first holds single scattering).
     let all = MULTISCATTERING_ITERATIONS + 1;
     let mut black_ground = sky.clone();
     black_ground.atmosphere.medium.ground_albedo = Spectrum::ZERO;
-    let without_ground = render(&black_ground, SkyMethod::March, all)?;
+    let without_ground = render(&black_ground, SkyMethod::March, 0..all + 1)?;
+    // One build of the medium's LUTs, drawn from after 0, 1, 3 and all iterates.
     let mut marched = [Spectrum::ZERO; 4];
+    let mut next = 0;
     for (radiance, iterates) in marched.iter_mut().zip([0, 1, 3, all]) {
-        *radiance = render(sky, SkyMethod::March, iterates)?;
+        *radiance = render(sky, SkyMethod::March, next..iterates + 1)?;
+        next = iterates + 1;
     }
     let [up_to_1, up_to_2, up_to_4, total] = marched;
-    // Last, so that the LUTs read below are the whole build's.
-    let radiance = render(sky, SkyMethod::Lut, all)?;
+    // The same LUTs through the sky-view LUT; also those read below.
+    let radiance = render(sky, SkyMethod::Lut, 0..0)?;
     let by_order = [up_to_1, up_to_2 - up_to_1, up_to_4 - up_to_2, total - up_to_4];
 
     let transmittance_lut = CpuLut::read(ctx, &pass.luts().transmittance.texture, TRANSMITTANCE_SIZE)?;
@@ -196,21 +202,21 @@ pub(crate) fn sample_sky(
     })
 }
 
-/// Renders the pixel of the view `pass` was last prepared with, its medium's LUTs built with
-/// `iterates` multiple-scattering iterates (at most [`MULTISCATTERING_ITERATIONS`] + 1: all);
-/// linear sRGB.
-fn render_pixel(ctx: &GpuContext, pass: &AtmospherePass, iterates: u32) -> Result<DVec3, RenderError> {
+/// Renders the pixel of the view `pass` was last prepared with, linear sRGB, after encoding the
+/// build `steps` of its medium's LUTs (when there are any, then the sky irradiance LUT and the
+/// copy into the live set: a build can be drawn from between its iterates, and go on).
+fn render_pixel(ctx: &GpuContext, pass: &AtmospherePass, steps: Range<u32>) -> Result<DVec3, RenderError> {
     // New textures start zeroed: black, and depth at the far plane, so the sky fills the pixel.
     let targets = FrameTargets::new(&ctx.device, 1, 1);
     let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("firmament sample_sky encoder"),
     });
-    // Step 0 is the transmittance LUT and the iteration's zero, steps 1 to `iterates` the
-    // iterates, the last the sky irradiance and the copy into the live set.
-    for step in 0..=iterates.min(MULTISCATTERING_ITERATIONS + 1) {
-        pass.record_medium_lut_step(&mut encoder, step);
+    if !steps.is_empty() {
+        for step in steps {
+            pass.record_medium_lut_step(&mut encoder, step);
+        }
+        pass.record_medium_lut_step(&mut encoder, MEDIUM_BUILD_STEPS - 1);
     }
-    pass.record_medium_lut_step(&mut encoder, MEDIUM_BUILD_STEPS - 1);
     pass.record_sky_view_lut(&mut encoder);
     pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
     ctx.queue.submit([encoder.finish()]);
