@@ -30,7 +30,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | limit | firmament's use | where |
 /// |---|---|---|
 /// | `max_bind_groups` | 1 | every pipeline has one bind group |
-/// | `max_sampled_textures_per_shader_stage` | 11 | the atmosphere's sky as a compute pass: transmittance, irradiance, sky view, seven scattering moments and the depth buffer |
+/// | `max_sampled_textures_per_shader_stage` | 5 | the atmosphere's sky as a compute pass: transmittance, irradiance, sky view, the scattering moments (one array) and the depth buffer |
 /// | `max_samplers_per_shader_stage` | 1 | |
 /// | `max_storage_buffers_per_shader_stage` | 2 | lens flares: their records and their state (occlusion, binning, elements) |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
@@ -38,8 +38,8 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | `max_vertex_buffers` | 2 | objects: geometry and per-vertex shading |
 /// | `max_vertex_attributes` | 6 | objects |
 /// | `max_inter_stage_shader_variables` | 9 | objects: eight varyings and `front_facing` |
-/// | `max_compute_workgroup_size_x`, `_y`, `_z` | 256, 8, 1 | sky lighting and the sky irradiance LUT (256 × 1), the LUTs (8 × 8) |
-/// | `max_compute_invocations_per_workgroup` | 256 | sky lighting, the sky irradiance LUT |
+/// | `max_compute_workgroup_size_x`, `_y`, `_z` | 256, 8, 1 | sky lighting and the transmittance LUT (256 × 1), the LUTs (8 × 8) |
+/// | `max_compute_invocations_per_workgroup` | 256 | sky lighting, the transmittance LUT |
 /// | `max_texture_dimension_2d` | 1536 | the sky-view LUT: a 192-texel tile for each of 8 suns |
 ///
 /// The others keep `downlevel_defaults()`' values: sizes that depend on the scene (buffers and
@@ -61,7 +61,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits {
         max_bind_groups: 1,
-        max_sampled_textures_per_shader_stage: 11,
+        max_sampled_textures_per_shader_stage: 5,
         max_samplers_per_shader_stage: 1,
         max_storage_buffers_per_shader_stage: 2,
         max_storage_textures_per_shader_stage: 2,

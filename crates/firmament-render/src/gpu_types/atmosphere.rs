@@ -160,6 +160,21 @@ pub struct AtmosphereSunUniform {
     pub irradiance: [f32; 4],
 }
 
+/// Mirrors `OrderSums` in `shaders/atmosphere/bindings.wgsl`: one texel's multiple-scattering
+/// orders while the LUTs are built, written and read by the GPU alone (Rust sizes their buffer).
+/// Each `[f32; 4]` is one of the seven sums over directions (`atmosphere/moments_out.wgsl`),
+/// radiance per unit sun irradiance, sr⁻¹.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub(crate) struct OrderSumsGpu {
+    /// Over the orders marched so far.
+    pub(crate) sum: [[f32; 4]; 7],
+    /// The last order alone.
+    pub(crate) last: [[f32; 4]; 7],
+    /// The order before it: Ψ per wavelength, and summed over them in `w`.
+    pub(crate) previous_psi: [f32; 4],
+}
+
 /// Mirrors `AtmosphereView` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]

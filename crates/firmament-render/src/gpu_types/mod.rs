@@ -25,6 +25,7 @@ mod planet_view;
 pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
+pub(crate) use atmosphere::OrderSumsGpu;
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
 pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};

@@ -52,9 +52,14 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/transmittance_lut",
         include_str!("atmosphere/transmittance_lut.wgsl"),
     ),
+    ("atmosphere/moments_out", include_str!("atmosphere/moments_out.wgsl")),
     (
         "atmosphere/multiscattering_lut",
         include_str!("atmosphere/multiscattering_lut.wgsl"),
+    ),
+    (
+        "atmosphere/multiscattering_sum",
+        include_str!("atmosphere/multiscattering_sum.wgsl"),
     ),
     ("atmosphere/irradiance_lut", include_str!("atmosphere/irradiance_lut.wgsl")),
     ("atmosphere/sky_view_lut", include_str!("atmosphere/sky_view_lut.wgsl")),
@@ -192,8 +197,10 @@ pub static TONEMAP: Shader = entry!("tonemap");
 pub static EMPIRICAL_SKY: Shader = entry!("empirical_sky");
 /// The atmosphere's transmittance LUT pass (compute).
 pub static ATMOSPHERE_TRANSMITTANCE_LUT: Shader = entry!("atmosphere/transmittance_lut");
-/// The atmosphere's multiple-scattering LUT pass.
+/// The atmosphere's multiple-scattering LUTs: one order of scattering.
 pub static ATMOSPHERE_MULTISCATTERING_LUT: Shader = entry!("atmosphere/multiscattering_lut");
+/// The atmosphere's multiple-scattering LUTs: the orders summed.
+pub static ATMOSPHERE_MULTISCATTERING_SUM: Shader = entry!("atmosphere/multiscattering_sum");
 /// The atmosphere's sky irradiance LUT pass.
 pub static ATMOSPHERE_IRRADIANCE_LUT: Shader = entry!("atmosphere/irradiance_lut");
 /// The atmosphere's sky-view LUT pass.
@@ -219,12 +226,13 @@ pub static NIGHT_SKY: Shader = entry!("night_sky");
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 16] = [
+pub static ENTRIES: [&Shader; 17] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
     &ATMOSPHERE_TRANSMITTANCE_LUT,
     &ATMOSPHERE_MULTISCATTERING_LUT,
+    &ATMOSPHERE_MULTISCATTERING_SUM,
     &ATMOSPHERE_IRRADIANCE_LUT,
     &ATMOSPHERE_SKY_VIEW_LUT,
     &ATMOSPHERE_SKY,
@@ -908,6 +916,12 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             "AtmosphereSun",
             AtmosphereSunUniform,
             [direction, irradiance]
+        );
+        assert_layout!(
+            atmosphere,
+            "OrderSums",
+            crate::gpu_types::OrderSumsGpu,
+            [sum, last, previous_psi]
         );
         assert_layout!(
             atmosphere,

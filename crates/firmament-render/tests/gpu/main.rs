@@ -11,6 +11,7 @@ mod embedding;
 mod empirical_sky;
 mod flare;
 mod lut_rebuild;
+mod multiscattering;
 mod night_sky;
 mod objects;
 mod pass_timing;

@@ -157,6 +157,11 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
     ]);
+    let steps: Vec<String> = b.medium_lut_steps_ms.iter().map(|ms| format!("{ms:.3}")).collect();
+    println!(
+        "  medium LUT build steps (transmittance, each order of multiple scattering, irradiance): {} ms",
+        steps.join(", ")
+    );
     println!(
         "  brute force / LUT path: {:.1}x; LUT vs march: median {:.2} %, worst {:.2} %",
         b.march_frame_ms / b.lut_frame_ms,
@@ -175,6 +180,7 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         "timing": b.timing.describe(),
         "medium_luts_ms": b.medium_luts_ms,
         "medium_lut_step_max_ms": b.medium_lut_step_max_ms,
+        "medium_lut_steps_ms": b.medium_lut_steps_ms,
         "sky_view_lut_ms": b.sky_view_lut_ms,
         "sky_ms": b.sky_ms,
         "sky_fragment_ms": b.sky_fragment_ms,

@@ -591,8 +591,8 @@ fn sky_sample_prints_both_methods_as_json() {
     }
 }
 
-/// The GPU's light scattered exactly twice (its marches with the multiple-scattering LUT cut
-/// after one iterate, less after none) against the reference's deterministic quadrature of
+/// The GPU's light scattered exactly twice (its marches with the multiple-scattering LUTs
+/// holding order 1, less holding none) against the reference's deterministic quadrature of
 /// order 2 (issue 24): Bruneton's Earth sphere, 1 m up, looking 45° up towards and away from
 /// the sun 30° from the zenith and towards it 60° from the zenith. Within 1 % of the largest
 /// channel; the channels' own differences are in docs/ATMOSPHERE.md ("Multiple scattering

@@ -10,7 +10,7 @@
 
 use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
 use super::stages::{
-    ComputeStage, bind_group, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
+    ComputeStage, bind_group, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
 use std::num::NonZeroU64;
@@ -212,9 +212,9 @@ impl AerialPerspectiveStages {
         let luts = resources.luts;
         let storage = |binding| storage_entry(binding, AERIAL_PERSPECTIVE_FORMAT);
         let mut volume_resources = resources.common().to_vec();
-        volume_resources.extend(moment_resources(
-            binding::MULTISCATTERING_MOMENTS,
-            luts.multiscattering_views(),
+        volume_resources.push((
+            binding::MULTISCATTERING,
+            wgpu::BindingResource::TextureView(&luts.multiscattering.view),
         ));
         volume_resources.extend([
             (
@@ -238,7 +238,7 @@ impl AerialPerspectiveStages {
             storage(binding::AERIAL_SCATTERING_OUT),
             storage(binding::AERIAL_TRANSMITTANCE_OUT),
         ];
-        volume_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        volume_entries.push(moments_entry(binding::MULTISCATTERING));
         let volume = ComputeStage::new(
             device,
             "AtmospherePass aerial-perspective volume",

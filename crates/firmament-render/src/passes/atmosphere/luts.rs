@@ -3,7 +3,7 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh texture, over Ψ summed over wavelengths) | 32 × 32, seven | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
+//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh layer, over Ψ summed over wavelengths) | 32 × 32, seven layers of one array | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
 //! | sky irradiance (stored as its logarithm, as Ψ) | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
@@ -23,19 +23,9 @@ pub const TRANSMITTANCE_SIZE: (u32, u32) = (256, 64);
 pub const TRANSMITTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Multiple-scattering LUT size (texels): mu_s × h.
 pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
-/// Number of multiple-scattering moment textures (`Moments` in `atmosphere/luts.wgsl`).
+/// Number of multiple-scattering moments, the layers of their array texture (`Moments` in
+/// `atmosphere/luts.wgsl`).
 pub const MULTISCATTERING_MOMENTS: usize = 7;
-/// Their names, for labels.
-const MOMENT_NAMES: [&str; MULTISCATTERING_MOMENTS] = ["mean", "zz", "xx", "xz", "x", "z", "band 3"];
-
-/// The views of a set of moment textures.
-fn moment_views(luts: &[Lut; MULTISCATTERING_MOMENTS]) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
-    let mut i = 0;
-    [(); MULTISCATTERING_MOMENTS].map(|()| {
-        i += 1;
-        &luts[i - 1].view
-    })
-}
 
 /// Multiple-scattering LUT format.
 pub const MULTISCATTERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -73,7 +63,19 @@ impl Lut {
     pub(super) fn new(
         device: &wgpu::Device,
         name: &str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        written_by: wgpu::TextureUsages,
+    ) -> Self {
+        Self::with_layers(device, name, size, 1, format, written_by)
+    }
+
+    /// The same with `layers` layers, viewed as a 2D array when there are several.
+    pub(super) fn with_layers(
+        device: &wgpu::Device,
+        name: &str,
         (width, height): (u32, u32),
+        layers: u32,
         format: wgpu::TextureFormat,
         written_by: wgpu::TextureUsages,
     ) -> Self {
@@ -82,7 +84,7 @@ impl Lut {
             size: wgpu::Extent3d {
                 width,
                 height,
-                depth_or_array_layers: 1,
+                depth_or_array_layers: layers,
             },
             mip_level_count: 1,
             sample_count: 1,
@@ -94,7 +96,14 @@ impl Lut {
                 | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(if layers > 1 {
+                wgpu::TextureViewDimension::D2Array
+            } else {
+                wgpu::TextureViewDimension::D2
+            }),
+            ..Default::default()
+        });
         Self { texture, view }
     }
 }
@@ -102,7 +111,7 @@ impl Lut {
 /// The LUTs that depend on the medium alone — transmittance, the multiple-scattering moments, the
 /// sky irradiance — for the set the sky reads or the one a rebuild writes (`suffix` ends their
 /// labels).
-pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MULTISCATTERING_MOMENTS], Lut) {
+pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, Lut, Lut) {
     let transmittance = Lut::new(
         device,
         &format!("transmittance{suffix}"),
@@ -110,15 +119,14 @@ pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MU
         TRANSMITTANCE_FORMAT,
         wgpu::TextureUsages::STORAGE_BINDING,
     );
-    let multiscattering = MOMENT_NAMES.map(|moment| {
-        Lut::new(
-            device,
-            &format!("multiple-scattering {moment} moment{suffix}"),
-            MULTISCATTERING_SIZE,
-            MULTISCATTERING_FORMAT,
-            wgpu::TextureUsages::empty(),
-        )
-    });
+    let multiscattering = Lut::with_layers(
+        device,
+        &format!("multiple-scattering moments{suffix}"),
+        MULTISCATTERING_SIZE,
+        MULTISCATTERING_MOMENTS as u32,
+        MULTISCATTERING_FORMAT,
+        wgpu::TextureUsages::empty(),
+    );
     let irradiance = Lut::new(
         device,
         &format!("sky irradiance{suffix}"),
@@ -134,10 +142,10 @@ pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, [Lut; MU
 pub struct AtmosphereLuts {
     /// Transmittance to the top of the atmosphere.
     pub transmittance: Lut,
-    /// Multiple scattering: moments of the radiance (orders ≥ 1) arriving at each point — the
-    /// mean Ψ, then the means of radiance × ωz², × ωx², × ωx·ωz, × ωx, × ωz (x towards the sun's
-    /// azimuth, z up).
-    pub multiscattering: [Lut; MULTISCATTERING_MOMENTS],
+    /// Multiple scattering: moments of the radiance (orders ≥ 1) arriving at each point, one per
+    /// layer of a 2D array texture — the mean Ψ, then the means of radiance × ωz², × ωx², × ωx·ωz,
+    /// × ωx, × ωz (x towards the sun's azimuth, z up), then band 3 (layout in the table above).
+    pub multiscattering: Lut,
     /// Sky irradiance on a horizontal surface per unit sun irradiance (its logarithm).
     pub irradiance: Lut,
     /// Sky-view radiance, one tile per sun.
@@ -149,11 +157,6 @@ pub struct AtmosphereLuts {
 }
 
 impl AtmosphereLuts {
-    /// The views of the multiple-scattering moments, in binding order.
-    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
-        moment_views(&self.multiscattering)
-    }
-
     /// Creates the textures (contents undefined until the pass renders them).
     pub fn new(device: &wgpu::Device) -> Self {
         let (transmittance, multiscattering, irradiance) = medium_luts(device, "");
@@ -192,7 +195,7 @@ impl AtmosphereLuts {
 #[derive(Debug)]
 pub(super) struct MediumLuts {
     pub(super) transmittance: Lut,
-    pub(super) multiscattering: [Lut; MULTISCATTERING_MOMENTS],
+    pub(super) multiscattering: Lut,
     pub(super) irradiance: Lut,
     /// The medium being built (an `AtmosphereParamsUniforms`).
     pub(super) params: wgpu::Buffer,
@@ -214,11 +217,6 @@ impl MediumLuts {
         }
     }
 
-    /// The views of the multiple-scattering moments, in binding order.
-    pub(super) fn multiscattering_views(&self) -> [&wgpu::TextureView; MULTISCATTERING_MOMENTS] {
-        moment_views(&self.multiscattering)
-    }
-
     /// Encodes the copy of the finished set into `live` and of the medium into `live_params`.
     pub(super) fn copy_into(
         &self,
@@ -226,9 +224,11 @@ impl MediumLuts {
         live: &AtmosphereLuts,
         live_params: &wgpu::Buffer,
     ) {
-        let pairs = std::iter::once((&self.transmittance, &live.transmittance))
-            .chain(self.multiscattering.iter().zip(&live.multiscattering))
-            .chain(std::iter::once((&self.irradiance, &live.irradiance)));
+        let pairs = [
+            (&self.transmittance, &live.transmittance),
+            (&self.multiscattering, &live.multiscattering),
+            (&self.irradiance, &live.irradiance),
+        ];
         for (from, to) in pairs {
             encoder.copy_texture_to_texture(
                 from.texture.as_image_copy(),

@@ -48,7 +48,7 @@ pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layou
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 pub use luts::AtmosphereLuts;
 use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
-pub use multiscattering::MULTISCATTERING_ITERATIONS;
+pub use multiscattering::MULTISCATTERING_ORDERS;
 use multiscattering::MultiscatteringStages;
 pub use rebuild::MEDIUM_BUILD_STEPS;
 use luts::MediumLuts;
@@ -56,7 +56,7 @@ use rebuild::{BuildStep, Rebuild};
 pub use sky_lighting::sky_lighting_layout_entry;
 use sky_lighting::{SkyLightingResources, SkyLightingStage};
 use stages::{
-    ComputeStage, Stage, binding, moment_entries, moment_resources, sampler_entry, storage_entry, texture_entry,
+    ComputeStage, Stage, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
 
@@ -188,7 +188,7 @@ impl AtmospherePass {
             texture_entry(binding::TRANSMITTANCE, false),
             sampler_entry(binding::SAMPLER),
         ];
-        irradiance_entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        irradiance_entries.push(moments_entry(binding::MULTISCATTERING));
         let view_entries = view_entries();
         let view_resources = view_resources(&params, &view, &luts, &sampler);
         // The view resources that the bindings in `entries` name.
@@ -225,9 +225,9 @@ impl AtmospherePass {
             ),
             (binding::SAMPLER, wgpu::BindingResource::Sampler(&sampler)),
         ];
-        irradiance_resources.extend(moment_resources(
-            binding::MULTISCATTERING_MOMENTS,
-            build.multiscattering_views(),
+        irradiance_resources.push((
+            binding::MULTISCATTERING,
+            wgpu::BindingResource::TextureView(&build.multiscattering.view),
         ));
         irradiance_entries.push(storage_entry(binding::IRRADIANCE_OUT, IRRADIANCE_FORMAT));
         irradiance_resources.push((
@@ -463,6 +463,19 @@ impl AtmospherePass {
         }
     }
 
+    /// Encodes a whole build of the medium's LUTs (as [`record_medium_luts`](Self::record_medium_luts))
+    /// whose multiple-scattering LUTs hold exactly the light of orders 1 to `orders` (none for 0),
+    /// without the geometric tail of the later ones: for measuring the radiance by order, and the
+    /// tail against more orders marched. Each order costs what one of a normal build does.
+    pub fn record_medium_luts_to_order(&self, encoder: &mut wgpu::CommandEncoder, orders: u32) {
+        self.record_build_step(encoder, BuildStep::Transmittance);
+        for order in 1..=orders {
+            self.multiscattering.record_order(encoder, &self.build, order == 1);
+        }
+        self.multiscattering.record_sum(encoder, &self.build, false);
+        self.record_build_step(encoder, BuildStep::IrradianceAndSwap);
+    }
+
     /// Encodes step `step` (0 to [`MEDIUM_BUILD_STEPS`] − 1) of a build of the medium's LUTs
     /// alone, as an incremental rebuild spends one frame on it (for benchmarks and tools; steps
     /// read what the step before wrote).
@@ -475,11 +488,16 @@ impl AtmospherePass {
         match step {
             BuildStep::Transmittance => {
                 let (width, height) = luts::TRANSMITTANCE_SIZE;
-                self.transmittance
-                    .dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
-                self.multiscattering.record_start(encoder, &self.build);
+                // 32 texels per workgroup (transmittance_lut.wgsl).
+                self.transmittance.dispatch(encoder, ((width * height).div_ceil(32), 1, 1));
+                self.multiscattering.record_start(encoder);
             }
-            BuildStep::Iterate => self.multiscattering.record_iterate(encoder, &self.build),
+            BuildStep::Order(order) => {
+                self.multiscattering.record_order(encoder, &self.build, order == 1);
+                if order == MULTISCATTERING_ORDERS {
+                    self.multiscattering.record_sum(encoder, &self.build, true);
+                }
+            }
             BuildStep::IrradianceAndSwap => {
                 let (width, height) = luts::IRRADIANCE_SIZE;
                 // One workgroup per texel (irradiance_lut.wgsl).
@@ -608,7 +626,7 @@ fn view_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         texture_entry(binding::IRRADIANCE, true),
         texture_entry(binding::SKY_VIEW, true),
     ];
-    entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+    entries.push(moments_entry(binding::MULTISCATTERING));
     entries
 }
 
@@ -636,9 +654,9 @@ fn view_resources<'a>(
             wgpu::BindingResource::TextureView(&luts.sky_view.view),
         ),
     ];
-    resources.extend(moment_resources(
-        binding::MULTISCATTERING_MOMENTS,
-        luts.multiscattering_views(),
-    ));
+    resources.push((
+            binding::MULTISCATTERING,
+            wgpu::BindingResource::TextureView(&luts.multiscattering.view),
+        ));
     resources
 }

@@ -1,29 +1,30 @@
-//! The multiple-scattering LUTs by fixed-point iteration (see `atmosphere/multiscattering_lut.wgsl`).
+//! The multiple-scattering LUTs, order by order (see `atmosphere/multiscattering_lut.wgsl`).
 //!
-//! Each iterate is one compute dispatch (a workgroup per texel, an invocation per direction) that
-//! reads the build set's moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) and the ground sky
-//! irradiance row E, and writes the next ones into a buffer of packed `Rgba16Float` texels; copies
-//! then move the buffer into those textures, so the last iterate leaves its moments in the build
-//! set ([`MediumLuts`], copied into
+//! Each order is one compute dispatch (a workgroup per texel, an invocation per direction) that
+//! reads the previous order's moments (Ψ, zz, xx, xz, x, z, bands 3 and 4) from the build set's
+//! textures and its ground sky irradiance row E, and writes its own into a buffer of packed
+//! `Rgba16Float` texels — copied into those textures for the next order — while adding them, in
+//! `f32`, into a buffer of per-texel sums. A last dispatch (`atmosphere/multiscattering_sum.wgsl`)
+//! writes the sum of the orders, and the geometric tail of those after the last, into the build
+//! set's textures ([`MediumLuts`], copied into
 //! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done). A
 //! buffer rather than storage textures: seven moments are more storage textures than GL-class
 //! devices bind at once.
 
-use half::f16;
-use wgpu::util::DeviceExt;
-
 use super::luts::MediumLuts;
-use super::luts::{LOG_FLOOR, Lut, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE};
+use super::luts::{Lut, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE};
 use super::stages::{
-    ComputeStage, binding, moment_entries, moment_resources, sampler_entry, storage_buffer_entry, texture_entry,
+    ComputeStage, binding, moments_entry, sampler_entry, storage_buffer_entry, texture_entry,
     uniform_entry,
 };
+use crate::gpu_types::OrderSumsGpu;
 use crate::shaders;
 
-/// Iterates after the first (single scattering and the sunlit ground): iterate k holds orders up
-/// to k + 1, so the LUTs hold orders 1 to 10 of the light arriving at a point (the issue asks for
-/// at least 10; a view adds one more scattering).
-pub const MULTISCATTERING_ITERATIONS: u32 = 9;
+/// Orders of scattering the LUTs march (the light arriving at a point after 1 to this many
+/// scattering or reflection events; a view adds one more); the orders after them are summed as a
+/// geometric series (`atmosphere/multiscattering_sum.wgsl`). docs/ATMOSPHERE.md ("Multiple
+/// scattering") measures the choice against more orders marched.
+pub const MULTISCATTERING_ORDERS: u32 = 4;
 
 /// Bytes of one `Rgba16Float` texel.
 const TEXEL_BYTES: u32 = 8;
@@ -31,20 +32,29 @@ const TEXEL_BYTES: u32 = 8;
 /// Texels of one moment texture.
 const MOMENT_TEXELS: u32 = MULTISCATTERING_SIZE.0 * MULTISCATTERING_SIZE.1;
 
-/// Bytes of an iterate's output: the seven moment textures, then the ground row (the layout of
-/// `multiscattering_out` in `multiscattering_lut.wgsl`).
+/// Bytes of an order's output: the seven moment textures, then the ground row (the layout of
+/// `multiscattering_out` in `atmosphere/moments_out.wgsl`).
 const OUTPUT_BYTES: u64 = ((MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS + MULTISCATTERING_SIZE.0) * TEXEL_BYTES) as u64;
 
-/// The iteration: its compute stage, its output buffer, the start (zero as stored) and the ground
-/// irradiance row.
+/// Bytes of one texel's `OrderSums` (`atmosphere/bindings.wgsl`).
+const ORDER_SUMS_BYTES: u64 = std::mem::size_of::<OrderSumsGpu>() as u64;
+
+/// Invocations per workgroup of the sum (`atmosphere/multiscattering_sum.wgsl`).
+const SUM_WORKGROUP: u32 = 256;
+
+/// The orders' compute stages (order 1, later orders, the sums with and without the tail), their
+/// buffers and the ground irradiance row.
 #[derive(Debug)]
 pub(super) struct MultiscatteringStages {
-    iterate: ComputeStage,
-    /// An iterate's output, packed texels.
+    first: ComputeStage,
+    next: ComputeStage,
+    sum: ComputeStage,
+    sum_without_tail: ComputeStage,
+    /// An order's output, or the sums', packed texels.
     output: wgpu::Buffer,
-    /// The iteration's start in the same layout: zero as each texture stores it.
-    start: wgpu::Buffer,
-    /// E, the ground's sky irradiance row the next iterate reads.
+    /// Each texel's orders so far, `f32`.
+    orders: wgpu::Buffer,
+    /// E, the ground's sky irradiance row the next order reads.
     ground: Lut,
 }
 
@@ -58,15 +68,16 @@ impl MultiscatteringStages {
             wgpu::TextureUsages::empty(),
         );
         let output = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("firmament AtmospherePass multiple-scattering iterate"),
+            label: Some("firmament AtmospherePass multiple-scattering order"),
             size: OUTPUT_BYTES,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let start = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("firmament AtmospherePass multiple-scattering start"),
-            contents: &start_texels(),
-            usage: wgpu::BufferUsages::COPY_SRC,
+        let orders = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("firmament AtmospherePass multiple-scattering orders"),
+            size: ORDER_SUMS_BYTES * u64::from(MOMENT_TEXELS),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
 
         let mut entries = vec![
@@ -75,8 +86,9 @@ impl MultiscatteringStages {
             sampler_entry(binding::SAMPLER),
             texture_entry(binding::PREVIOUS_GROUND_IRRADIANCE, true),
             storage_buffer_entry(binding::MULTISCATTERING_OUT),
+            storage_buffer_entry(binding::MULTISCATTERING_ORDERS),
         ];
-        entries.extend(moment_entries(binding::MULTISCATTERING_MOMENTS));
+        entries.push(moments_entry(binding::MULTISCATTERING));
         let mut resources = vec![
             (binding::PARAMS, luts.params.as_entire_binding()),
             (
@@ -89,51 +101,87 @@ impl MultiscatteringStages {
                 wgpu::BindingResource::TextureView(&ground.view),
             ),
             (binding::MULTISCATTERING_OUT, output.as_entire_binding()),
+            (binding::MULTISCATTERING_ORDERS, orders.as_entire_binding()),
         ];
-        resources.extend(moment_resources(
-            binding::MULTISCATTERING_MOMENTS,
-            luts.multiscattering_views(),
+        resources.push((
+            binding::MULTISCATTERING,
+            wgpu::BindingResource::TextureView(&luts.multiscattering.view),
         ));
-        let iterate = ComputeStage::new(
-            device,
-            "AtmospherePass multiple-scattering LUT",
-            &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
-            &entries,
-            &resources,
-        );
+        let order = |owner, first: bool| {
+            ComputeStage::with_constants(
+                device,
+                owner,
+                &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
+                &entries,
+                &resources,
+                &[("FIRST_ORDER", f64::from(u8::from(first)))],
+            )
+        };
+        let sum_entries = [
+            storage_buffer_entry(binding::MULTISCATTERING_OUT),
+            storage_buffer_entry(binding::MULTISCATTERING_ORDERS),
+        ];
+        let sum_resources = [
+            (binding::MULTISCATTERING_OUT, output.as_entire_binding()),
+            (binding::MULTISCATTERING_ORDERS, orders.as_entire_binding()),
+        ];
+        let sum = |owner, tail: bool| {
+            ComputeStage::with_constants(
+                device,
+                owner,
+                &shaders::ATMOSPHERE_MULTISCATTERING_SUM,
+                &sum_entries,
+                &sum_resources,
+                &[("TAIL", f64::from(u8::from(tail)))],
+            )
+        };
         Self {
-            iterate,
+            first: order("AtmospherePass multiple-scattering LUT, order 1", true),
+            next: order("AtmospherePass multiple-scattering LUT, later orders", false),
+            sum: sum("AtmospherePass multiple-scattering sum", true),
+            sum_without_tail: sum("AtmospherePass multiple-scattering sum without the tail", false),
             output,
-            start,
+            orders,
             ground,
         }
     }
 
-    /// Encodes the iteration's start: the build set's moments and the ground row set to zero
-    /// (after the transmittance LUT).
-    pub(super) fn record_start(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts) {
-        self.record_copy(encoder, &self.start, luts);
+    /// Encodes the build's start: no orders yet (after the transmittance LUT).
+    pub(super) fn record_start(&self, encoder: &mut wgpu::CommandEncoder) {
+        encoder.clear_buffer(&self.orders, 0, None);
     }
 
-    /// Encodes the next iterate (after [`record_start`](Self::record_start) and the iterates
-    /// before it): it leaves its moments in `luts`.
-    pub(super) fn record_iterate(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts) {
+    /// Encodes the next order (order 1 when `first`; after [`record_start`](Self::record_start)
+    /// and the orders before it): it leaves its moments in `luts` for the next.
+    pub(super) fn record_order(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, first: bool) {
         let (width, height) = MULTISCATTERING_SIZE;
         // One workgroup per texel, and a row more for the ground's irradiance.
-        self.iterate.dispatch(encoder, (width, height + 1, 1));
-        self.record_copy(encoder, &self.output, luts);
+        let stage = if first { &self.first } else { &self.next };
+        stage.dispatch(encoder, (width, height + 1, 1));
+        self.record_copy(encoder, luts, true);
     }
 
-    /// Encodes the copies of `texels` (an iterate's layout) into the moments and the ground row.
-    fn record_copy(&self, encoder: &mut wgpu::CommandEncoder, texels: &wgpu::Buffer, luts: &MediumLuts) {
+    /// Encodes the sum of the orders so far into `luts`, with the geometric tail of the orders
+    /// after them when `tail`.
+    pub(super) fn record_sum(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, tail: bool) {
+        let stage = if tail { &self.sum } else { &self.sum_without_tail };
+        stage.dispatch(encoder, (MOMENT_TEXELS.div_ceil(SUM_WORKGROUP), 1, 1));
+        self.record_copy(encoder, luts, false);
+    }
+
+    /// Encodes the copies of the output buffer into the moments and, with `ground`, the ground
+    /// row.
+    fn record_copy(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, ground: bool) {
         let (width, height) = MULTISCATTERING_SIZE;
-        let targets = luts.multiscattering.iter().map(|lut| (lut, height));
-        for (k, (lut, rows)) in targets.chain(std::iter::once((&self.ground, 1))).enumerate() {
+        // The moments' layers in one copy (each copy costs the GPU a few microseconds).
+        let moments = (&luts.multiscattering, height, MULTISCATTERING_MOMENTS as u32, 0);
+        let ground_row = (&self.ground, 1, 1, MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS);
+        for (lut, rows, layers, first_texel) in std::iter::once(moments).chain(ground.then_some(ground_row)) {
             encoder.copy_buffer_to_texture(
                 wgpu::TexelCopyBufferInfo {
-                    buffer: texels,
+                    buffer: &self.output,
                     layout: wgpu::TexelCopyBufferLayout {
-                        offset: u64::from(k as u32 * MOMENT_TEXELS * TEXEL_BYTES),
+                        offset: u64::from(first_texel * TEXEL_BYTES),
                         bytes_per_row: Some(width * TEXEL_BYTES),
                         rows_per_image: Some(rows),
                     },
@@ -142,39 +190,9 @@ impl MultiscatteringStages {
                 wgpu::Extent3d {
                     width,
                     height: rows,
-                    depth_or_array_layers: 1,
+                    depth_or_array_layers: layers,
                 },
             );
         }
-    }
-}
-
-/// The iteration's start as packed `Rgba16Float` texels: zero as each texture stores it — Ψ and
-/// E (logarithms) as (LOG_FLOOR, LOG_FLOOR, LOG_FLOOR, 1), the other moments (over Ψ) as 0.
-fn start_texels() -> Vec<u8> {
-    let log_zero = [LOG_FLOOR, LOG_FLOOR, LOG_FLOOR, 1.0].map(|v| f16::from_f64(v).to_bits());
-    let texel_bytes = |texel: [u16; 4]| texel.into_iter().flat_map(u16::to_le_bytes);
-    let psi = (0..MOMENT_TEXELS).flat_map(|_| texel_bytes(log_zero));
-    let ratios = (0..(MULTISCATTERING_MOMENTS as u32 - 1) * MOMENT_TEXELS).flat_map(|_| texel_bytes([0; 4]));
-    let ground = (0..MULTISCATTERING_SIZE.0).flat_map(|_| texel_bytes(log_zero));
-    psi.chain(ratios).chain(ground).collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_start_fills_the_output_layout_with_zero_as_stored() {
-        let texels = start_texels();
-        assert_eq!(texels.len() as u64, OUTPUT_BYTES);
-        let texel = |index: usize| -> [f32; 4] {
-            let bytes = &texels[index * TEXEL_BYTES as usize..][..TEXEL_BYTES as usize];
-            [0, 1, 2, 3].map(|c| f16::from_le_bytes([bytes[2 * c], bytes[2 * c + 1]]).to_f32())
-        };
-        let log_zero = [LOG_FLOOR as f32, LOG_FLOOR as f32, LOG_FLOOR as f32, 1.0];
-        assert_eq!(texel(0), log_zero);
-        assert_eq!(texel(MOMENT_TEXELS as usize), [0.0; 4]);
-        assert_eq!(texel(MULTISCATTERING_MOMENTS * MOMENT_TEXELS as usize), log_zero);
     }
 }

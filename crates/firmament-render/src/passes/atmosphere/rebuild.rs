@@ -12,19 +12,20 @@ use std::ops::Range;
 
 use firmament_core::atmosphere::Atmosphere;
 
-use super::multiscattering::MULTISCATTERING_ITERATIONS;
+use super::multiscattering::MULTISCATTERING_ORDERS;
 
-/// Steps of one build: the transmittance LUT (and the iteration's zero), each multiple-scattering
-/// iterate, the sky irradiance LUT (and the copy into the live set).
-pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ITERATIONS + 3;
+/// Steps of one build: the transmittance LUT, each order of the multiple-scattering LUTs (the
+/// last with their sum), the sky irradiance LUT (and the copy into the live set).
+pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ORDERS + 2;
 
 /// What a build step encodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum BuildStep {
-    /// The transmittance LUT, then the multiple-scattering iteration's starting zero.
+    /// The transmittance LUT, then the multiple-scattering orders' start (none yet).
     Transmittance,
-    /// The next multiple-scattering iterate (of [`MULTISCATTERING_ITERATIONS`] + 1, in order).
-    Iterate,
+    /// Order `n` (1 to [`MULTISCATTERING_ORDERS`], in order) of the multiple-scattering LUTs,
+    /// then, after the last, their sum.
+    Order(u32),
     /// The sky irradiance LUT, then the copy of the set and the medium into the live ones.
     IrradianceAndSwap,
 }
@@ -33,7 +34,7 @@ impl BuildStep {
     pub(super) fn of(step: u32) -> Self {
         match step {
             0 => Self::Transmittance,
-            s if s <= MULTISCATTERING_ITERATIONS + 1 => Self::Iterate,
+            s if s <= MULTISCATTERING_ORDERS => Self::Order(s),
             _ => Self::IrradianceAndSwap,
         }
     }

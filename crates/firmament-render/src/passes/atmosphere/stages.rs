@@ -29,10 +29,7 @@ pub(super) mod binding {
     pub(crate) const HDR_OUT: u32 = 24;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
-    /// The multiple-scattering moments (Ψ, zz, xx, xz, x, z, band 3; `Moments` in
-    /// `atmosphere/luts.wgsl`).
-    pub(crate) const MULTISCATTERING_MOMENTS: [u32; super::MOMENTS] =
-        [MULTISCATTERING, 15, 17, 18, 21, 22, 27];
+    pub(crate) const MULTISCATTERING_ORDERS: u32 = 28;
 }
 
 /// A sampled 2D texture, seen by the fragment and compute stages.
@@ -218,25 +215,14 @@ pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// How many multiple-scattering moment textures there are.
-pub(super) const MOMENTS: usize = super::luts::MULTISCATTERING_MOMENTS;
-
-/// Layout entries of the multiple-scattering moment textures at `bindings`.
-pub(super) fn moment_entries(bindings: [u32; MOMENTS]) -> [wgpu::BindGroupLayoutEntry; MOMENTS] {
-    bindings.map(|b| texture_entry(b, true))
-}
-
-/// The moment textures `views` bound at `bindings`.
-pub(super) fn moment_resources<'a>(
-    bindings: [u32; MOMENTS],
-    views: [&'a wgpu::TextureView; MOMENTS],
-) -> [(u32, wgpu::BindingResource<'a>); MOMENTS] {
-    let mut i = 0;
-    bindings.map(|b| {
-        let view = views[i];
-        i += 1;
-        (b, wgpu::BindingResource::TextureView(view))
-    })
+/// The multiple-scattering moments' array texture, filterable, seen by the fragment and compute
+/// stages.
+pub(super) fn moments_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    let mut entry = texture_entry(binding, true);
+    if let wgpu::BindingType::Texture { view_dimension, .. } = &mut entry.ty {
+        *view_dimension = wgpu::TextureViewDimension::D2Array;
+    }
+    entry
 }
 
 #[cfg(test)]
@@ -245,10 +231,11 @@ mod tests {
 
     /// Every binding of [`binding`] by the name of its WGSL global.
     fn rust_bindings() -> Vec<(String, u32)> {
-        let mut all: Vec<(String, u32)> = [
+        [
             ("atmosphere", binding::PARAMS),
             ("view", binding::VIEW),
             ("transmittance_lut", binding::TRANSMITTANCE),
+            ("multiscattering_lut", binding::MULTISCATTERING),
             ("sky_view_lut", binding::SKY_VIEW),
             ("lut_sampler", binding::SAMPLER),
             ("transmittance_out", binding::TRANSMITTANCE_OUT),
@@ -260,6 +247,7 @@ mod tests {
             ("scene_depth", binding::SCENE_DEPTH),
             ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),
+            ("multiscattering_orders", binding::MULTISCATTERING_ORDERS),
             ("irradiance_out", binding::IRRADIANCE_OUT),
             ("sky_view_out", binding::SKY_VIEW_OUT),
             ("sky_out", binding::SKY_OUT),
@@ -269,12 +257,7 @@ mod tests {
             ("sky_lighting", binding::SKY_LIGHTING_OUT),
         ]
         .map(|(name, number)| (name.to_owned(), number))
-        .into();
-        let moments = ["", "_zz", "_xx", "_xz", "_x", "_z", "_band3"];
-        for (moment, number) in moments.iter().zip(binding::MULTISCATTERING_MOMENTS) {
-            all.push((format!("multiscattering{moment}_lut"), number));
-        }
-        all
+        .into()
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (28 or from 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (15, 17, 18, 21, 22, 27 or from 29) here and in `stages.rs`.
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -84,21 +84,25 @@ struct SkyLighting {
 @group(0) @binding(1) var<uniform> view: AtmosphereView;
 @group(0) @binding(25) var<uniform> lighting: SkyLightingParams;
 
+// One texel's multiple-scattering orders while the LUTs are built, as the seven sums over
+// directions that multiscattering_lut.wgsl reduces (`ORDER_SUMS` there: Ψ, zz, xx, xz, x, z in
+// rgb, bands 3 and 4 in the w components and the seventh), in f32: orders differ from each other
+// by less than a half float resolves.
+struct OrderSums {
+    sum: array<vec4<f32>, 7>,  // over the orders so far
+    last: array<vec4<f32>, 7>, // the last order alone
+    previous_psi: vec4<f32>,   // the order before it: Ψ (rgb) and Ψ summed over wavelengths (w)
+}
+
 // ---- The LUTs, read (layouts: passes/atmosphere/luts.rs) ----
 // Rgba32Float, not filterable everywhere: read with textureLoad (`load_bilinear` in luts.wgsl).
 @group(0) @binding(2) var transmittance_lut: texture_2d<f32>;
 @group(0) @binding(7) var irradiance_lut: texture_2d<f32>;
 @group(0) @binding(4) var sky_view_lut: texture_2d<f32>;
-// The multiple-scattering moments, in `Moments` order (luts.wgsl).
-@group(0) @binding(3) var multiscattering_lut: texture_2d<f32>;
-@group(0) @binding(15) var multiscattering_zz_lut: texture_2d<f32>;
-@group(0) @binding(17) var multiscattering_xx_lut: texture_2d<f32>;
-@group(0) @binding(18) var multiscattering_xz_lut: texture_2d<f32>;
-@group(0) @binding(21) var multiscattering_x_lut: texture_2d<f32>;
-@group(0) @binding(22) var multiscattering_z_lut: texture_2d<f32>;
-@group(0) @binding(27) var multiscattering_band3_lut: texture_2d<f32>;
-// The previous iterate's ground irradiance row, while the multiple-scattering LUTs are built
-// (multiscattering_lut.wgsl; the previous moments are read through the bindings above).
+// The multiple-scattering moments, one layer each in `Moments` order (luts.wgsl).
+@group(0) @binding(3) var multiscattering_lut: texture_2d_array<f32>;
+// The previous order's ground irradiance row, while the multiple-scattering LUTs are built
+// (multiscattering_lut.wgsl; the previous order's moments are read through the bindings above).
 @group(0) @binding(14) var previous_ground_irradiance: texture_2d<f32>;
 // The aerial-perspective volume's slice atlases (aerial_perspective_volume.wgsl).
 @group(0) @binding(10) var aerial_scattering: texture_2d<f32>;
@@ -123,5 +127,8 @@ struct SkyLighting {
 @group(0) @binding(23) var hdr_in: texture_2d<f32>;
 @group(0) @binding(24) var hdr_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(26) var<storage, read_write> sky_lighting: SkyLighting;
-// An iterate's moments and ground row as packed Rgba16Float texels (multiscattering_lut.wgsl).
+// One order's moments and ground row, or the LUTs' sums, as packed Rgba16Float texels
+// (multiscattering_lut.wgsl, multiscattering_sum.wgsl).
 @group(0) @binding(13) var<storage, read_write> multiscattering_out: array<vec2<u32>>;
+// Per texel of the multiple-scattering LUTs, the orders summed so far (multiscattering_lut.wgsl).
+@group(0) @binding(28) var<storage, read_write> multiscattering_orders: array<OrderSums>;

@@ -4,7 +4,7 @@
 //
 // Conventions: as atmosphere/common.wgsl. Texel (u, v) ↦ mu_s = unit_to_mu_s(u) (crowded at the
 // horizon), h = v · atmosphere height, on the LUT sphere (IRRADIANCE_LUT_SIZE). For each it
-// integrates the sky's radiance over the upper hemisphere (cos θ-weighted), with DIRECTIONS_SQRT²
+// integrates the sky's radiance over the upper hemisphere (cos θ-weighted), with DIRECTIONS
 // directions of STEPS samples. Light reflected by the ground below is left out (second order in
 // the albedo). rgb = ln(irradiance / sun irradiance), as `encode_log` stores it: below the horizon
 // it falls ~e^70 per unit of mu_s like Ψ, so filtering it linearly would brighten the twilight
@@ -17,8 +17,12 @@
 #import atmosphere/common
 #import atmosphere/luts
 
-const DIRECTIONS_SQRT: u32 = 16u;
-const DIRECTIONS: u32 = DIRECTIONS_SQRT * DIRECTIONS_SQRT;
+// Directions: ZENITHS strata by AZIMUTHS of the half circle towards +y, each standing for its
+// mirror image about the sun's vertical plane too (the sky is symmetric about it): the 256
+// directions of 16 × 16 over the hemisphere for the price of 128.
+const ZENITHS: u32 = 16u;
+const AZIMUTHS: u32 = 8u;
+const DIRECTIONS: u32 = ZENITHS * AZIMUTHS;
 const STEPS: i32 = 16;
 
 var<workgroup> partial: array<vec3<f32>, DIRECTIONS>;
@@ -27,14 +31,14 @@ var<workgroup> partial: array<vec3<f32>, DIRECTIONS>;
 // with the sun towards `sun` (zero where the ray meets the ground).
 fn direction_irradiance(lane: u32, r: f32, sun: vec3<f32>) -> vec3<f32> {
     let origin = vec3<f32>(0.0, 0.0, r);
-    let i = lane / DIRECTIONS_SQRT;
-    let j = lane % DIRECTIONS_SQRT;
+    let i = lane / ZENITHS;
+    let j = lane % ZENITHS;
     // Crowded at the horizon: cos θ = x² for x stratified in (0, 1), so ∫ L cos θ dω =
     // ∫∫ L·x²·2x dx dφ and each direction carries 2x³ of 2π/N. At twilight the ground's
     // light comes from a band of lit sky a few degrees high, which cosine-weighted strata
     // (the lowest 10° up) step over.
-    let phi = 2.0 * PI * (f32(i) + 0.5) / f32(DIRECTIONS_SQRT);
-    let x = (f32(j) + 0.5) / f32(DIRECTIONS_SQRT);
+    let phi = PI * (f32(i) + 0.5) / f32(AZIMUTHS);
+    let x = (f32(j) + 0.5) / f32(ZENITHS);
     let mu = x * x;
     let weight = 2.0 * x * x * x;
     let sin_theta = safe_sqrt(1.0 - mu * mu);
@@ -66,7 +70,7 @@ fn direction_irradiance(lane: u32, r: f32, sun: vec3<f32>) -> vec3<f32> {
     return radiance * weight;
 }
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(128)
 fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let uv = (vec2<f32>(texel.xy) + 0.5) / IRRADIANCE_LUT_SIZE;
     let mu_s_h = uv_to_mu_s_h(uv, IRRADIANCE_LUT_SIZE);

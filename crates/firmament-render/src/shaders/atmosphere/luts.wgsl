@@ -144,11 +144,7 @@ fn toward_sun_cosine(d: vec3<f32>, up: vec3<f32>, s: vec3<f32>) -> f32 {
 // The light of order ≥ 2 scattered per unit length at altitude h, sun s at mu_s, towards the ray
 // direction d at a point of up `up`, per unit sun irradiance (multiscattering_lut.wgsl).
 fn multiple_scattering(c: Coefficients, h: f32, up: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
-    let m = sample_moments(
-        multiscattering_lut, multiscattering_zz_lut, multiscattering_xx_lut,
-        multiscattering_xz_lut, multiscattering_x_lut, multiscattering_z_lut, multiscattering_band3_lut,
-        moments_uv(h, up, s),
-    );
+    let m = sample_moments(multiscattering_lut, moments_uv(h, up, s));
     return scatter_moments(c, m, up, s, d);
 }
 
@@ -175,18 +171,15 @@ fn moment_ratio(moment: vec3<f32>, psi: vec3<f32>) -> vec3<f32> {
     return select(moment / psi, vec3<f32>(0.0), psi <= vec3<f32>(1e-30));
 }
 
-// The moments stored in seven LUTs (in `Moments` order; band 4 in the alphas of the five after
-// psi, band 3 in the seventh) at uv, filtered.
-fn sample_moments(
-    psi: texture_2d<f32>, zz: texture_2d<f32>, xx: texture_2d<f32>,
-    xz: texture_2d<f32>, x: texture_2d<f32>, z: texture_2d<f32>, band3: texture_2d<f32>, uv: vec2<f32>,
-) -> Moments {
-    let t_psi = textureSampleLevel(psi, lut_sampler, uv, 0.0);
-    let t_zz = textureSampleLevel(zz, lut_sampler, uv, 0.0);
-    let t_xx = textureSampleLevel(xx, lut_sampler, uv, 0.0);
-    let t_xz = textureSampleLevel(xz, lut_sampler, uv, 0.0);
-    let t_x = textureSampleLevel(x, lut_sampler, uv, 0.0);
-    let t_z = textureSampleLevel(z, lut_sampler, uv, 0.0);
+// The moments stored in the seven layers of `moments` (in `Moments` order; band 4 in the alphas
+// of the five after psi, band 3 in the seventh) at uv, filtered.
+fn sample_moments(moments: texture_2d_array<f32>, uv: vec2<f32>) -> Moments {
+    let t_psi = textureSampleLevel(moments, lut_sampler, uv, 0, 0.0);
+    let t_zz = textureSampleLevel(moments, lut_sampler, uv, 1, 0.0);
+    let t_xx = textureSampleLevel(moments, lut_sampler, uv, 2, 0.0);
+    let t_xz = textureSampleLevel(moments, lut_sampler, uv, 3, 0.0);
+    let t_x = textureSampleLevel(moments, lut_sampler, uv, 4, 0.0);
+    let t_z = textureSampleLevel(moments, lut_sampler, uv, 5, 0.0);
     var m: Moments;
     m.psi = decode_log(t_psi.rgb);
     m.zz = t_zz.rgb * m.psi;
@@ -194,7 +187,7 @@ fn sample_moments(
     m.xz = t_xz.rgb * m.psi;
     m.x = t_x.rgb * m.psi;
     m.z = t_z.rgb * m.psi;
-    m.band3 = textureSampleLevel(band3, lut_sampler, uv, 0.0);
+    m.band3 = textureSampleLevel(moments, lut_sampler, uv, 6, 0.0);
     m.band4 = vec4<f32>(t_zz.a, t_xx.a, t_xz.a, t_x.a);
     m.band4_m4 = t_z.a;
     return m;

@@ -26,7 +26,7 @@ fn sky_view_exponent(i: u32) -> f32 {
     let e = view.suns[i].irradiance.rgb;
     let mu_s = dot(view.local_up.xyz, view.suns[i].direction.xyz);
     let uv = mu_s_h_to_uv(mu_s, max(view.camera.w, 0.0), MULTISCATTERING_LUT_SIZE);
-    let psi = decode_log(textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0.0).rgb);
+    let psi = decode_log(textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0, 0.0).rgb);
     let mean = max(max(e.r, max(e.g, e.b)) * max(psi.r, max(psi.g, psi.b)), 1e-30);
     return round(log2(mean)) - 6.0;
 }

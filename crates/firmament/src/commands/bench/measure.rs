@@ -67,6 +67,9 @@ pub(crate) struct AtmosphereBench {
     pub(crate) medium_luts_ms: f64,
     /// The longest step of an incremental rebuild of those LUTs (one step per frame).
     pub(crate) medium_lut_step_max_ms: f64,
+    /// Each step of that rebuild: the transmittance LUT, each order of multiple scattering (the
+    /// last with their sum), the sky irradiance LUT.
+    pub(crate) medium_lut_steps_ms: Vec<f64>,
     /// The sky-view LUT tiles.
     pub(crate) sky_view_lut_ms: f64,
     /// The sky pass reading the sky-view LUT, as the renderer's own targets run it (compute).
@@ -201,13 +204,17 @@ pub(crate) fn bench_atmosphere(
     pass.prepare(&ctx.queue, sky, &camera);
     let luts = pass.luts();
     let medium_luts_ms = median_ms(ctx, frames, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
-    let medium_lut_step_max_ms = (0..MEDIUM_BUILD_STEPS)
+    let medium_lut_steps_ms: Vec<f64> = (0..MEDIUM_BUILD_STEPS)
         .map(|step| {
             median_ms(ctx, frames, &luts.irradiance.texture, |e| {
                 pass.record_medium_lut_step(e, step)
             })
         })
-        .fold(0.0, f64::max);
+        .collect();
+    let medium_lut_step_max_ms = medium_lut_steps_ms.iter().copied().fold(0.0, f64::max);
+    // Each step was repeated, and a repeated order is the next order: build the LUTs whole again
+    // for the images compared below.
+    median_ms(ctx, 1, &luts.irradiance.texture, |e| pass.record_medium_luts(e));
     let sky_view_lut_ms = median_ms(ctx, frames, &luts.sky_view.texture, |e| pass.record_sky_view_lut(e));
     let sky_fragment_ms = median_ms(ctx, frames, &targets.hdr, |e| {
         pass.record(e, &targets.hdr_view, &targets.depth_view)
@@ -266,6 +273,7 @@ pub(crate) fn bench_atmosphere(
         timing: timing(ctx),
         medium_luts_ms,
         medium_lut_step_max_ms,
+        medium_lut_steps_ms,
         sky_view_lut_ms,
         sky_ms,
         sky_fragment_ms,

@@ -6,15 +6,14 @@
 //! the shaders' mappings (mirrored here in `f64`, `atmosphere/common.wgsl` and `luts.wgsl` being
 //! the originals).
 //!
-//! The radiance by order comes from renders whose multiple-scattering LUT holds fewer iterates:
-//! after `n` iterates it holds the light arriving at a point after at most `n` scattering or
-//! reflection events, so the view (which adds one more) sees orders up to `n + 1`; differences
-//! of such renders give each band of orders. The part reflected by the ground is what a black
-//! ground removes. These renders march the view ray (`SkyMethod::March`): the sky-view LUT
-//! scales its texels by the multiple-scattering LUT's level, which is zero before the first
-//! iterate. The LUT path's radiance differs from the march's by the sky-view LUT's filtering.
-
-use std::ops::Range;
+//! The radiance by order comes from renders whose multiple-scattering LUTs hold fewer orders
+//! ([`firmament_render::passes::AtmospherePass::record_medium_luts_to_order`]): holding the
+//! light arriving at a point after at most `n` scattering or reflection events, the view (which
+//! adds one more) sees orders up to `n + 1`; differences of such renders, and of the whole
+//! build, give each band of orders. The part reflected by the ground is what a black ground
+//! removes. These renders march the view ray (`SkyMethod::March`): the sky-view LUT scales its
+//! texels by the multiple-scattering LUT's level, which is zero without orders. The LUT path's
+//! radiance differs from the march's by the sky-view LUT's filtering.
 
 use firmament_core::Camera;
 use firmament_core::atmosphere::Spectrum;
@@ -26,7 +25,6 @@ use firmament_render::GpuContext;
 use firmament_render::RenderError;
 use firmament_render::gpu_types::atmosphere::lut_bottom_radius;
 use firmament_render::passes::atmosphere::luts::{IRRADIANCE_SIZE, LOG_FLOOR, TRANSMITTANCE_SIZE};
-use firmament_render::passes::atmosphere::{MEDIUM_BUILD_STEPS, MULTISCATTERING_ITERATIONS};
 use firmament_render::passes::{AtmospherePass, SkyMethod};
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::wgpu;
@@ -136,27 +134,22 @@ pub(crate) fn sample_sky(
     let mut pass = AtmospherePass::new(&ctx.device);
     let atmosphere = &sky.atmosphere;
     let to_spectrum = atmosphere.spectral_conversion().to_linear_srgb_matrix().inverse();
-    let mut render = |sky: &AtmosphereSky, method: SkyMethod, steps: Range<u32>| -> Result<Spectrum, RenderError> {
+    let mut render = |sky: &AtmosphereSky, method: SkyMethod, luts: Luts| -> Result<Spectrum, RenderError> {
         pass.set_method(method);
         pass.prepare(&ctx.queue, sky, &camera);
-        Ok(to_spectrum * render_pixel(ctx, &pass, steps)?)
+        Ok(to_spectrum * render_pixel(ctx, &pass, luts)?)
     };
-    // Build steps: 0 is the transmittance LUT and the iteration's zero, k the k-th iterate of
-    // the multiple-scattering LUT (the first holds single scattering).
-    let all = MULTISCATTERING_ITERATIONS + 1;
     let mut black_ground = sky.clone();
     black_ground.atmosphere.medium.ground_albedo = Spectrum::ZERO;
-    let without_ground = render(&black_ground, SkyMethod::March, 0..all + 1)?;
-    // One build of the medium's LUTs, drawn from after 0, 1, 3 and all iterates.
-    let mut marched = [Spectrum::ZERO; 4];
-    let mut next = 0;
-    for (radiance, iterates) in marched.iter_mut().zip([0, 1, 3, all]) {
-        *radiance = render(sky, SkyMethod::March, next..iterates + 1)?;
-        next = iterates + 1;
+    let without_ground = render(&black_ground, SkyMethod::March, Luts::Whole)?;
+    let mut marched = [Spectrum::ZERO; 3];
+    for (radiance, orders) in marched.iter_mut().zip([0, 1, 3]) {
+        *radiance = render(sky, SkyMethod::March, Luts::ToOrder(orders))?;
     }
-    let [up_to_1, up_to_2, up_to_4, total] = marched;
+    let [up_to_1, up_to_2, up_to_4] = marched;
+    let total = render(sky, SkyMethod::March, Luts::Whole)?;
     // The same LUTs through the sky-view LUT; also those read below.
-    let radiance = render(sky, SkyMethod::Lut, 0..0)?;
+    let radiance = render(sky, SkyMethod::Lut, Luts::Built)?;
     let by_order = [up_to_1, up_to_2 - up_to_1, up_to_4 - up_to_2, total - up_to_4];
 
     let transmittance_lut = CpuLut::read(ctx, &pass.luts().transmittance.texture, TRANSMITTANCE_SIZE)?;
@@ -202,20 +195,28 @@ pub(crate) fn sample_sky(
     })
 }
 
-/// Renders the pixel of the view `pass` was last prepared with, linear sRGB, after encoding the
-/// build `steps` of its medium's LUTs (when there are any, then the sky irradiance LUT and the
-/// copy into the live set: a build can be drawn from between its iterates, and go on).
-fn render_pixel(ctx: &GpuContext, pass: &AtmospherePass, steps: Range<u32>) -> Result<DVec3, RenderError> {
+/// Which medium LUTs a render of [`render_pixel`] draws from.
+#[derive(Debug, Clone, Copy)]
+enum Luts {
+    /// Those built before.
+    Built,
+    /// A whole build.
+    Whole,
+    /// A build holding the orders up to this one alone.
+    ToOrder(u32),
+}
+
+/// Renders the pixel of the view `pass` was last prepared with, linear sRGB, from `luts`.
+fn render_pixel(ctx: &GpuContext, pass: &AtmospherePass, luts: Luts) -> Result<DVec3, RenderError> {
     // New textures start zeroed: black, and depth at the far plane, so the sky fills the pixel.
     let targets = FrameTargets::new(&ctx.device, 1, 1);
     let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("firmament sample_sky encoder"),
     });
-    if !steps.is_empty() {
-        for step in steps {
-            pass.record_medium_lut_step(&mut encoder, step);
-        }
-        pass.record_medium_lut_step(&mut encoder, MEDIUM_BUILD_STEPS - 1);
+    match luts {
+        Luts::Built => {}
+        Luts::Whole => pass.record_medium_luts(&mut encoder),
+        Luts::ToOrder(orders) => pass.record_medium_luts_to_order(&mut encoder, orders),
     }
     pass.record_sky_view_lut(&mut encoder);
     pass.record(&mut encoder, &targets.hdr_view, &targets.depth_view);
