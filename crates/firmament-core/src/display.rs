@@ -16,11 +16,14 @@ pub enum ToneCurve {
     AcesFitted,
     /// Khronos PBR Neutral (Khronos 3D Commerce, 2024): keeps base colours, compresses highlights.
     PbrNeutral,
+    /// AgX (Troy Sobotka, 2023; Blender's default view transform since 4.0): 16.5 stops around
+    /// middle grey, highlights that desaturate towards white as film's do.
+    Agx,
 }
 
 impl ToneCurve {
     /// Every curve, in a stable order (for listings and tests).
-    pub const ALL: [Self; 3] = [Self::None, Self::AcesFitted, Self::PbrNeutral];
+    pub const ALL: [Self; 4] = [Self::None, Self::AcesFitted, Self::PbrNeutral, Self::Agx];
 
     /// The scene-file name of the curve.
     pub fn name(self) -> &'static str {
@@ -28,6 +31,7 @@ impl ToneCurve {
             Self::None => "none",
             Self::AcesFitted => "aces_fitted",
             Self::PbrNeutral => "pbr_neutral",
+            Self::Agx => "agx",
         }
     }
 
@@ -37,6 +41,7 @@ impl ToneCurve {
             Self::None => c,
             Self::AcesFitted => aces_fitted(c),
             Self::PbrNeutral => pbr_neutral(c),
+            Self::Agx => agx(c),
         };
         LinearRgb::new(saturate(out.r), saturate(out.g), saturate(out.b))
     }
@@ -152,6 +157,45 @@ fn pbr_neutral(c: LinearRgb) -> LinearRgb {
     c.lerp(LinearRgb::new(new_peak, new_peak, new_peak), g)
 }
 
+/// AgX's inset matrix on linear sRGB (rows; Benjamin Wrensch, "Minimal AgX Implementation",
+/// 2023, from Sobotka's AgX); the outset is its inverse.
+pub const AGX_INSET: [[f64; 3]; 3] = [
+    [0.842479062253094, 0.0784335999999992, 0.0792237451477643],
+    [0.0423282422610123, 0.878468636469772, 0.0791661274605434],
+    [0.0423756549057051, 0.0784336, 0.879142973793104],
+];
+/// The stops below and above middle grey (log2 0.18 = −2.47393) AgX's log encoding spans.
+pub const AGX_MIN_EV: f64 = -12.47393;
+/// See [`AGX_MIN_EV`].
+pub const AGX_MAX_EV: f64 = 4.026069;
+
+/// AgX's base sigmoid on the log-encoded value x ∈ [0, 1], in the closed form of the curve
+/// Sobotka's LUT generator builds (a power sigmoid of slope 2 through (20/33, 1/2): 20/33 is
+/// middle grey's encoded value; exponents 3 below and 13/4 above; derived by bWFuanVzYWth,
+/// github.com/bWFuanVzYWth/AgX, 2023). Its display values assume a 2.2 power.
+pub fn agx_sigmoid(x: f64) -> f64 {
+    const PIVOT: f64 = 20.0 / 33.0;
+    let (a, b) = if x <= PIVOT {
+        (59.507875, 3.0)
+    } else {
+        (69.862_789_135_455_39, 13.0 / 4.0)
+    };
+    let d = x - PIVOT;
+    0.5 + 2.0 * d * (1.0 + a * d.abs().powf(b)).powf(-1.0 / b)
+}
+
+fn agx(c: LinearRgb) -> LinearRgb {
+    let outset = glam::DMat3::from_cols_array_2d(&AGX_INSET).transpose().inverse();
+    let v = mul3(AGX_INSET, c);
+    let encode = |x: f64| {
+        let stops = x.max(f64::MIN_POSITIVE).log2().clamp(AGX_MIN_EV, AGX_MAX_EV);
+        agx_sigmoid((stops - AGX_MIN_EV) / (AGX_MAX_EV - AGX_MIN_EV))
+    };
+    let display = outset * glam::DVec3::new(encode(v.r), encode(v.g), encode(v.b));
+    let linear = |d: f64| d.max(0.0).powf(2.2);
+    LinearRgb::new(linear(display.x), linear(display.y), linear(display.z))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,6 +224,36 @@ mod tests {
         assert!((0.1..0.3).contains(&grey.g), "{grey:?}");
         let hot = ToneCurve::AcesFitted.apply(LinearRgb::new(1e4, 1e4, 1e4));
         assert!(hot.r > 0.99);
+    }
+
+    #[test]
+    fn agx_sigmoid_matches_wrenschs_published_polynomial() {
+        // Wrensch's sixth-order fit of the same curve ("Minimal AgX Implementation", 2023).
+        let fit = |x: f64| {
+            let (x2, x4) = (x * x, x * x * x * x);
+            15.5 * x4 * x2 - 40.14 * x4 * x + 31.96 * x4 - 6.868 * x2 * x + 0.4298 * x2 + 0.1191 * x - 0.00232
+        };
+        for i in 0..=100 {
+            let x = f64::from(i) / 100.0;
+            assert!(
+                (agx_sigmoid(x) - fit(x)).abs() < 0.01,
+                "x = {x}: {} vs {}",
+                agx_sigmoid(x),
+                fit(x)
+            );
+        }
+        assert!(agx_sigmoid(0.0).abs() < 1e-3 && (agx_sigmoid(1.0) - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn agx_puts_middle_grey_at_half_and_whitens_highlights() {
+        // Middle grey (0.18, neutral: the inset keeps greys) encodes to 20/33 and displays at 1/2.
+        let grey = ToneCurve::Agx.apply(LinearRgb::new(0.18, 0.18, 0.18));
+        assert!((grey.g - 0.5f64.powf(2.2)).abs() < 2e-4, "{grey:?}");
+        // A saturated red 10 stops up comes out near white.
+        let hot = ToneCurve::Agx.apply(LinearRgb::new(184.0, 9.2, 9.2));
+        assert!(hot.r > 0.95 && hot.g > 0.6, "{hot:?}");
+        assert_eq!(ToneCurve::Agx.apply(LinearRgb::BLACK), LinearRgb::BLACK);
     }
 
     #[test]

@@ -190,7 +190,7 @@ pub struct DisplaySection {
     /// Exposure value at ISO 100; when present it sets the exposure to `1 / (1.2 · 2^ev100)`.
     #[serde(default)]
     pub ev100: Option<f64>,
-    /// `"none"` (clamp), `"aces_fitted"` or `"pbr_neutral"`.
+    /// `"none"` (clamp), `"aces_fitted"`, `"pbr_neutral"` or `"agx"`.
     pub tone_curve: firmament_core::display::ToneCurve,
     /// How PNG pixels store the result: `"srgb"` (default) or `"none"` (`round(255·v)`, as an
     /// 8-bit GL framebuffer holds it; classic presets use it).

@@ -24,6 +24,8 @@ codes! {
     TONE_CURVE_ACES_FITTED = 1;
     /// Tone curve: Khronos PBR Neutral.
     TONE_CURVE_PBR_NEUTRAL = 2;
+    /// Tone curve: AgX.
+    TONE_CURVE_AGX = 3;
     /// Transfer (`TonemapUniforms::transfer`): values written as they are.
     TRANSFER_NONE = 0;
     /// Transfer: the sRGB encoding applied in the shader (the output format does not).

@@ -131,6 +131,7 @@ impl TonemapUniforms {
                 ToneCurve::None => codes::TONE_CURVE_NONE,
                 ToneCurve::AcesFitted => codes::TONE_CURVE_ACES_FITTED,
                 ToneCurve::PbrNeutral => codes::TONE_CURVE_PBR_NEUTRAL,
+                ToneCurve::Agx => codes::TONE_CURVE_AGX,
             },
             transfer: match (display.encoding, output_format.is_srgb()) {
                 (Encoding::Srgb, false) => codes::TRANSFER_ENCODE_SRGB,

@@ -61,6 +61,35 @@ fn pbr_neutral(color: vec3<f32>) -> vec3<f32> {
     return mix(c, vec3<f32>(new_peak), g);
 }
 
+// AgX (Sobotka), as `firmament_core::display::agx`: inset, log2 over [AGX_MIN_EV, AGX_MAX_EV],
+// the base sigmoid in closed form, outset (the inset's inverse), the curve's 2.2 power.
+fn agx_sigmoid(x: vec3<f32>) -> vec3<f32> {
+    let pivot = 20.0 / 33.0;
+    let below = x <= vec3<f32>(pivot);
+    let a = select(vec3<f32>(69.86278913545539), vec3<f32>(59.507875), below);
+    let b = select(vec3<f32>(13.0 / 4.0), vec3<f32>(3.0), below);
+    let d = x - pivot;
+    return 0.5 + 2.0 * d * pow(1.0 + a * pow(abs(d), b), -1.0 / b);
+}
+
+fn agx(c: vec3<f32>) -> vec3<f32> {
+    let inset = mat3x3<f32>(
+        vec3<f32>(0.842479062253094, 0.0784335999999992, 0.0792237451477643),
+        vec3<f32>(0.0423282422610123, 0.878468636469772, 0.0791661274605434),
+        vec3<f32>(0.0423756549057051, 0.0784336, 0.879142973793104),
+    );
+    let outset = mat3x3<f32>(
+        vec3<f32>(1.1968790051, -0.0980208811, -0.0990297441),
+        vec3<f32>(-0.0528968518, 1.1519031299, -0.0989611768),
+        vec3<f32>(-0.0529716355, -0.0980434501, 1.1510736726),
+    );
+    let min_ev = -12.47393;
+    let max_ev = 4.026069;
+    let stops = clamp(log2(max(c * inset, vec3<f32>(1e-30))), vec3<f32>(min_ev), vec3<f32>(max_ev));
+    let display = agx_sigmoid((stops - min_ev) / (max_ev - min_ev)) * outset;
+    return pow(max(display, vec3<f32>(0.0)), vec3<f32>(2.2));
+}
+
 fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     let low = c * 12.92;
     let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
@@ -82,6 +111,8 @@ fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
         c = aces_fitted(radiance);
     } else if params.curve == TONE_CURVE_PBR_NEUTRAL {
         c = pbr_neutral(radiance);
+    } else if params.curve == TONE_CURVE_AGX {
+        c = agx(radiance);
     }
     // NaN-safe clamp: max/min with a NaN operand may return either, so test explicitly.
     c = select(clamp(c, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(0.0), c != c);
