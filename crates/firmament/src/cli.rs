@@ -83,6 +83,10 @@ pub(crate) struct RenderArgs {
     /// Output file: `.png` (8-bit sRGB after exposure and tone curve) or `.exr` (linear float).
     #[arg(short, long, value_name = "FILE", default_value = "firmament.png")]
     pub(crate) output: PathBuf,
+    /// Bits per channel of a `.png` output: 8, or 16 for grading (the display values computed
+    /// from the linear image by the same exposure, tone curve and encoding, in `f64`).
+    #[arg(long, value_name = "BITS", default_value_t = 8, value_parser = png_bits)]
+    pub(crate) png_bits: u8,
     /// Image width in pixels (overrides `render.width`).
     #[arg(long, value_name = "W")]
     pub(crate) width: Option<u32>,
@@ -379,5 +383,14 @@ impl From<BackendArg> for firmament_render::Backend {
             BackendArg::Metal => Self::Metal,
             BackendArg::Dx12 => Self::Dx12,
         }
+    }
+}
+
+/// `--png-bits`: 8 or 16.
+fn png_bits(value: &str) -> Result<u8, String> {
+    match value {
+        "8" => Ok(8),
+        "16" => Ok(16),
+        _ => Err(format!("`{value}`: PNG channels are 8 or 16 bits")),
     }
 }

@@ -160,6 +160,27 @@ pub(crate) fn write_png(path: &Path, image: &Image<u8>) -> Result<()> {
     })
 }
 
+/// Writes a 16-bit RGBA image as an RGB PNG of 16 bits per channel (alpha dropped).
+pub(crate) fn write_png16(path: &Path, image: &Image<u16>) -> Result<()> {
+    let pixels = image.width as usize * image.height as usize;
+    if image.pixels.len() != pixels * 4 {
+        bail!("image size mismatch");
+    }
+    // `image` takes 16-bit samples as native-endian bytes.
+    let rgb: Vec<u8> = image
+        .pixels
+        .par_chunks(4)
+        .flat_map_iter(|pixel| pixel[..3].iter().flat_map(|v| v.to_ne_bytes()).collect::<Vec<u8>>())
+        .collect();
+    write_atomically(path, |writer| {
+        use image::ImageEncoder as _;
+        use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+        PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Sub)
+            .write_image(&rgb, image.width, image.height, image::ExtendedColorType::Rgb16)
+            .with_context(|| format!("output {}: PNG encoding failed", path.display()))
+    })
+}
+
 /// `image`'s RGB channels, converted on every core.
 fn rgb_of_rgba(image: &Image<u8>) -> Result<Vec<u8>> {
     let pixels = image.width as usize * image.height as usize;

@@ -10,7 +10,8 @@ use firmament_render::GpuContext;
 use firmament_render::headless::{HeadlessRenderer, Image, Readback};
 
 use crate::cli::{ExrCompression, RenderArgs};
-use crate::output::{OutputFormat, write_exr, write_png};
+use crate::output::{OutputFormat, write_exr, write_png, write_png16};
+use rayon::prelude::*;
 
 /// Renders the scene to the output file; nothing is written unless everything succeeds.
 pub(crate) fn run(args: &RenderArgs) -> Result<()> {
@@ -24,6 +25,13 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     let compression = args.exr_compression.unwrap_or_default();
+    if format == OutputFormat::Exr && args.png_bits != 8 {
+        tracing::warn!(
+            "--png-bits applies to .png output only: {} is an EXR",
+            args.output.display()
+        );
+    }
+    let png16 = format == OutputFormat::Png && args.png_bits == 16;
 
     let mut extra = super::scene_input::size_overrides(args.width, args.height);
     if let Some(time) = &args.time {
@@ -46,6 +54,18 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     }
     .with_context(|| format!("cannot build {what}"))?;
 
+    // The f64 models' images are written as the GPU path writes its own.
+    let write_radiance = |radiance: &[LinearRgb]| {
+        write_reference(
+            &args.output,
+            (format, png16),
+            compression,
+            radiance,
+            &frame,
+            width,
+            height,
+        )
+    };
     if args.reference
         && let Sky::Empirical(sky) = &frame.sky
     {
@@ -66,7 +86,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
                 sky.radiance(camera.position, camera.view_direction(ndc))
             })
             .collect();
-        return write_reference(&args.output, format, compression, &radiance, &frame, width, height);
+        return write_radiance(&radiance);
     }
     if args.reference {
         let Sky::Atmosphere(sky) = &frame.sky else {
@@ -87,19 +107,27 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             .into_iter()
             .map(|s| conversion.linear_srgb(s))
             .collect();
-        return write_reference(&args.output, format, compression, &radiance, &frame, width, height);
+        return write_radiance(&radiance);
     }
     let ctx = GpuContext::headless(args.backend.into())?;
     let when = scene.time.date_time.as_deref().unwrap_or(&scene.time.time_of_day);
     tracing::info!("rendering {what} at {width}x{height}, {when}");
     let mut renderer = HeadlessRenderer::new(&ctx);
     let readback = Readback {
-        ldr: format == OutputFormat::Png,
-        hdr: format == OutputFormat::Exr,
+        ldr: format == OutputFormat::Png && !png16,
+        hdr: format == OutputFormat::Exr || png16,
     };
     let pixels = renderer.submit(&ctx, &frame, width, height, readback)?.collect(&ctx)?;
     // The EXR is written from the half floats themselves, widened as its blocks are filled.
     match (format, &pixels.ldr, &pixels.hdr) {
+        (OutputFormat::Png, _, Some(hdr)) if png16 => {
+            let radiance: Vec<LinearRgb> = hdr
+                .pixels
+                .chunks_exact(4)
+                .map(|p| LinearRgb::new(p[0].to_f64(), p[1].to_f64(), p[2].to_f64()))
+                .collect();
+            write_png16(&args.output, &display_image(&radiance, &frame, width, height, 16))?;
+        }
         (OutputFormat::Png, Some(ldr), _) => write_png(&args.output, ldr)?,
         (OutputFormat::Exr, _, Some(hdr)) => write_exr(&args.output, hdr, compression)?,
         _ => bail!("the renderer returned no image to write"),
@@ -108,10 +136,11 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// Writes a reference image (linear sRGB radiance per pixel) like the GPU path writes its own.
+/// Writes a reference image (linear sRGB radiance per pixel) like the GPU path writes its own
+/// (`format`: the output's, and whether a PNG has 16 bits per channel).
 fn write_reference(
     output: &std::path::Path,
-    format: OutputFormat,
+    (format, png16): (OutputFormat, bool),
     compression: ExrCompression,
     radiance: &[LinearRgb],
     frame: &Frame,
@@ -119,7 +148,12 @@ fn write_reference(
     height: u32,
 ) -> Result<()> {
     match format {
-        OutputFormat::Png => write_png(output, &reference_ldr(radiance, frame, width, height))?,
+        OutputFormat::Png if png16 => write_png16(output, &display_image(radiance, frame, width, height, 16))?,
+        OutputFormat::Png => {
+            let image = display_image(radiance, frame, width, height, 8);
+            let pixels = image.pixels.iter().map(|&v| v as u8).collect();
+            write_png(output, &Image { width, height, pixels })?;
+        }
         OutputFormat::Exr => write_exr(output, &reference_hdr(radiance, width, height), compression)?,
     }
     tracing::info!("wrote {}", output.display());
@@ -138,25 +172,27 @@ fn reference_hdr(radiance: &[LinearRgb], width: u32, height: u32) -> Image<f32> 
     }
 }
 
-/// The reference through the scene's exposure and tone curve, sRGB-encoded like the GPU's
-/// tonemap pass (the core's display model is what that pass is tested against).
-fn reference_ldr(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32) -> Image<u8> {
+/// Linear radiance through the scene's exposure, tone curve and encoding, in `f64` (the core's
+/// display model, which the GPU's tonemap pass is tested against), as RGBA of `bits` (8 or 16)
+/// per channel.
+fn display_image(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32, bits: u32) -> Image<u16> {
+    let top = f64::from((1u32 << bits) - 1);
     let encode = |v: f64| {
         let v = v.clamp(0.0, 1.0);
         let v = match frame.display.encoding {
             Encoding::Srgb => linear_to_srgb(v),
             Encoding::None => v,
         };
-        (v * 255.0).round() as u8
+        (v * top).round() as u16
     };
     Image {
         width,
         height,
         pixels: radiance
-            .iter()
-            .flat_map(|c| {
+            .par_iter()
+            .flat_map_iter(|c| {
                 let d = frame.display.display_linear(*c);
-                [encode(d.r), encode(d.g), encode(d.b), 255]
+                [encode(d.r), encode(d.g), encode(d.b), top as u16]
             })
             .collect(),
     }
