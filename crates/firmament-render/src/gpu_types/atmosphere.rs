@@ -173,6 +173,10 @@ pub(crate) struct OrderSumsGpu {
     pub(crate) last: [[f32; 4]; 7],
     /// The order before it: Ψ per wavelength, and summed over them in `w`.
     pub(crate) previous_psi: [f32; 4],
+    /// The sky irradiance on a horizontal surface per unit sun (rgb), the orders so far.
+    pub(crate) irradiance: [f32; 4],
+    /// The same, the last order alone.
+    pub(crate) last_irradiance: [f32; 4],
 }
 
 /// Mirrors `AtmosphereView` in `shaders/atmosphere/bindings.wgsl`.

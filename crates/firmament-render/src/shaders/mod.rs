@@ -61,7 +61,6 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/multiscattering_sum",
         include_str!("atmosphere/multiscattering_sum.wgsl"),
     ),
-    ("atmosphere/irradiance_lut", include_str!("atmosphere/irradiance_lut.wgsl")),
     ("atmosphere/sky_view_lut", include_str!("atmosphere/sky_view_lut.wgsl")),
     ("atmosphere/sky", include_str!("atmosphere/sky.wgsl")),
     ("atmosphere/sky_lighting", include_str!("atmosphere/sky_lighting.wgsl")),
@@ -201,8 +200,6 @@ pub static ATMOSPHERE_TRANSMITTANCE_LUT: Shader = entry!("atmosphere/transmittan
 pub static ATMOSPHERE_MULTISCATTERING_LUT: Shader = entry!("atmosphere/multiscattering_lut");
 /// The atmosphere's multiple-scattering LUTs: the orders summed.
 pub static ATMOSPHERE_MULTISCATTERING_SUM: Shader = entry!("atmosphere/multiscattering_sum");
-/// The atmosphere's sky irradiance LUT pass.
-pub static ATMOSPHERE_IRRADIANCE_LUT: Shader = entry!("atmosphere/irradiance_lut");
 /// The atmosphere's sky-view LUT pass.
 pub static ATMOSPHERE_SKY_VIEW_LUT: Shader = entry!("atmosphere/sky_view_lut");
 /// The atmosphere's sky pass.
@@ -226,14 +223,13 @@ pub static NIGHT_SKY: Shader = entry!("night_sky");
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 17] = [
+pub static ENTRIES: [&Shader; 16] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
     &ATMOSPHERE_TRANSMITTANCE_LUT,
     &ATMOSPHERE_MULTISCATTERING_LUT,
     &ATMOSPHERE_MULTISCATTERING_SUM,
-    &ATMOSPHERE_IRRADIANCE_LUT,
     &ATMOSPHERE_SKY_VIEW_LUT,
     &ATMOSPHERE_SKY,
     &ATMOSPHERE_SKY_LIGHTING,
@@ -921,7 +917,7 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             atmosphere,
             "OrderSums",
             crate::gpu_types::OrderSumsGpu,
-            [sum, last, previous_psi]
+            [sum, last, previous_psi, irradiance, last_irradiance]
         );
         assert_layout!(
             atmosphere,

@@ -159,7 +159,7 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
     ]);
     let steps: Vec<String> = b.medium_lut_steps_ms.iter().map(|ms| format!("{ms:.3}")).collect();
     println!(
-        "  medium LUT build steps (transmittance, each order of multiple scattering, irradiance): {} ms",
+        "  medium LUT build steps (transmittance, each order of multiple scattering; the last with the sums): {} ms",
         steps.join(", ")
     );
     println!(

@@ -4,12 +4,12 @@
 //! |---|---|---|---|
 //! | transmittance | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
 //! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh layer, over Ψ summed over wavelengths) | 32 × 32, seven layers of one array | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] |
-//! | sky irradiance (stored as its logarithm, as Ψ) | 64 × 16 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
+//! | sky irradiance (stored as its logarithm, as Ψ) | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |
 //!
-//! Every LUT is written by a compute pass (the moments through a buffer and copies, see
-//! `multiscattering.rs`). The sizes are mirrored by constants in `atmosphere/common.wgsl`,
+//! Every LUT is written by a compute pass (the moments and the sky irradiance through a buffer and
+//! copies, see `multiscattering.rs`). The sizes are mirrored by constants in `atmosphere/common.wgsl`,
 //! `luts.wgsl`, `view.wgsl` and `multiscattering_lut.wgsl`.
 
 use firmament_core::frame::MAX_SUNS;
@@ -29,8 +29,9 @@ pub const MULTISCATTERING_MOMENTS: usize = 7;
 
 /// Multiple-scattering LUT format.
 pub const MULTISCATTERING_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Sky irradiance LUT size (texels): mu_s × h.
-pub const IRRADIANCE_SIZE: (u32, u32) = (64, 16);
+/// Sky irradiance LUT size (texels): mu_s × h, those of the multiple-scattering LUT (both are
+/// written from the same rays).
+pub const IRRADIANCE_SIZE: (u32, u32) = MULTISCATTERING_SIZE;
 /// What the multiple-scattering Ψ and the sky irradiance LUT store for "none": the logarithm's
 /// floor (mirrors `LOG_FLOOR` in `atmosphere/luts.wgsl`; both tables store logarithms).
 pub const LOG_FLOOR: f64 = -69.0;
@@ -132,7 +133,7 @@ pub(super) fn medium_luts(device: &wgpu::Device, suffix: &str) -> (Lut, Lut, Lut
         &format!("sky irradiance{suffix}"),
         IRRADIANCE_SIZE,
         IRRADIANCE_FORMAT,
-        wgpu::TextureUsages::STORAGE_BINDING,
+        wgpu::TextureUsages::empty(),
     );
     (transmittance, multiscattering, irradiance)
 }

@@ -4,7 +4,7 @@
 //!
 //! Per frame, [`AtmospherePass::record_luts`] renders
 //! 1. the transmittance LUT (Bruneton 2017's parameterisation; a compute pass) and
-//! 2. the multiple-scattering LUT and
+//! 2. the multiple-scattering LUT and, from the same rays,
 //! 3. the ground's sky-irradiance LUT — these three only when the medium changed, into a set of
 //!    their own copied into the one the sky reads when complete: in the same frame, or with
 //!    [`AtmospherePass::set_incremental_rebuild`] one step per frame ([`MEDIUM_BUILD_STEPS`]) while
@@ -47,7 +47,7 @@ use crate::shaders;
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 pub use luts::AtmosphereLuts;
-use luts::{IRRADIANCE_FORMAT, SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
+use luts::{SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
 pub use multiscattering::MULTISCATTERING_ORDERS;
 use multiscattering::MultiscatteringStages;
 pub use rebuild::MEDIUM_BUILD_STEPS;
@@ -117,7 +117,6 @@ pub struct AtmospherePass {
     view: wgpu::Buffer,
     transmittance: ComputeStage,
     multiscattering: MultiscatteringStages,
-    irradiance: ComputeStage,
     sky_view: ComputeStage,
     aerial: AerialPerspectiveStages,
     lighting: SkyLightingStage,
@@ -183,12 +182,6 @@ impl AtmospherePass {
             ],
         );
         let multiscattering = MultiscatteringStages::new(device, &build, &sampler);
-        let mut irradiance_entries = vec![
-            uniform_entry(binding::PARAMS),
-            texture_entry(binding::TRANSMITTANCE, false),
-            sampler_entry(binding::SAMPLER),
-        ];
-        irradiance_entries.push(moments_entry(binding::MULTISCATTERING));
         let view_entries = view_entries();
         let view_resources = view_resources(&params, &view, &luts, &sampler);
         // The view resources that the bindings in `entries` name.
@@ -216,30 +209,6 @@ impl AtmospherePass {
             &shaders::ATMOSPHERE_SKY_VIEW_LUT,
             &sky_view_entries,
             &sky_view_resources,
-        );
-        let mut irradiance_resources = vec![
-            (binding::PARAMS, build.params.as_entire_binding()),
-            (
-                binding::TRANSMITTANCE,
-                wgpu::BindingResource::TextureView(&build.transmittance.view),
-            ),
-            (binding::SAMPLER, wgpu::BindingResource::Sampler(&sampler)),
-        ];
-        irradiance_resources.push((
-            binding::MULTISCATTERING,
-            wgpu::BindingResource::TextureView(&build.multiscattering.view),
-        ));
-        irradiance_entries.push(storage_entry(binding::IRRADIANCE_OUT, IRRADIANCE_FORMAT));
-        irradiance_resources.push((
-            binding::IRRADIANCE_OUT,
-            wgpu::BindingResource::TextureView(&build.irradiance.view),
-        ));
-        let irradiance = ComputeStage::new(
-            device,
-            "AtmospherePass sky irradiance LUT",
-            &shaders::ATMOSPHERE_IRRADIANCE_LUT,
-            &irradiance_entries,
-            &irradiance_resources,
         );
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
         // rasterizers run both sides of a branch they cannot prove uniform).
@@ -289,7 +258,6 @@ impl AtmospherePass {
             view,
             transmittance,
             multiscattering,
-            irradiance,
             sky_view,
             sky,
             sky_compute: None,
@@ -473,7 +441,7 @@ impl AtmospherePass {
             self.multiscattering.record_order(encoder, &self.build, order == 1);
         }
         self.multiscattering.record_sum(encoder, &self.build, false);
-        self.record_build_step(encoder, BuildStep::IrradianceAndSwap);
+        self.record_swap(encoder);
     }
 
     /// Encodes step `step` (0 to [`MEDIUM_BUILD_STEPS`] − 1) of a build of the medium's LUTs
@@ -496,16 +464,16 @@ impl AtmospherePass {
                 self.multiscattering.record_order(encoder, &self.build, order == 1);
                 if order == MULTISCATTERING_ORDERS {
                     self.multiscattering.record_sum(encoder, &self.build, true);
+                    self.record_swap(encoder);
                 }
             }
-            BuildStep::IrradianceAndSwap => {
-                let (width, height) = luts::IRRADIANCE_SIZE;
-                // One workgroup per texel (irradiance_lut.wgsl).
-                self.irradiance.dispatch(encoder, (width, height, 1));
-                self.build.copy_into(encoder, &self.luts, &self.params);
-                self.rebuild.builds.set(self.rebuild.builds.get() + 1);
-            }
         }
+    }
+
+    /// Encodes the copy of the finished build and its medium into the set the sky reads.
+    fn record_swap(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.build.copy_into(encoder, &self.luts, &self.params);
+        self.rebuild.builds.set(self.rebuild.builds.get() + 1);
     }
 
     /// Encodes the sky-view LUT tiles of this frame's suns.

@@ -32,9 +32,16 @@ const TEXEL_BYTES: u32 = 8;
 /// Texels of one moment texture.
 const MOMENT_TEXELS: u32 = MULTISCATTERING_SIZE.0 * MULTISCATTERING_SIZE.1;
 
-/// Bytes of an order's output: the seven moment textures, then the ground row (the layout of
-/// `multiscattering_out` in `atmosphere/moments_out.wgsl`).
-const OUTPUT_BYTES: u64 = ((MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS + MULTISCATTERING_SIZE.0) * TEXEL_BYTES) as u64;
+/// The first texel of the ground row in the output, after the seven moment textures (the layout
+/// of `multiscattering_out` in `atmosphere/moments_out.wgsl`).
+const GROUND_ROW_START: u32 = MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS;
+
+/// The first texel of the sky irradiance LUT in the output, after the ground row.
+const IRRADIANCE_START: u32 = GROUND_ROW_START + MULTISCATTERING_SIZE.0;
+
+/// Bytes of the output: an order's moments and ground row, or the sums' moments and sky
+/// irradiance.
+const OUTPUT_BYTES: u64 = ((IRRADIANCE_START + MOMENT_TEXELS) * TEXEL_BYTES) as u64;
 
 /// Bytes of one texel's `OrderSums` (`atmosphere/bindings.wgsl`).
 const ORDER_SUMS_BYTES: u64 = std::mem::size_of::<OrderSumsGpu>() as u64;
@@ -161,22 +168,26 @@ impl MultiscatteringStages {
         self.record_copy(encoder, luts, true);
     }
 
-    /// Encodes the sum of the orders so far into `luts`, with the geometric tail of the orders
-    /// after them when `tail`.
+    /// Encodes the sum of the orders so far into `luts`' moments and sky irradiance, with the
+    /// geometric tail of the orders after them when `tail`.
     pub(super) fn record_sum(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, tail: bool) {
         let stage = if tail { &self.sum } else { &self.sum_without_tail };
         stage.dispatch(encoder, (MOMENT_TEXELS.div_ceil(SUM_WORKGROUP), 1, 1));
         self.record_copy(encoder, luts, false);
     }
 
-    /// Encodes the copies of the output buffer into the moments and, with `ground`, the ground
-    /// row.
-    fn record_copy(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, ground: bool) {
+    /// Encodes the copies of the output buffer into the moments and then, after an order, the
+    /// ground row or, after the sum, the sky irradiance.
+    fn record_copy(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, order: bool) {
         let (width, height) = MULTISCATTERING_SIZE;
         // The moments' layers in one copy (each copy costs the GPU a few microseconds).
         let moments = (&luts.multiscattering, height, MULTISCATTERING_MOMENTS as u32, 0);
-        let ground_row = (&self.ground, 1, 1, MULTISCATTERING_MOMENTS as u32 * MOMENT_TEXELS);
-        for (lut, rows, layers, first_texel) in std::iter::once(moments).chain(ground.then_some(ground_row)) {
+        let then = if order {
+            (&self.ground, 1, 1, GROUND_ROW_START)
+        } else {
+            (&luts.irradiance, height, 1, IRRADIANCE_START)
+        };
+        for (lut, rows, layers, first_texel) in [moments, then] {
             encoder.copy_buffer_to_texture(
                 wgpu::TexelCopyBufferInfo {
                     buffer: &self.output,

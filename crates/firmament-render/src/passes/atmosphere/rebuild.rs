@@ -15,8 +15,8 @@ use firmament_core::atmosphere::Atmosphere;
 use super::multiscattering::MULTISCATTERING_ORDERS;
 
 /// Steps of one build: the transmittance LUT, each order of the multiple-scattering LUTs (the
-/// last with their sum), the sky irradiance LUT (and the copy into the live set).
-pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ORDERS + 2;
+/// last with their sum, the sky irradiance LUT and the copy into the live set).
+pub const MEDIUM_BUILD_STEPS: u32 = MULTISCATTERING_ORDERS + 1;
 
 /// What a build step encodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,18 +24,16 @@ pub(super) enum BuildStep {
     /// The transmittance LUT, then the multiple-scattering orders' start (none yet).
     Transmittance,
     /// Order `n` (1 to [`MULTISCATTERING_ORDERS`], in order) of the multiple-scattering LUTs,
-    /// then, after the last, their sum.
+    /// then, after the last, their sum and the sky irradiance LUT, and the copy of the set and
+    /// the medium into the live ones.
     Order(u32),
-    /// The sky irradiance LUT, then the copy of the set and the medium into the live ones.
-    IrradianceAndSwap,
 }
 
 impl BuildStep {
     pub(super) fn of(step: u32) -> Self {
         match step {
             0 => Self::Transmittance,
-            s if s <= MULTISCATTERING_ORDERS => Self::Order(s),
-            _ => Self::IrradianceAndSwap,
+            s => Self::Order(s.min(MULTISCATTERING_ORDERS)),
         }
     }
 }

@@ -22,7 +22,6 @@ pub(super) mod binding {
     pub(crate) const SCENE_DEPTH: u32 = 12;
     pub(crate) const MULTISCATTERING_OUT: u32 = 13;
     pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
-    pub(crate) const IRRADIANCE_OUT: u32 = 16;
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_OUT: u32 = 20;
     pub(crate) const HDR_IN: u32 = 23;
@@ -248,7 +247,6 @@ mod tests {
             ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),
             ("multiscattering_orders", binding::MULTISCATTERING_ORDERS),
-            ("irradiance_out", binding::IRRADIANCE_OUT),
             ("sky_view_out", binding::SKY_VIEW_OUT),
             ("sky_out", binding::SKY_OUT),
             ("hdr_in", binding::HDR_IN),

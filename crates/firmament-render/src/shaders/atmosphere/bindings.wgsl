@@ -5,7 +5,7 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (15, 17, 18, 21, 22, 27 or from 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (15 to 18, 21, 22, 27 or from 29) here and in `stages.rs`.
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -84,7 +84,7 @@ struct SkyLighting {
 @group(0) @binding(1) var<uniform> view: AtmosphereView;
 @group(0) @binding(25) var<uniform> lighting: SkyLightingParams;
 
-// One texel's multiple-scattering orders while the LUTs are built, as the seven sums over
+// One texel's multiple-scattering orders (and sky irradiance) while the LUTs are built, as the seven sums over
 // directions that multiscattering_lut.wgsl reduces (`ORDER_SUMS` there: Ψ, zz, xx, xz, x, z in
 // rgb, bands 3 and 4 in the w components and the seventh), in f32: orders differ from each other
 // by less than a half float resolves.
@@ -92,6 +92,8 @@ struct OrderSums {
     sum: array<vec4<f32>, 7>,  // over the orders so far
     last: array<vec4<f32>, 7>, // the last order alone
     previous_psi: vec4<f32>,   // the order before it: Ψ (rgb) and Ψ summed over wavelengths (w)
+    irradiance: vec4<f32>,     // rgb: the sky irradiance on a horizontal surface, orders so far
+    last_irradiance: vec4<f32>, // rgb: the same, the last order alone
 }
 
 // ---- The LUTs, read (layouts: passes/atmosphere/luts.rs) ----
@@ -118,7 +120,6 @@ struct OrderSums {
 @group(0) @binding(6) var transmittance_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(8) var aerial_scattering_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(9) var aerial_transmittance_out: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(16) var irradiance_out: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(19) var sky_view_out: texture_storage_2d<rgba16float, write>;
 // The renderer's own HDR target (targets.rs HDR_FORMAT), for the compute sky (sky.wgsl).
 @group(0) @binding(20) var sky_out: texture_storage_2d<rgba16float, write>;

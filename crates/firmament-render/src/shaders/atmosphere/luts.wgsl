@@ -193,7 +193,8 @@ fn sample_moments(moments: texture_2d_array<f32>, uv: vec2<f32>) -> Moments {
     return m;
 }
 
-const IRRADIANCE_LUT_SIZE: vec2<f32> = vec2<f32>(64.0, 16.0);
+// The same texels as the multiple-scattering LUT's (multiscattering_sum.wgsl writes both).
+const IRRADIANCE_LUT_SIZE: vec2<f32> = MULTISCATTERING_LUT_SIZE;
 
 // Sky irradiance on a horizontal surface at altitude h for a unit sun at mu_s (W·m⁻²·nm⁻¹ per
 // W·m⁻²·nm⁻¹ of sun).

@@ -4,14 +4,16 @@
 //
 // Conventions: as atmosphere/luts.wgsl (`Moments`: Ψ stored as its logarithm, the other moments
 // over Ψ). `multiscattering_out` holds the seven moment textures of MULTISCATTERING_LUT_SIZE one
-// after another, then the ground row (MULTISCATTERING_MOMENTS in passes/atmosphere/luts.rs).
+// after another, then the ground row and the sky irradiance (multiscattering.rs).
 
 #import atmosphere/bindings
 #import atmosphere/luts
 
-// The texels of one moment texture; the ground row follows the seven.
+// The texels of one moment texture; the ground row follows the seven, then the sky irradiance
+// LUT (IRRADIANCE_LUT_SIZE, the same texels).
 const MOMENT_TEXELS: u32 = 32u * 32u;
 const GROUND_ROW_START: u32 = 7u * MOMENT_TEXELS;
+const IRRADIANCE_START: u32 = GROUND_ROW_START + 32u;
 
 // A texel's moments before they are stored: seven sums over directions (means over the sphere,
 // per unit sun) — Ψ, zz, xx, xz, x, z per wavelength in rgb, and bands 3 and 4 (summed over

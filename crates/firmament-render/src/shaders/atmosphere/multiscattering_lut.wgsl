@@ -21,8 +21,8 @@
 // A compute pass with one workgroup per texel and one invocation per direction (the directions'
 // sums are reduced in workgroup memory): a texel's rays in one thread left a
 // data-centre GPU latency-bound (docs/PERFORMANCE.md). Workgroups (x, y) with y < 32 write order
-// k's moments (moments_out.wgsl) of texel (x, y) of MULTISCATTERING_LUT_SIZE and add them to the
-// texel's `OrderSums`; row y = 32 writes E_k, the sky irradiance on the ground per unit sun at
+// k's moments (moments_out.wgsl) of texel (x, y) of MULTISCATTERING_LUT_SIZE and add them, and
+// the sky irradiance on a horizontal surface there, to the texel's `OrderSums`; row y = 32 writes E_k, the sky irradiance on the ground per unit sun at
 // mu_s(x) (the same u mapping), which the next order's ground reflects. Ψ_k and E_k are stored
 // as their logarithms, the other moments over Ψ_k (see `Moments` in luts.wgsl), as Rgba16Float
 // texels packed into `multiscattering_out` (passes/atmosphere/multiscattering.rs copies them into
@@ -171,6 +171,8 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
     let b4 = band4_basis(dir.x, y2, dir.z);
     // 27 sums in seven vec4s (moments_out.wgsl).
     let b4_low = light_sum * b4.low;
+    // The sky irradiance on a horizontal surface: ∫ L cos⁺ dω, 4π/n per direction.
+    let irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane) * (4.0 * PI / n);
     var order = array<vec4<f32>, ORDER_SUMS>(
         sum_directions(vec4<f32>(light, b4.m4 * light_sum), lane) / n,
         sum_directions(vec4<f32>(light * dir.z * dir.z, b3.x), lane) / n,
@@ -189,7 +191,9 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
     if FIRST_ORDER {
         multiscattering_orders[index].sum = order;
         multiscattering_orders[index].previous_psi = vec4<f32>(0.0);
+        multiscattering_orders[index].irradiance = irradiance;
     } else {
+        multiscattering_orders[index].irradiance += irradiance;
         let before = multiscattering_orders[index].last[0].rgb;
         multiscattering_orders[index].previous_psi = vec4<f32>(before, before.r + before.g + before.b);
         for (var m = 0u; m < ORDER_SUMS; m++) {
@@ -197,4 +201,5 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
         }
     }
     multiscattering_orders[index].last = order;
+    multiscattering_orders[index].last_irradiance = irradiance;
 }

@@ -1,6 +1,6 @@
-// atmosphere/multiscattering_sum.wgsl — the multiple-scattering LUTs from the orders
-// multiscattering_lut.wgsl marched: their sum, and (TAIL) the orders after the last as a geometric
-// series.
+// atmosphere/multiscattering_sum.wgsl — the multiple-scattering LUTs and the sky irradiance LUT
+// from the orders multiscattering_lut.wgsl marched: their sum, and (TAIL) the orders after the
+// last as a geometric series.
 //
 // Conventions: as atmosphere/luts.wgsl. One invocation per texel of MULTISCATTERING_LUT_SIZE
 // (index y · 32 + x), reading its `OrderSums` and writing its moments into `multiscattering_out`
@@ -19,6 +19,7 @@
 // stopped. Measured against more orders marched in docs/ATMOSPHERE.md, "Multiple scattering".
 
 #import atmosphere/bindings
+#import atmosphere/luts
 #import atmosphere/moments_out
 
 // Whether to add the geometric tail (off: the LUTs hold exactly the orders marched, for
@@ -92,6 +93,9 @@ fn cs_main(
     }
     sums[ORDER_SUMS - 1u] += orders.last[ORDER_SUMS - 1u] * factor.w;
     store_moments(index, sums);
+    // The sky irradiance LUT: the irradiance of every order, its tail by Ψ's factor.
+    let irradiance = orders.irradiance.rgb + orders.last_irradiance.rgb * factor.rgb;
+    store_texel(IRRADIANCE_START + index, vec4<f32>(encode_log(irradiance), 1.0));
 }
 
 // The largest ratio of successive orders the tail trusts (at most 19 more orders' worth).

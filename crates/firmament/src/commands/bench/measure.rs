@@ -68,7 +68,7 @@ pub(crate) struct AtmosphereBench {
     /// The longest step of an incremental rebuild of those LUTs (one step per frame).
     pub(crate) medium_lut_step_max_ms: f64,
     /// Each step of that rebuild: the transmittance LUT, each order of multiple scattering (the
-    /// last with their sum), the sky irradiance LUT.
+    /// last with their sum, the sky irradiance LUT and the copy into the live set).
     pub(crate) medium_lut_steps_ms: Vec<f64>,
     /// The sky-view LUT tiles.
     pub(crate) sky_view_lut_ms: f64,
