@@ -3,10 +3,11 @@
 // last as a geometric series.
 //
 // Conventions: as atmosphere/luts.wgsl. One invocation per texel of MULTISCATTERING_LUT_SIZE
-// (index y · 32 + x), reading its `OrderSums` and writing its moments into `multiscattering_out`
-// (moments_out.wgsl), which passes/atmosphere/multiscattering.rs copies into the LUTs. Each
-// workgroup also sums Ψ of the last two orders over every texel for the tail (the same sums in
-// every workgroup: 1024 texels' two vec4s are cheaper to read again than a pass of their own).
+// (index y · 32 + x), reading its `OrderSums` and writing its moments and sky irradiance into
+// `multiscattering_out` (moments_out.wgsl), which passes/atmosphere/multiscattering.rs copies into
+// the LUTs. Each workgroup also sums Ψ of the last two orders over every texel for the tail (the
+// same sums in every workgroup: 1024 texels' two vec4s are cheaper to read again than a pass of
+// their own).
 //
 // The tail: successive orders of light in a medium shrink by a ratio that settles after a few
 // orders (the Neumann series of the scattering operator, whose spectral radius it tends to;
@@ -27,6 +28,9 @@
 override TAIL: bool = true;
 
 const SUM_INVOCATIONS: u32 = 256u;
+
+// The largest ratio of successive orders the tail trusts (at most 19 more orders' worth).
+const MAX_ORDER_RATIO: f32 = 0.95;
 
 var<workgroup> last_total: array<vec4<f32>, SUM_INVOCATIONS>;
 var<workgroup> previous_total: array<vec4<f32>, SUM_INVOCATIONS>;
@@ -97,6 +101,3 @@ fn cs_main(
     let irradiance = orders.irradiance.rgb + orders.last_irradiance.rgb * factor.rgb;
     store_texel(IRRADIANCE_START + index, vec4<f32>(encode_log(irradiance), 1.0));
 }
-
-// The largest ratio of successive orders the tail trusts (at most 19 more orders' worth).
-const MAX_ORDER_RATIO: f32 = 0.95;
