@@ -184,14 +184,17 @@ pub fn agx_sigmoid(x: f64) -> f64 {
     0.5 + 2.0 * d * (1.0 + a * d.abs().powf(b)).powf(-1.0 / b)
 }
 
+/// AgX's outset: the inverse of [`AGX_INSET`] (computed once: the CPU applies curves per pixel).
+static AGX_OUTSET: std::sync::LazyLock<glam::DMat3> =
+    std::sync::LazyLock::new(|| glam::DMat3::from_cols_array_2d(&AGX_INSET).transpose().inverse());
+
 fn agx(c: LinearRgb) -> LinearRgb {
-    let outset = glam::DMat3::from_cols_array_2d(&AGX_INSET).transpose().inverse();
     let v = mul3(AGX_INSET, c);
     let encode = |x: f64| {
         let stops = x.max(f64::MIN_POSITIVE).log2().clamp(AGX_MIN_EV, AGX_MAX_EV);
         agx_sigmoid((stops - AGX_MIN_EV) / (AGX_MAX_EV - AGX_MIN_EV))
     };
-    let display = outset * glam::DVec3::new(encode(v.r), encode(v.g), encode(v.b));
+    let display = *AGX_OUTSET * glam::DVec3::new(encode(v.r), encode(v.g), encode(v.b));
     let linear = |d: f64| d.max(0.0).powf(2.2);
     LinearRgb::new(linear(display.x), linear(display.y), linear(display.z))
 }

@@ -155,39 +155,28 @@ const PIXELS_PER_TASK: usize = 1 << 15;
 pub(crate) fn write_png(path: &Path, image: &Image<u8>) -> Result<()> {
     let rgb = rgb_of_rgba(image)?;
     write_atomically(path, |writer| {
-        encode_png(writer, &rgb, image.width, image.height)
+        encode_png(writer, &rgb, image.width, image.height, image::ExtendedColorType::Rgb8)
             .with_context(|| format!("output {}: PNG encoding failed", path.display()))
     })
 }
 
 /// Writes a 16-bit RGBA image as an RGB PNG of 16 bits per channel (alpha dropped).
 pub(crate) fn write_png16(path: &Path, image: &Image<u16>) -> Result<()> {
-    let pixels = image.width as usize * image.height as usize;
-    if image.pixels.len() != pixels * 4 {
-        bail!("image size mismatch");
-    }
     // `image` takes 16-bit samples as native-endian bytes.
-    let rgb: Vec<u8> = image
-        .pixels
-        .par_chunks(4)
-        .flat_map_iter(|pixel| pixel[..3].iter().flat_map(|v| v.to_ne_bytes()).collect::<Vec<u8>>())
-        .collect();
+    let rgb: Vec<u8> = rgb_of_rgba(image)?.iter().flat_map(|v| v.to_ne_bytes()).collect();
     write_atomically(path, |writer| {
-        use image::ImageEncoder as _;
-        use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-        PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Sub)
-            .write_image(&rgb, image.width, image.height, image::ExtendedColorType::Rgb16)
+        encode_png(writer, &rgb, image.width, image.height, image::ExtendedColorType::Rgb16)
             .with_context(|| format!("output {}: PNG encoding failed", path.display()))
     })
 }
 
 /// `image`'s RGB channels, converted on every core.
-fn rgb_of_rgba(image: &Image<u8>) -> Result<Vec<u8>> {
+fn rgb_of_rgba<T: Copy + Default + Send + Sync>(image: &Image<T>) -> Result<Vec<T>> {
     let pixels = image.width as usize * image.height as usize;
     if image.pixels.len() != pixels * 4 {
         bail!("image size mismatch");
     }
-    let mut rgb = vec![0; pixels * 3];
+    let mut rgb = vec![T::default(); pixels * 3];
     rgb.par_chunks_mut(PIXELS_PER_TASK * 3)
         .zip(image.pixels.par_chunks(PIXELS_PER_TASK * 4))
         .for_each(|(rgb, rgba)| {
@@ -198,17 +187,19 @@ fn rgb_of_rgba(image: &Image<u8>) -> Result<Vec<u8>> {
     Ok(rgb)
 }
 
-/// Encodes 8-bit RGB rows as a PNG: fdeflate's fast mode after the Sub filter, lossless. On sky
-/// images Sub is 4–7× faster than the adaptive filter and its files smaller (docs/PERFORMANCE.md).
-fn encode_png(writer: impl Write, rgb: &[u8], width: u32, height: u32) -> image::ImageResult<()> {
+/// Encodes RGB rows (`color`: 8 or 16 bits a channel) as a PNG: fdeflate's fast mode after the
+/// Sub filter, lossless. On sky images Sub is 4–7× faster than the adaptive filter and its files
+/// smaller (docs/PERFORMANCE.md).
+fn encode_png(
+    writer: impl Write,
+    rgb: &[u8],
+    width: u32,
+    height: u32,
+    color: image::ExtendedColorType,
+) -> image::ImageResult<()> {
     use image::ImageEncoder as _;
     use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-    PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Sub).write_image(
-        rgb,
-        width,
-        height,
-        image::ExtendedColorType::Rgb8,
-    )
+    PngEncoder::new_with_quality(writer, CompressionType::Fast, FilterType::Sub).write_image(rgb, width, height, color)
 }
 
 /// A channel value an EXR file stores as a 32-bit float: `f32`, or a half float from the HDR

@@ -155,11 +155,12 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
     let dir = one.dir;
     let n = f32(DIRECTIONS);
 
+    // The sky irradiance on a horizontal surface: ∫ L cos⁺ dω, 4π/n per direction. On the ground
+    // row it is E_k, which the next order's ground reflects.
+    let irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane) * (4.0 * PI / n);
     if ground_row {
-        // ∫ L cos⁺ dω over the sphere, by uniform sampling: 4π/n per direction.
-        let irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane).rgb;
         if lane == 0u {
-            store_texel(GROUND_ROW_START + texel.x, vec4<f32>(encode_log(irradiance * (4.0 * PI / n)), 1.0));
+            store_texel(GROUND_ROW_START + texel.x, vec4<f32>(encode_log(irradiance.rgb), 1.0));
         }
         return;
     }
@@ -171,8 +172,6 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
     let b4 = band4_basis(dir.x, y2, dir.z);
     // 27 sums in seven vec4s (moments_out.wgsl).
     let b4_low = light_sum * b4.low;
-    // The sky irradiance on a horizontal surface: ∫ L cos⁺ dω, 4π/n per direction.
-    let irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane) * (4.0 * PI / n);
     var order = array<vec4<f32>, ORDER_SUMS>(
         sum_directions(vec4<f32>(light, b4.m4 * light_sum), lane) / n,
         sum_directions(vec4<f32>(light * dir.z * dir.z, b3.x), lane) / n,

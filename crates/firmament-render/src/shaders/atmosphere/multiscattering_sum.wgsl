@@ -35,10 +35,9 @@ const MAX_ORDER_RATIO: f32 = 0.95;
 var<workgroup> last_total: array<vec4<f32>, SUM_INVOCATIONS>;
 var<workgroup> previous_total: array<vec4<f32>, SUM_INVOCATIONS>;
 
-// Ψ of a texel's last order (rgb) and summed over wavelengths (w).
-fn last_psi(index: u32) -> vec4<f32> {
-    let last = multiscattering_orders[index].last[0].rgb;
-    return vec4<f32>(last, last.r + last.g + last.b);
+// Ψ per wavelength (rgb) and summed over them (w).
+fn with_sum(psi: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(psi, psi.r + psi.g + psi.b);
 }
 
 // r / (1 − r) for the ratio r of successive orders, per wavelength (and w: summed).
@@ -56,7 +55,7 @@ fn global_ratio(lane: u32) -> vec4<f32> {
     var last = vec4<f32>(0.0);
     var before = vec4<f32>(0.0);
     for (var index = lane; index < MOMENT_TEXELS; index += SUM_INVOCATIONS) {
-        last += last_psi(index);
+        last += with_sum(multiscattering_orders[index].last[0].rgb);
         before += multiscattering_orders[index].previous_psi;
     }
     last_total[lane] = last;
@@ -89,7 +88,7 @@ fn cs_main(
         return;
     }
     let orders = multiscattering_orders[index];
-    let factor = tail_factor(last_psi(index), orders.previous_psi, ratio);
+    let factor = tail_factor(with_sum(orders.last[0].rgb), orders.previous_psi, ratio);
     // Per wavelength in rgb; the bands (w, and the seventh sum) by the summed factor.
     var sums = orders.sum;
     for (var m = 0u; m < ORDER_SUMS - 1u; m++) {
