@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::auto_exposure::ExposureMode;
 use crate::color::LinearRgb;
 
 /// The tone curve applied after exposure, before sRGB encoding.
@@ -90,8 +91,15 @@ pub enum Encoding {
 /// How a frame's HDR radiance becomes a display image.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DisplaySettings {
-    /// Scales radiance before the tone curve.
+    /// Scales radiance before the tone curve (in auto mode, the flares' reference only).
     pub exposure: Exposure,
+    /// The scene's exposure or the meter's ([`crate::auto_exposure`]).
+    pub exposure_mode: ExposureMode,
+    /// Bloom's strength in [0, 1]: the share of each pixel's light spread over its
+    /// neighbourhood (0 = off). Energy-conserving: the picture's total light is unchanged.
+    pub bloom: f64,
+    /// The eye's night vision below photopic levels ([`crate::night_vision`]).
+    pub night_vision: bool,
     /// The tone curve.
     pub tone_curve: ToneCurve,
     /// How 8-bit outputs store the result.
@@ -100,8 +108,15 @@ pub struct DisplaySettings {
 
 impl DisplaySettings {
     /// The display colour (linear, [0, 1], before sRGB encoding) for a scene radiance.
+    /// Night vision, when on, acts on the radiance before exposure; bloom and auto-exposure
+    /// are not modelled here.
     pub fn display_linear(&self, radiance: LinearRgb) -> LinearRgb {
-        self.tone_curve.apply(radiance.scale(self.exposure.multiplier))
+        let seen = if self.night_vision {
+            crate::night_vision::night_vision(radiance)
+        } else {
+            radiance
+        };
+        self.tone_curve.apply(seen.scale(self.exposure.multiplier))
     }
 }
 

@@ -78,6 +78,58 @@ pub enum FlareShape {
     },
 }
 
+/// The lens's aperture, the iris its blades make: the shape of the glare's diffraction starburst
+/// (and of the presets' ghosts).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aperture {
+    /// Blades: 0 for a round iris (no spikes), else 3 to 16 (a regular polygon).
+    pub blades: u32,
+    /// Degrees, counter-clockwise from +x: the direction of one of the polygon's corners (as a
+    /// [`FlareShape::Ghost`]'s `rotation`).
+    pub rotation: f64,
+}
+
+impl Aperture {
+    /// A round iris.
+    pub const ROUND: Self = Self {
+        blades: 0,
+        rotation: 0.0,
+    };
+
+    /// The diffraction starburst's spikes: each straight edge of the iris spreads light along its
+    /// normal, both ways, so an even number of blades gives as many spikes (opposite edges
+    /// share a line) and an odd number twice as many; a round iris none.
+    pub fn spikes(self) -> u32 {
+        match self.blades {
+            0 => 0,
+            n if n % 2 == 0 => n,
+            n => 2 * n,
+        }
+    }
+
+    /// The direction of one spike, degrees counter-clockwise from +x: the normal of an edge,
+    /// half a sector from a corner.
+    pub fn spike_rotation(self) -> f64 {
+        match self.blades {
+            0 => 0.0,
+            n => self.rotation + 180.0 / f64::from(n),
+        }
+    }
+}
+
+/// The glare's starburst: its radius (half image heights) and how narrow its spikes are (the
+/// [`FlareShape::Streaks`] sharpness).
+pub const GLARE_STARBURST_SIZE: f64 = 0.6;
+/// See [`GLARE_STARBURST_SIZE`].
+pub const GLARE_STARBURST_SHARPNESS: f64 = 64.0;
+/// The glare's veiling glow about the source (light scattered in the lens): its radius (half
+/// image heights) and its brightness as a share of the starburst's.
+pub const GLARE_GLOW_SIZE: f64 = 0.15;
+/// See [`GLARE_GLOW_SIZE`].
+pub const GLARE_GLOW_SHARE: f64 = 0.5;
+/// Elements the glare adds about each source.
+pub const GLARE_ELEMENTS: usize = 2;
+
 /// One element of a flare.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlareElement {
@@ -129,6 +181,12 @@ pub struct LensFlare {
     /// The images of [`FlareShape::Image`] elements, each [`FLARE_IMAGE_SIDE`] square, at most
     /// [`MAX_FLARE_IMAGES`].
     pub images: Vec<Arc<TextureImage>>,
+    /// The lens's iris, which shapes the glare's starburst.
+    pub aperture: Aperture,
+    /// The glare's brightness, >= 0 (0 = none): the aperture's diffraction starburst and a veiling
+    /// glow about every source, as elements of this brightness at the source
+    /// ([`Self::lens_elements`]).
+    pub glare: f64,
 }
 
 /// NeHe's sizes are world-space half-widths of quads drawn at the light; firmament's are
@@ -147,7 +205,37 @@ impl LensFlare {
             fade_in: 0.0,
             fade_out: 0.0,
             images: Vec::new(),
+            aperture: Aperture::ROUND,
+            glare: 0.0,
         }
+    }
+
+    /// Every element the lens draws about each source: the flare's own, then — with glare — the
+    /// aperture's starburst (spikes along its edges' normals, [`Aperture::spikes`]; none for a
+    /// round iris) and a veiling glow, both at the source.
+    pub fn lens_elements(&self) -> Vec<FlareElement> {
+        let mut elements = self.elements.clone();
+        if self.glare > 0.0 {
+            let white = [1.0, 1.0, 1.0];
+            let spikes = self.aperture.spikes();
+            if spikes > 0 {
+                let starburst = FlareShape::Streaks {
+                    points: spikes,
+                    rotation: self.aperture.spike_rotation(),
+                    sharpness: GLARE_STARBURST_SHARPNESS,
+                };
+                elements.push(FlareElement::new(
+                    starburst,
+                    white,
+                    self.glare,
+                    GLARE_STARBURST_SIZE,
+                    0.0,
+                ));
+            }
+            let glow = self.glare * GLARE_GLOW_SHARE;
+            elements.push(FlareElement::new(FlareShape::Glow, white, glow, GLARE_GLOW_SIZE, 0.0));
+        }
+        elements
     }
 
     /// NeHe lesson 44's flare (seed 003, `glCamera::RenderLensFlare`): a big glow and 16 streaks
@@ -186,21 +274,29 @@ impl LensFlare {
     }
 
     /// A restrained modern camera look: a soft glow, faint six-sided aperture ghosts mirrored
-    /// through the centre, and a wide faint halo.
+    /// through the centre, and a wide faint halo; a six-bladed iris.
     pub fn subtle() -> Self {
+        let aperture = Aperture {
+            blades: 6,
+            rotation: 15.0,
+        };
         let ghost = |sides| FlareShape::Ghost {
             sides,
-            rotation: 15.0,
+            rotation: aperture.rotation,
             softness: 0.15,
         };
-        Self::with_elements(vec![
+        let elements = vec![
             FlareElement::new(FlareShape::Glow, [1.0, 0.95, 0.85], 0.35, 0.25, 0.0),
             FlareElement::new(ghost(6), [0.5, 0.7, 1.0], 0.05, 0.06, 1.3),
             FlareElement::new(ghost(6), [0.6, 1.0, 0.7], 0.04, 0.1, 1.6),
             FlareElement::new(ghost(0), [1.0, 0.7, 0.5], 0.03, 0.16, 1.9),
             FlareElement::new(ghost(6), [0.7, 0.6, 1.0], 0.04, 0.05, 0.6),
             FlareElement::new(FlareShape::Halo { thickness: 0.08 }, [0.8, 0.9, 1.0], 0.03, 0.9, 1.0),
-        ])
+        ];
+        Self {
+            aperture,
+            ..Self::with_elements(elements)
+        }
     }
 
     /// An anamorphic lens: a long thin horizontal blue streak through the source and a few
@@ -255,6 +351,7 @@ impl LensFlare {
             ("flare.intensity", self.intensity),
             ("flare.fade_in", self.fade_in),
             ("flare.fade_out", self.fade_out),
+            ("flare.glare", self.glare),
         ] {
             if !(value.is_finite() && value >= 0.0) {
                 return fail(field.into(), value.to_string(), "must be a finite number >= 0");
@@ -276,11 +373,33 @@ impl LensFlare {
                 );
             }
         }
+        let blades = self.aperture.blades;
+        if blades != 0 && !(3..=16).contains(&blades) {
+            return fail(
+                "flare.aperture_blades".into(),
+                blades.to_string(),
+                "must be 0 (a round iris) or 3 to 16",
+            );
+        }
+        if !self.aperture.rotation.is_finite() {
+            return fail(
+                "flare.aperture_rotation".into(),
+                self.aperture.rotation.to_string(),
+                "must be finite (degrees)",
+            );
+        }
         if self.elements.len() > MAX_FLARE_ELEMENTS {
             return fail(
                 "flare.elements".into(),
                 format!("{} elements", self.elements.len()),
                 "at most 64 elements",
+            );
+        }
+        if self.glare > 0.0 && self.elements.len() + GLARE_ELEMENTS > MAX_FLARE_ELEMENTS {
+            return fail(
+                "flare.elements".into(),
+                format!("{} elements", self.elements.len()),
+                "at most 62 elements with glare (its starburst and glow take two of the 64)",
             );
         }
         for (i, e) in self.elements.iter().enumerate() {
@@ -664,5 +783,45 @@ mod tests {
         let small = TextureImage::checkerboard(16, 2, texel, [0; 4]).expect("a valid checkerboard");
         flare.images[0] = Arc::new(small);
         assert!(flare.validate().unwrap_err().to_string().contains("256x256"));
+    }
+
+    #[test]
+    fn the_starburst_has_a_spike_pair_per_edge_direction() {
+        let aperture = |blades| Aperture { blades, rotation: 10.0 };
+        assert_eq!(
+            [0, 5, 6, 7, 8].map(|n| aperture(n).spikes()),
+            [0, 10, 6, 14, 8],
+            "round, odd and even irises"
+        );
+        // A hexagon with a corner at 10°: its edges' normals at 40°, 100°, …
+        assert!((aperture(6).spike_rotation() - 40.0).abs() < 1e-12);
+        let mut flare = LensFlare::subtle();
+        assert_eq!(flare.lens_elements(), flare.elements, "no glare, no extra elements");
+        flare.glare = 0.8;
+        let lens = flare.lens_elements();
+        assert_eq!(lens.len(), flare.elements.len() + GLARE_ELEMENTS);
+        let FlareShape::Streaks { points, rotation, .. } = lens[lens.len() - 2].shape else {
+            panic!("a starburst: {:?}", lens[lens.len() - 2]);
+        };
+        assert_eq!(
+            (points, rotation),
+            (6, 45.0),
+            "the subtle preset's six-bladed iris at 15°"
+        );
+        assert!(lens[lens.len() - 2..].iter().all(|e| e.position == 0.0));
+        flare.aperture = Aperture::ROUND;
+        assert_eq!(
+            flare.lens_elements().len(),
+            flare.elements.len() + 1,
+            "a round iris: the glow only"
+        );
+        flare.aperture.blades = 2;
+        assert!(
+            flare
+                .validate()
+                .unwrap_err()
+                .to_string()
+                .contains("flare.aperture_blades")
+        );
     }
 }

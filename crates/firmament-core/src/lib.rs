@@ -30,6 +30,7 @@
 
 pub mod astro;
 pub mod atmosphere;
+pub mod auto_exposure;
 pub mod camera;
 pub mod classic;
 pub mod color;
@@ -38,6 +39,7 @@ pub mod error;
 pub mod flare;
 pub mod frame;
 pub mod geometry;
+pub mod night_vision;
 pub mod sky;
 pub mod texture;
 

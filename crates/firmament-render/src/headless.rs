@@ -8,6 +8,7 @@ use firmament_core::Frame;
 
 use crate::context::GpuContext;
 use crate::error::RenderError;
+use crate::gpu_types::ExposureStateGpu;
 use crate::readback::{PendingRead, TextureCopy};
 pub use crate::readback::{decode_f16, read_texture};
 use crate::renderer::Renderer;
@@ -17,26 +18,9 @@ pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
 /// A `width` × `height` texture of [`LDR_FORMAT`] a [`Renderer`] built for it can record into
 /// (`RENDER_ATTACHMENT`, plus `usage`), labelled `label`.
-pub fn ldr_texture(
-    device: &wgpu::Device,
-    label: &str,
-    (width, height): (u32, u32),
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: LDR_FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
-        view_formats: &[],
-    })
+pub fn ldr_texture(device: &wgpu::Device, label: &str, size: (u32, u32), usage: wgpu::TextureUsages) -> wgpu::Texture {
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | usage;
+    crate::targets::texture_2d(device, label, size, LDR_FORMAT, usage)
 }
 
 /// An image read back from the GPU, rows top first.
@@ -221,6 +205,20 @@ impl HeadlessRenderer {
     /// (`None`, the default, for stills).
     pub fn set_flare_interval(&mut self, seconds: Option<f64>) {
         self.renderer.set_flare_interval(seconds);
+    }
+
+    /// See [`Renderer::set_exposure_interval`]: seconds between frames over which auto-exposure
+    /// adapts (`None`, the default, meters each frame afresh).
+    pub fn set_exposure_interval(&mut self, seconds: Option<f64>) {
+        self.renderer.set_exposure_interval(seconds);
+    }
+
+    /// The auto-exposure state after the last metered render (the EV100 it chose and what it
+    /// metered; for tests and logs: the rendering path itself never reads it back).
+    pub fn exposure_state(&self, ctx: &GpuContext) -> Result<ExposureStateGpu, RenderError> {
+        let size = std::mem::size_of::<ExposureStateGpu>();
+        let bytes = crate::readback::read_buffer(ctx, self.renderer.exposure().state_buffer(), size as u64)?;
+        Ok(bytemuck::pod_read_unaligned(&bytes[..size]))
     }
 
     /// The lens-flare visibility the last render computed on the GPU, one share per source the

@@ -37,17 +37,24 @@ pub const PHASE_SKY_AND_OBJECTS: &str = "sky & objects";
 pub const PHASE_AERIAL_PERSPECTIVE: &str = "aerial perspective";
 /// The lens flares (occlusion and drawing), in every frame (near zero without flares).
 pub const PHASE_FLARES: &str = "flares";
+/// Auto-exposure: the luminance histogram and the adaptation. Only in frames metered
+/// (`display.exposure_mode = "auto"`).
+pub const PHASE_EXPOSURE: &str = "auto-exposure";
+/// Bloom: the blur pyramid's way down and up. Only in frames with `display.bloom` above 0.
+pub const PHASE_BLOOM: &str = "bloom";
 /// Tone mapping into the caller's view: [`record`](crate::Renderer::record), and
 /// [`record_into`](crate::Renderer::record_into) with an output view.
 pub const PHASE_TONEMAP: &str = "tonemap";
 
 /// Every phase a frame can have, in the order they run. A frame's [`PassTimes`] holds the ones it
 /// ran, in this order.
-pub const PHASES: [&str; 5] = [
+pub const PHASES: [&str; 7] = [
     PHASE_LUTS,
     PHASE_SKY_AND_OBJECTS,
     PHASE_AERIAL_PERSPECTIVE,
     PHASE_FLARES,
+    PHASE_EXPOSURE,
+    PHASE_BLOOM,
     PHASE_TONEMAP,
 ];
 
@@ -77,7 +84,8 @@ pub struct PassTime {
 /// The GPU times of one frame's phases, in the order they ran.
 ///
 /// Phases the frame skipped are absent: [`PHASE_LUTS`] without an atmosphere,
-/// [`PHASE_AERIAL_PERSPECTIVE`] when no aerial perspective was built, [`PHASE_TONEMAP`] on the
+/// [`PHASE_AERIAL_PERSPECTIVE`] when no aerial perspective was built, [`PHASE_EXPOSURE`] and
+/// [`PHASE_BLOOM`] when the display has no auto-exposure or bloom, [`PHASE_TONEMAP`] on the
 /// [`record_into`](crate::Renderer::record_into) path without an output view.
 #[derive(Debug, Clone, Default, PartialEq)]
 #[non_exhaustive]

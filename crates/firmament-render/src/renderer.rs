@@ -1,6 +1,7 @@
 //! The frame renderer: objects, then the sky behind them and the stars and the Moon added over
 //! it, into HDR targets; aerial perspective over the objects when the sky is an atmosphere; lens
-//! flares over everything; tonemap → the caller's view.
+//! flares over everything; the camera's auto-exposure meter and bloom; the output pass → the
+//! caller's view.
 
 use std::collections::HashMap;
 
@@ -15,8 +16,9 @@ use crate::pass_timing::{
 };
 use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
+use crate::passes::camera::CameraPasses;
 use crate::passes::{
-    AtmospherePass, EmpiricalSkyPass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, TonemapPass,
+    AtmospherePass, EmpiricalSkyPass, ExposurePass, FlarePass, GradientSkyPass, NightSkyPass, ObjectPass, TonemapPass,
     begin_clear_pass, begin_load_pass,
 };
 use crate::targets::{DEPTH_CLEAR, EmbedTarget, FrameTargets};
@@ -133,6 +135,9 @@ pub struct Renderer {
     /// Which sky the last `prepare` chose.
     sky: SkyKind,
     objects: ObjectPass,
+    /// The camera: auto-exposure's meter and bloom, run on the frame's HDR image when its
+    /// display asks.
+    camera: CameraPasses,
     tonemap: TonemapPass,
     /// The output passes for callers' output views, one per format, built on first use.
     embedded_tonemaps: HashMap<wgpu::TextureFormat, TonemapPass>,
@@ -173,6 +178,7 @@ impl Renderer {
             active: None,
             sky: SkyKind::Gradient,
             objects: ObjectPass::new(&ctx.device, &ctx.queue),
+            camera: CameraPasses::new(&ctx.device),
             tonemap: TonemapPass::new(&ctx.device, tonemap_format),
             embedded_tonemaps: HashMap::new(),
             embedded_output: None,
@@ -216,8 +222,11 @@ impl Renderer {
         self.sky = self.own.prepare(ctx, frame, &camera, (width, height));
         self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
         if let Some(targets) = &self.targets {
+            let hdr = &targets.hdr_view;
+            self.camera.prepare(ctx, Some((frame, &camera)), hdr, (width, height));
+            let images = self.camera.images();
             self.tonemap
-                .prepare(&ctx.device, &ctx.queue, &frame.display, &targets.hdr_view);
+                .prepare(&ctx.device, &ctx.queue, &frame.display, hdr, images);
         }
         Ok(())
     }
@@ -289,6 +298,7 @@ impl Renderer {
         // Flares last, over everything, hidden by what the depth buffer holds.
         own.flares.record(encoder, &targets.hdr_view);
         timing.mark(encoder, PHASE_FLARES);
+        self.camera.record(encoder, &mut timing);
         self.tonemap.record(encoder, output);
         timing.mark(encoder, PHASE_TONEMAP);
         timing.finish(encoder);
@@ -325,12 +335,15 @@ impl Renderer {
         self.lighting_recorded.set(false);
         self.embedded_size = (width, height);
         self.embedded_output = target.output.map(|view| view.texture().format());
+        let with_output = self.embedded_output.is_some().then_some((frame, &camera));
+        self.camera.prepare(ctx, with_output, target.color, (width, height));
         if let Some(format) = self.embedded_output {
+            let images = self.camera.images();
             let tonemap = self
                 .embedded_tonemaps
                 .entry(format)
                 .or_insert_with(|| TonemapPass::new(&ctx.device, format));
-            tonemap.prepare(&ctx.device, &ctx.queue, &frame.display, target.color);
+            tonemap.prepare(&ctx.device, &ctx.queue, &frame.display, target.color, images);
         }
         Ok(())
     }
@@ -384,6 +397,7 @@ impl Renderer {
         passes.flares.record(encoder, target.color);
         timing.mark(encoder, PHASE_FLARES);
         if let (Some(view), Some(tonemap)) = (target.output, output.and_then(|f| self.embedded_tonemaps.get(&f))) {
+            self.camera.record(encoder, &mut timing);
             tonemap.record(encoder, view);
             timing.mark(encoder, PHASE_TONEMAP);
         }
@@ -433,6 +447,23 @@ impl Renderer {
         for passes in self.embedded.values_mut() {
             passes.flares.set_interval(seconds);
         }
+    }
+
+    /// Sets the time between frames over which auto-exposure adapts at the display's speeds (a
+    /// viewer's frame interval, a time-lapse's time per frame, seconds); `None` (the default)
+    /// meters every frame afresh, as stills should. Frames are adapted in the order recorded.
+    pub fn set_exposure_interval(&mut self, seconds: Option<f64>) {
+        self.camera.exposure.set_interval(seconds);
+    }
+
+    /// Forgets the adapted exposure: the next metered frame jumps to its meter's reading.
+    pub fn reset_exposure(&self, ctx: &GpuContext) {
+        self.camera.exposure.reset(&ctx.queue);
+    }
+
+    /// The auto-exposure pass (its state buffer, for tests and tools).
+    pub fn exposure(&self) -> &ExposurePass {
+        &self.camera.exposure
     }
 
     /// The lens-flare pass (its visibility buffer, for tests and tools).

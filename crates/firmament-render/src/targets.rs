@@ -33,23 +33,7 @@ pub struct FrameTargets {
 impl FrameTargets {
     /// Creates targets of `width` × `height` pixels.
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let size = wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        };
-        let make = |label, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let make = |label, format, usage| texture_2d(device, label, (width, height), format, usage);
         let hdr = make(
             "firmament FrameTargets hdr",
             HDR_FORMAT,
@@ -80,6 +64,36 @@ impl FrameTargets {
     pub fn size(&self) -> (u32, u32) {
         (self.hdr.width(), self.hdr.height())
     }
+}
+
+/// A 2D texture of one mip level and one sample, labelled.
+pub(crate) fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// A 1 × 1 [`HDR_FORMAT`] texture's view for a pass to bind before it is given the frame's.
+pub(crate) fn hdr_placeholder(device: &wgpu::Device, label: &str) -> wgpu::TextureView {
+    texture_2d(device, label, (1, 1), HDR_FORMAT, wgpu::TextureUsages::TEXTURE_BINDING)
+        .create_view(&wgpu::TextureViewDescriptor::default())
 }
 
 /// Colour formats [`EmbedTarget::color`] may have: linear float HDR targets.

@@ -5,13 +5,14 @@
 //! the scene's lists (suns, lights, objects) have constructors of their own (`entries.rs`), and
 //! [`SceneBuilder::edit`] reaches any field a setter does not cover.
 
+use firmament_core::auto_exposure::AutoExposure;
 use firmament_core::display::{Encoding, ToneCurve};
 
 use crate::error::SceneError;
 use crate::model::{
-    AtmosphereModelName, Body, EmpiricalSection, FlareElementEntry, FlarePresetName, FogCoordinateName, FogModeName,
-    GlColor, KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry, Scene, ShadingName,
-    SkyModelName, SunEntry,
+    AtmosphereModelName, Body, EmpiricalSection, ExposureModeName, FlareElementEntry, FlarePresetName,
+    FogCoordinateName, FogModeName, GlColor, KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry,
+    Scene, ShadingName, SkyModelName, SunEntry,
 };
 use crate::spectrum::SceneSpectrum;
 
@@ -162,6 +163,30 @@ impl SceneBuilder {
     pub fn exposure_multiplier(mut self, multiplier: f64) -> Self {
         self.scene.display.exposure = multiplier;
         self.scene.display.ev100 = None;
+        self
+    }
+
+    /// `display.exposure_mode = "auto"` with the `auto_*` keys from `auto`: each frame metered.
+    pub fn auto_exposure(mut self, auto: AutoExposure) -> Self {
+        let display = &mut self.scene.display;
+        display.exposure_mode = ExposureModeName::Auto;
+        display.auto_ev_min = auto.ev100_min;
+        display.auto_ev_max = auto.ev100_max;
+        display.auto_compensation = auto.compensation_ev;
+        display.auto_speed_up = auto.speed_up_ev_per_s;
+        display.auto_speed_down = auto.speed_down_ev_per_s;
+        self
+    }
+
+    /// `display.bloom`: bloom's strength in [0, 1] (0 = off).
+    pub fn bloom(mut self, strength: f64) -> Self {
+        self.scene.display.bloom = strength;
+        self
+    }
+
+    /// `display.night_vision`: the eye's scotopic vision below a few cd/m².
+    pub fn night_vision(mut self, on: bool) -> Self {
+        self.scene.display.night_vision = on;
         self
     }
 

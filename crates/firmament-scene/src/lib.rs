@@ -85,9 +85,9 @@ pub use convert::{
 pub use document::{SceneDocument, SceneOrigin, SceneSource, load, load_file};
 pub use error::SceneError;
 pub use model::{
-    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, EmpiricalSection, GradientSection,
-    KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SkyModelName, SkySection,
-    SunEntry, SunSection, TimeSection,
+    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, EmpiricalSection, ExposureModeName,
+    GradientSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SkyModelName,
+    SkySection, SunEntry, SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

@@ -195,6 +195,34 @@ pub struct DisplaySection {
     /// How PNG pixels store the result: `"srgb"` (default) or `"none"` (`round(255·v)`, as an
     /// 8-bit GL framebuffer holds it; classic presets use it).
     pub encoding: firmament_core::display::Encoding,
+    /// `"manual"` (`ev100` or `exposure`) or `"auto"` (metered from each frame; `ev100` then
+    /// only scales the lens flares).
+    pub exposure_mode: ExposureModeName,
+    /// Auto-exposure's lowest EV100, in [-20, 40] and <= `auto_ev_max`.
+    pub auto_ev_min: f64,
+    /// Auto-exposure's highest EV100, in [-20, 40].
+    pub auto_ev_max: f64,
+    /// Exposure compensation, EV, in [-10, 10]: positive brightens.
+    pub auto_compensation: f64,
+    /// How fast the EV100 rises as the scene brightens, EV per second, > 0 (time-lapses and
+    /// the viewer; stills meter at once).
+    pub auto_speed_up: f64,
+    /// How fast the EV100 falls as the scene darkens, EV per second, > 0.
+    pub auto_speed_down: f64,
+    /// Bloom's strength in [0, 1] (0 = off): the share of light spread around each pixel.
+    pub bloom: f64,
+    /// The eye's night vision (rods: blue shift, colour fading) below a few cd/m² (PNG only).
+    pub night_vision: bool,
+}
+
+/// `display.exposure_mode`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ExposureModeName {
+    /// The scene's `ev100` or `exposure`.
+    Manual,
+    /// Metered from each frame.
+    Auto,
 }
 
 /// The sky models a scene can choose.

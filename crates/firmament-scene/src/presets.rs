@@ -22,6 +22,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/default.toml"),
     },
     Preset {
+        name: "golden-hour",
+        summary: "the showcase (`render` without a scene): golden hour over objects, auto-exposure, bloom, the Sun's flare",
+        toml: include_str!("presets/golden-hour.toml"),
+    },
+    Preset {
         name: "dawn",
         summary: "06:20, looking east as the sun clears the horizon",
         toml: include_str!("presets/dawn.toml"),

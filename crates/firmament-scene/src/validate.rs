@@ -141,6 +141,37 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     if let Some(ev) = scene.display.ev100 {
         in_range("display.ev100", ev, -20.0, 40.0, " (EV at ISO 100)")?;
     }
+    let display = &scene.display;
+    in_range(
+        "display.auto_ev_min",
+        display.auto_ev_min,
+        -20.0,
+        40.0,
+        " (EV at ISO 100)",
+    )?;
+    in_range(
+        "display.auto_ev_max",
+        display.auto_ev_max,
+        -20.0,
+        40.0,
+        " (EV at ISO 100)",
+    )?;
+    check(
+        display.auto_ev_min <= display.auto_ev_max,
+        "display.auto_ev_min",
+        display.auto_ev_min,
+        &format!("must be <= display.auto_ev_max ({})", display.auto_ev_max),
+    )?;
+    in_range(
+        "display.auto_compensation",
+        display.auto_compensation,
+        -10.0,
+        10.0,
+        " EV",
+    )?;
+    positive("display.auto_speed_up", display.auto_speed_up, " EV per second")?;
+    positive("display.auto_speed_down", display.auto_speed_down, " EV per second")?;
+    in_range("display.bloom", display.bloom, 0.0, 1.0, "")?;
 
     let g = &scene.sky.gradient;
     check(

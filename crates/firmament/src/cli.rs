@@ -76,7 +76,8 @@ pub(crate) struct SceneArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct RenderArgs {
-    /// A scene file (TOML). Without one, the preset (or the built-in default scene) is rendered.
+    /// A scene file (TOML). Without one, the preset (default `golden-hour`, the showcase) is
+    /// rendered.
     pub(crate) scene: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) scene_args: SceneArgs,
@@ -277,7 +278,8 @@ pub(crate) struct TimelapseArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct ViewArgs {
-    /// A scene file (TOML). Without one, the preset (or the built-in default scene) is shown.
+    /// A scene file (TOML). Without one, the preset (default `golden-hour`, the showcase) is
+    /// shown.
     pub(crate) scene: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) scene_args: SceneArgs,

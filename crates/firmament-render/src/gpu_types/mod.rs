@@ -7,6 +7,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
+use firmament_core::auto_exposure::ExposureMode;
 use firmament_core::display::{DisplaySettings, Encoding, ToneCurve};
 use firmament_core::sky::gradient::{Blend, GradientSkyState};
 use firmament_core::sky::sun::SUN_HORIZON_FADE;
@@ -15,6 +16,7 @@ use glam::{DMat4, Mat4};
 use pack::rgbw;
 
 pub mod atmosphere;
+pub mod camera;
 pub mod classic;
 pub mod codes;
 pub mod empirical_sky;
@@ -26,6 +28,7 @@ pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
 pub(crate) use atmosphere::OrderSumsGpu;
+pub use camera::{ExposureStateGpu, MeteringUniforms};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
 pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
@@ -111,15 +114,21 @@ impl GradientSkyUniforms {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct TonemapUniforms {
-    /// Exposure multiplier.
+    /// The scene's exposure multiplier (used when `metered` is 0).
     pub exposure: f32,
     /// The tone curve: a `TONE_CURVE_*` of [`codes`].
     pub curve: u32,
     /// What the shader does about the sRGB encoding: a `TRANSFER_*` of [`codes`] (decoding
     /// cancels an `*Srgb` output's encoding for [`Encoding::None`]).
     pub transfer: u32,
-    /// Padding to 16 bytes.
-    pub _pad: u32,
+    /// 1: the exposure is the meter's (auto-exposure's texture), not `exposure`.
+    pub metered: u32,
+    /// Bloom's share of each pixel, [0, 1].
+    pub bloom: f32,
+    /// 1: the eye's night vision.
+    pub night_vision: u32,
+    /// Padding to 32 bytes.
+    pub _pad: [u32; 2],
 }
 
 impl TonemapUniforms {
@@ -138,7 +147,10 @@ impl TonemapUniforms {
                 (Encoding::None, true) => codes::TRANSFER_DECODE_SRGB,
                 (Encoding::Srgb, true) | (Encoding::None, false) => codes::TRANSFER_NONE,
             },
-            _pad: 0,
+            metered: u32::from(matches!(display.exposure_mode, ExposureMode::Auto(_))),
+            bloom: display.bloom as f32,
+            night_vision: u32::from(display.night_vision),
+            _pad: [0; 2],
         }
     }
 }

@@ -149,6 +149,18 @@ pub(crate) fn far_depth_constant(convention: DepthConvention) -> (&'static str, 
     ("FAR_DEPTH", convention.far_depth())
 }
 
+/// A bilinear sampler clamped at the edges, labelled for its owner.
+pub(crate) fn linear_clamp_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: wgpu::AddressMode::ClampToEdge,
+        address_mode_v: wgpu::AddressMode::ClampToEdge,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    })
+}
+
 /// A uniform buffer of `T`'s size, labelled for its owner.
 pub(crate) fn uniform_buffer<T>(device: &wgpu::Device, label: &str) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {

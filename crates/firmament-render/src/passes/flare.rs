@@ -498,7 +498,8 @@ impl FlarePass {
                 self.elements_bind_group = Some(elements_bind_group(device, &self.elements_layout, self, accumulation));
             }
         }
-        let positions: Vec<f64> = flare.elements.iter().map(|e| e.position).collect();
+        let lens_elements = flare.lens_elements();
+        let positions: Vec<f64> = lens_elements.iter().map(|e| e.position).collect();
         let scale = flare.intensity / if exposure > 0.0 { exposure } else { 1.0 };
         let mut sources = Vec::new();
         let mut instances = Vec::new();
@@ -509,7 +510,7 @@ impl FlarePass {
             let index = sources.len() as u32;
             let centers = element_centers(camera, source, &positions);
             let mut lit = PixelRect::default();
-            for (element, center) in flare.elements.iter().take(MAX_FLARE_ELEMENTS).zip(centers) {
+            for (element, center) in lens_elements.iter().take(MAX_FLARE_ELEMENTS).zip(centers) {
                 let Some(center) = center else {
                     continue;
                 };

@@ -3,7 +3,9 @@
 //! caller already began).
 
 pub mod atmosphere;
+pub mod camera;
 mod common;
+mod compute;
 pub mod empirical_sky;
 mod far_plane;
 pub mod flare;
@@ -14,6 +16,7 @@ pub mod sky_gradient;
 pub mod tonemap;
 
 pub use atmosphere::{AtmospherePass, SkyMethod};
+pub use camera::{BloomPass, ExposurePass};
 pub use empirical_sky::EmpiricalSkyPass;
 pub use flare::FlarePass;
 pub use night_sky::NightSkyPass;

@@ -72,6 +72,12 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/aerial_perspective",
         include_str!("atmosphere/aerial_perspective.wgsl"),
     ),
+    ("camera/bindings", include_str!("camera/bindings.wgsl")),
+    ("camera/exposure_meter", include_str!("camera/exposure_meter.wgsl")),
+    ("camera/exposure_adapt", include_str!("camera/exposure_adapt.wgsl")),
+    ("camera/bloom_from_image", include_str!("camera/bloom_from_image.wgsl")),
+    ("camera/bloom_down", include_str!("camera/bloom_down.wgsl")),
+    ("camera/bloom_up", include_str!("camera/bloom_up.wgsl")),
     ("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL),
     (
         "include/firmament_aerial_perspective",
@@ -219,11 +225,21 @@ pub static FLARE_OCCLUSION: Shader = entry!("flare_occlusion");
 pub static FLARE: Shader = entry!("flare");
 /// The night-sky pass: stars and the Moon.
 pub static NIGHT_SKY: Shader = entry!("night_sky");
+/// Auto-exposure's meter: the luminance histogram (compute).
+pub static EXPOSURE_METER: Shader = entry!("camera/exposure_meter");
+/// Auto-exposure's adaptation: the EV100 from the histogram (compute).
+pub static EXPOSURE_ADAPT: Shader = entry!("camera/exposure_adapt");
+/// Bloom's first step down, from the image (compute).
+pub static BLOOM_FROM_IMAGE: Shader = entry!("camera/bloom_from_image");
+/// Bloom's way down from the first level (compute).
+pub static BLOOM_DOWN: Shader = entry!("camera/bloom_down");
+/// Bloom's way up (compute).
+pub static BLOOM_UP: Shader = entry!("camera/bloom_up");
 
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 16] = [
+pub static ENTRIES: [&Shader; 21] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -239,6 +255,11 @@ pub static ENTRIES: [&Shader; 16] = [
     &FLARE_OCCLUSION,
     &FLARE,
     &NIGHT_SKY,
+    &EXPOSURE_METER,
+    &EXPOSURE_ADAPT,
+    &BLOOM_FROM_IMAGE,
+    &BLOOM_DOWN,
+    &BLOOM_UP,
     &FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
 ];
 
@@ -787,6 +808,33 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
     }
 
     #[test]
+    fn camera_layouts_match() {
+        use crate::gpu_types::camera::METERING_BINS;
+        use crate::gpu_types::{ExposureStateGpu, MeteringUniforms};
+        let meter = validate("camera/exposure_meter", &EXPOSURE_METER);
+        assert_layout!(
+            meter,
+            "Metering",
+            MeteringUniforms,
+            [clip_to_world, discs, range, ev, step, counts]
+        );
+        assert_layout!(meter, "ExposureState", ExposureStateGpu, [ev100, target_ev100, metered_log2, frames]);
+        let (size, _) = wgsl_layout(&meter, "Histogram");
+        assert_eq!(size, 2 * 4 * METERING_BINS, "the histogram's bins");
+        let constant = |name: &str| {
+            let (_, c) = meter.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).expect(name);
+            match meter.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::U32(value)) => value,
+                ref other => panic!("{name}: {other:?}"),
+            }
+        };
+        let cell = firmament_core::auto_exposure::METERING_CELL;
+        assert_eq!(constant("METERING_CELL"), cell);
+        assert_eq!(constant("METERING_TILE"), 16 * cell);
+        assert_eq!(constant("METERING_BINS"), METERING_BINS);
+    }
+
+    #[test]
     fn empirical_sky_layouts_match() {
         use crate::gpu_types::{EmpiricalSkyUniforms, EmpiricalStarUniform};
         let empirical = validate("empirical_sky", &EMPIRICAL_SKY);
@@ -831,7 +879,12 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             ]
         );
         let tonemap = validate("tonemap", &TONEMAP);
-        assert_layout!(tonemap, "Tonemap", TonemapUniforms, [exposure, curve, transfer, _pad]);
+        assert_layout!(
+            tonemap,
+            "Tonemap",
+            TonemapUniforms,
+            [exposure, curve, transfer, metered, bloom, night_vision, _pad]
+        );
         let classic = validate("classic_lighting", &CLASSIC_LIGHTING);
         assert_layout!(
             classic,

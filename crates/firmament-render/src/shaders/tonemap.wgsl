@@ -1,23 +1,30 @@
-// tonemap.wgsl — HDR radiance → display: exposure, tone curve, sRGB encoding.
+// tonemap.wgsl — HDR radiance → display: bloom, night vision, exposure, tone curve, sRGB encoding.
 //
-// Conventions: the input texture holds linear scene radiance (Rgba16Float), read texel for texel
-// (same size as the output). Curves are the f64 references in `firmament_core::display`; keep the
-// two in step. `transfer` (TRANSFER_*): encode applies the sRGB encoding here (the output format
-// does not); decode applies its inverse so that an `*Srgb` output's own encoding cancels (display
+// Conventions: the input texture holds linear scene radiance (Rgba16Float; cd/m² for the physical
+// sky), read texel for texel (same size as the output). Curves, night vision and exposure are the
+// f64 references in `firmament_core::display`, `night_vision` and `auto_exposure`; keep them in
+// step. `transfer` (TRANSFER_*): encode applies the sRGB encoding here (the output format does
+// not); decode applies its inverse so that an `*Srgb` output's own encoding cancels (display
 // encoding "none": the stored bytes are round(255·v)); none leaves values as they are.
 
 #import common/fullscreen
 #import generated/constants
 
 struct Tonemap {
-    exposure: f32,
-    curve: u32,    // TONE_CURVE_*
-    transfer: u32, // TRANSFER_*
-    _pad: u32,
+    exposure: f32,     // the scene's exposure multiplier (when not metered)
+    curve: u32,        // TONE_CURVE_*
+    transfer: u32,     // TRANSFER_*
+    metered: u32,      // 1: the exposure is the meter's, from `metered_exposure`
+    bloom: f32,        // bloom's share of each pixel, [0, 1]
+    night_vision: u32, // 1: the eye's night vision
+    _pad: vec2<u32>,
 }
 
 @group(0) @binding(0) var<uniform> params: Tonemap;
 @group(0) @binding(1) var hdr: texture_2d<f32>;
+@group(0) @binding(2) var metered_exposure: texture_2d<f32>; // 1 × 1: the multiplier
+@group(0) @binding(3) var bloom_image: texture_2d<f32>;     // half size, sampled bilinearly
+@group(0) @binding(4) var bloom_sampler: sampler;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
@@ -90,6 +97,21 @@ fn agx(c: vec3<f32>) -> vec3<f32> {
     return pow(max(display, vec3<f32>(0.0)), vec3<f32>(2.2));
 }
 
+// Night vision (Krawczyk, Myszkowski & Seidel 2005): the rods' luminance (Larson et al. 1997) in
+// a bluish grey, mixed with the colour by the rods' share σ = σ_b / (σ_b + Y).
+fn night_vision(c: vec3<f32>) -> vec3<f32> {
+    let to_xyz = mat3x3<f32>(
+        vec3<f32>(0.4124, 0.3576, 0.1805),
+        vec3<f32>(0.2126, 0.7152, 0.0722),
+        vec3<f32>(0.0193, 0.1192, 0.9505),
+    );
+    let xyz = c * to_xyz;
+    let v = select(0.0, max(xyz.y * (1.33 * (1.0 + (xyz.y + xyz.z) / xyz.x) - 1.68), 0.0), xyz.x > 0.0);
+    let half_luminance = 0.4;
+    let sigma = half_luminance / (half_luminance + max(xyz.y, 0.0));
+    return (1.0 - sigma) * c + sigma * v * vec3<f32>(1.05, 0.97, 1.27);
+}
+
 fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
     let low = c * 12.92;
     let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
@@ -105,7 +127,20 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
     let texel = vec2<i32>(floor(in.clip.xy));
-    let radiance = textureLoad(hdr, texel, 0).rgb * params.exposure;
+    var scene = textureLoad(hdr, texel, 0).rgb;
+    if params.bloom > 0.0 {
+        let uv = in.clip.xy / vec2<f32>(textureDimensions(hdr));
+        let spread = textureSampleLevel(bloom_image, bloom_sampler, uv, 0.0).rgb;
+        scene = mix(scene, spread, params.bloom);
+    }
+    if params.night_vision != 0u {
+        scene = night_vision(scene);
+    }
+    var exposure = params.exposure;
+    if params.metered != 0u {
+        exposure = textureLoad(metered_exposure, vec2<i32>(0, 0), 0).r;
+    }
+    let radiance = scene * exposure;
     var c = radiance;
     if params.curve == TONE_CURVE_ACES_FITTED {
         c = aces_fitted(radiance);

@@ -6,6 +6,7 @@
 
 mod aerial_perspective;
 mod atmosphere;
+mod camera;
 mod embed_target;
 mod embedding;
 mod empirical_sky;

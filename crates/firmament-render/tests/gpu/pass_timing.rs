@@ -205,17 +205,14 @@ fn supported_timing_brings_back_every_phase() {
     }
     let output = output_texture(ctx);
 
-    // An atmosphere with objects: every phase of `record`.
-    let frame = preset_frame("earth-objects");
+    // The showcase, an atmosphere with objects, auto-exposure and bloom: every phase of `record`.
+    let frame = preset_frame("golden-hour");
     for _ in 0..3 {
         render(ctx, &mut renderer, &frame, &output);
     }
     let times = wait_for_times(ctx, &renderer).expect("times after a blocking poll");
-    check_times(&times, &PHASES, "earth-objects");
-    eprintln!(
-        "{}: earth-objects at {WIDTH}x{HEIGHT}: {times:?}",
-        ctx.adapter_summary()
-    );
+    check_times(&times, &PHASES, "golden-hour");
+    eprintln!("{}: golden-hour at {WIDTH}x{HEIGHT}: {times:?}", ctx.adapter_summary());
 
     // A gradient sky: no LUTs, no aerial perspective.
     let frame = preset_frame("default");
@@ -253,12 +250,12 @@ fn supported_timing_brings_back_every_phase() {
         render(ctx, &mut renderer, &frame, &output);
     }
     let before = wait_for_times(ctx, &renderer).expect("times after a blocking poll");
-    render(ctx, &mut renderer, &preset_frame("earth-objects"), &output);
+    render(ctx, &mut renderer, &preset_frame("golden-hour"), &output);
     let after = wait_for_times(ctx, &renderer).expect("times after a blocking poll");
     check_times(
         &before,
         &[PHASE_SKY_AND_OBJECTS, PHASE_FLARES, PHASE_TONEMAP],
         "default again",
     );
-    check_times(&after, &PHASES, "earth-objects after dropped encoders");
+    check_times(&after, &PHASES, "golden-hour after dropped encoders");
 }

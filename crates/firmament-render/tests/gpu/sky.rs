@@ -215,7 +215,7 @@ fn odd_sizes_read_back_correctly_through_every_tone_curve() {
         let display = DisplaySettings {
             exposure: Exposure::multiplier(0.8),
             tone_curve: curve,
-            encoding: Default::default(),
+            ..Default::default()
         };
         let frame = frame(camera, sky(bright, 2.0), display);
         let (w, h) = (333, 71);

@@ -28,7 +28,7 @@ use std::sync::Arc;
 
 use firmament_core::classic::scene::LightSpace;
 use firmament_core::flare::{
-    FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_ELEMENTS, MAX_FLARE_IMAGES,
+    Aperture, FlareElement, FlareLayer, FlareShape, FlareSource, LensFlare, MAX_FLARE_ELEMENTS, MAX_FLARE_IMAGES,
     MAX_FLARE_SAMPLES, MAX_FLARE_SOURCES,
 };
 use firmament_core::frame::{AtmosphereSky, EmpiricalSky, Sky};
@@ -223,6 +223,11 @@ pub(crate) fn lens_flare(scene: &Scene) -> Result<LensFlare, SceneError> {
         fade_in: f.fade_in,
         fade_out: f.fade_out,
         images: images.images,
+        aperture: Aperture {
+            blades: f.aperture_blades.unwrap_or(base.aperture.blades),
+            rotation: f.aperture_rotation.unwrap_or(base.aperture.rotation),
+        },
+        glare: f.glare,
     };
     flare.validate().map_err(from_core)?;
     Ok(flare)

@@ -20,6 +20,7 @@ pub use time::{add_seconds, parse_date_time};
 use firmament_core::astro::CivilDateTime;
 use firmament_core::astro::spa::SolarPosition;
 use firmament_core::atmosphere::Planet;
+use firmament_core::auto_exposure::{AutoExposure, ExposureMode};
 use firmament_core::camera::orientation_from_heading_pitch_roll;
 use firmament_core::display::{DisplaySettings, Exposure};
 use firmament_core::frame::{AtmosphereSky, EmpiricalSky, Sky};
@@ -31,7 +32,7 @@ use glam::DVec3;
 use self::time::Moment;
 use crate::checks::time_of_day;
 use crate::error::SceneError;
-use crate::model::{AtmosphereModelName, KeyframesBy, Scene, SkyModelName};
+use crate::model::{AtmosphereModelName, ExposureModeName, KeyframesBy, Scene, SkyModelName};
 
 impl Scene {
     /// The scene's own time of day (`time.time_of_day`).
@@ -108,10 +109,24 @@ impl Scene {
             Some(ev) => Exposure::from_ev100(ev),
             None => Exposure::multiplier(self.display.exposure),
         };
+        let display = &self.display;
+        let exposure_mode = match display.exposure_mode {
+            ExposureModeName::Manual => ExposureMode::Manual,
+            ExposureModeName::Auto => ExposureMode::Auto(AutoExposure {
+                ev100_min: display.auto_ev_min,
+                ev100_max: display.auto_ev_max,
+                compensation_ev: display.auto_compensation,
+                speed_up_ev_per_s: display.auto_speed_up,
+                speed_down_ev_per_s: display.auto_speed_down,
+            }),
+        };
         DisplaySettings {
             exposure,
-            tone_curve: self.display.tone_curve,
-            encoding: self.display.encoding,
+            exposure_mode,
+            tone_curve: display.tone_curve,
+            encoding: display.encoding,
+            bloom: display.bloom,
+            night_vision: display.night_vision,
         }
     }
 

@@ -119,4 +119,13 @@ pub struct FlareSection {
     pub fade_in: f64,
     /// Most fall of visibility per second, >= 0 (0 = at once).
     pub fade_out: f64,
+    /// The iris's blades, 0 (round) or 3 to 16; absent = the preset's.
+    #[serde(default)]
+    pub aperture_blades: Option<u32>,
+    /// The iris's rotation, degrees; absent = the preset's.
+    #[serde(default)]
+    pub aperture_rotation: Option<f64>,
+    /// The glare's brightness, >= 0 (0 = none): the iris's diffraction starburst and a veiling
+    /// glow about every source.
+    pub glare: f64,
 }

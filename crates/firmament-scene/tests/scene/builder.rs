@@ -250,6 +250,29 @@ fn an_empty_builder_is_the_default_scene_file() {
 }
 
 #[test]
+fn the_camera_keys_build_as_the_file_says_them() {
+    use firmament_core::auto_exposure::{AutoExposure, ExposureMode};
+    // The file's defaults are the core's.
+    let auto = AutoExposure::default();
+    let built = Scene::builder()
+        .auto_exposure(auto)
+        .bloom(0.2)
+        .night_vision(true)
+        .build();
+    assert_eq!(
+        built,
+        parse("[display]\nexposure_mode = \"auto\"\nbloom = 0.2\nnight_vision = true")
+    );
+    let display = built.expect("a scene").display_settings();
+    assert_eq!(display.exposure_mode, ExposureMode::Auto(auto));
+    assert_eq!((display.bloom, display.night_vision), (0.2, true));
+    assert_eq!(
+        parse("").expect("the default").display_settings().exposure_mode,
+        ExposureMode::Manual
+    );
+}
+
+#[test]
 fn bad_builder_values_give_the_scene_files_messages() {
     let cases: [(SceneBuilder, &str); 6] = [
         (Scene::builder().fov_y_deg(0.0), "[camera]\nfov_y = 0.0"),

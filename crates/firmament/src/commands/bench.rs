@@ -12,8 +12,8 @@ use baseline::Baselines;
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use measure::{
-    AtmosphereBench, EmbeddingBench, FlareBench, ObjectBench, bench_atmosphere, bench_embedding, bench_flares,
-    bench_objects, sphere_grid,
+    AtmosphereBench, CameraBench, EmbeddingBench, FlareBench, ObjectBench, bench_atmosphere, bench_camera,
+    bench_embedding, bench_flares, bench_objects, sphere_grid,
 };
 
 use crate::cli::BenchArgs;
@@ -45,11 +45,12 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
     };
     let ctx = GpuContext::headless(args.backend.into())?;
     let result = bench_atmosphere(&ctx, sky, &frame.camera, args.width, args.height, args.frames)?;
+    let camera = bench_camera(&ctx, &frame, args.width, args.height, args.frames)?;
     let baselines = Baselines::measure(&ctx, args.width, args.height, args.frames);
     if args.json {
-        println!("{}", json(&result, &baselines));
+        println!("{}", json(&result, &camera, &baselines));
     } else {
-        print_table(&result, &baselines);
+        print_table(&result, &camera, &baselines);
     }
     Ok(())
 }
@@ -123,7 +124,7 @@ fn embedding_json(b: &EmbeddingBench, baselines: &Baselines) -> String {
     with_baselines(object, baselines, &rows)
 }
 
-fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
+fn print_table(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines) {
     println!(
         "{} — {}x{}, {} sun(s), median of {} frames, {}",
         b.adapter,
@@ -156,6 +157,8 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
         ),
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
+        ("auto-exposure (histogram and adaptation)", camera.exposure_ms),
+        ("bloom (the dual-filter pyramid, down and up)", camera.bloom_ms),
     ]);
     let steps: Vec<String> = b.medium_lut_steps_ms.iter().map(|ms| format!("{ms:.3}")).collect();
     println!(
@@ -170,7 +173,7 @@ fn print_table(b: &AtmosphereBench, baselines: &Baselines) {
     );
 }
 
-fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
+fn json(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines) -> String {
     let object = serde_json::json!({
         "adapter": b.adapter,
         "width": b.width,
@@ -191,6 +194,8 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         "march_frame_ms": b.march_frame_ms,
         "difference_median": b.difference.0,
         "difference_worst": b.difference.1,
+        "exposure_ms": camera.exposure_ms,
+        "bloom_ms": camera.bloom_ms,
     });
     let rows = [
         ("medium_luts_ms", b.medium_luts_ms),
@@ -203,6 +208,8 @@ fn json(b: &AtmosphereBench, baselines: &Baselines) -> String {
         ("aerial_apply_fragment_ms", b.aerial_apply_fragment_ms),
         ("lut_frame_ms", b.lut_frame_ms),
         ("march_frame_ms", b.march_frame_ms),
+        ("exposure_ms", camera.exposure_ms),
+        ("bloom_ms", camera.bloom_ms),
     ];
     with_baselines(object, baselines, &rows)
 }

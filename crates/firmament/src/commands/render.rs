@@ -3,12 +3,14 @@
 use anyhow::{Context, Result, bail};
 use firmament_core::Frame;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+use firmament_core::auto_exposure::{ExposureMode, meter_image};
 use firmament_core::color::{LinearRgb, linear_to_srgb};
-use firmament_core::display::Encoding;
+use firmament_core::display::{DisplaySettings, Encoding, Exposure};
 use firmament_core::frame::Sky;
 use firmament_render::GpuContext;
 use firmament_render::headless::{HeadlessRenderer, Image, Readback};
 
+use super::scene_input::SHOWCASE_PRESET;
 use crate::cli::{ExrCompression, RenderArgs};
 use crate::output::{OutputFormat, write_exr, write_png, write_png16};
 use rayon::prelude::*;
@@ -38,8 +40,9 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         // Quoted, so the scene's own validation names the rule for a bad time.
         extra.push(format!("time.time_of_day=\"{}\"", time.replace('"', "")));
     }
-    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra)
+    let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), SHOWCASE_PRESET);
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &scene_args);
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra)
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
     if args.reference {
@@ -53,6 +56,13 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         None => scene.frame_at(None),
     }
     .with_context(|| format!("cannot build {what}"))?;
+    if png16 && frame.display.bloom > 0.0 {
+        bail!(
+            "display.bloom = {}: --png-bits 16 writes the display model of the linear image, which has \
+             no bloom (bloom is the GPU output pass's); render an 8-bit PNG, or set display.bloom = 0",
+            frame.display.bloom
+        );
+    }
 
     // The f64 models' images are written as the GPU path writes its own.
     let write_radiance = |radiance: &[LinearRgb]| {
@@ -61,7 +71,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             (format, png16),
             compression,
             radiance,
-            &frame,
+            &reference_display(&frame, radiance, width),
             width,
             height,
         )
@@ -118,6 +128,16 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         hdr: format == OutputFormat::Exr || png16,
     };
     let pixels = renderer.submit(&ctx, &frame, width, height, readback)?.collect(&ctx)?;
+    let mut display = frame.display;
+    if let ExposureMode::Auto(_) = display.exposure_mode {
+        let state = renderer.exposure_state(&ctx)?;
+        tracing::info!(
+            "auto-exposure: EV100 {:.2} (metered luminance {:.4} cd/m²)",
+            state.ev100,
+            f64::from(state.metered_log2).exp2()
+        );
+        display.exposure = Exposure::from_ev100(f64::from(state.ev100));
+    }
     // The EXR is written from the half floats themselves, widened as its blocks are filled.
     match (format, &pixels.ldr, &pixels.hdr) {
         (OutputFormat::Png, _, Some(hdr)) if png16 => {
@@ -126,7 +146,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
                 .chunks_exact(4)
                 .map(|p| LinearRgb::new(p[0].to_f64(), p[1].to_f64(), p[2].to_f64()))
                 .collect();
-            write_png16(&args.output, &display_image(&radiance, &frame, width, height, 16))?;
+            write_png16(&args.output, &display_image(&radiance, &display, width, height, 16))?;
         }
         (OutputFormat::Png, Some(ldr), _) => write_png(&args.output, ldr)?,
         (OutputFormat::Exr, _, Some(hdr)) => write_exr(&args.output, hdr, compression)?,
@@ -143,14 +163,14 @@ fn write_reference(
     (format, png16): (OutputFormat, bool),
     compression: ExrCompression,
     radiance: &[LinearRgb],
-    frame: &Frame,
+    display: &DisplaySettings,
     width: u32,
     height: u32,
 ) -> Result<()> {
     match format {
-        OutputFormat::Png if png16 => write_png16(output, &display_image(radiance, frame, width, height, 16))?,
+        OutputFormat::Png if png16 => write_png16(output, &display_image(radiance, display, width, height, 16))?,
         OutputFormat::Png => {
-            let image = display_image(radiance, frame, width, height, 8);
+            let image = display_image(radiance, display, width, height, 8);
             let pixels = image.pixels.iter().map(|&v| v as u8).collect();
             write_png(output, &Image { width, height, pixels })?;
         }
@@ -172,14 +192,29 @@ fn reference_hdr(radiance: &[LinearRgb], width: u32, height: u32) -> Image<f32> 
     }
 }
 
-/// Linear radiance through the scene's exposure, tone curve and encoding, in `f64` (the core's
-/// display model, which the GPU's tonemap pass is tested against), as RGBA of `bits` (8 or 16)
-/// per channel.
-fn display_image(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32, bits: u32) -> Image<u16> {
+/// A reference image's display: the frame's, its exposure metered from `radiance` (the core's
+/// meter, which the GPU's is tested against) when it is auto.
+fn reference_display(frame: &Frame, radiance: &[LinearRgb], width: u32) -> DisplaySettings {
+    let mut display = frame.display;
+    if let ExposureMode::Auto(auto) = display.exposure_mode {
+        let camera = firmament_core::Camera {
+            aspect: f64::from(width) / (radiance.len() as f64 / f64::from(width)),
+            ..frame.camera
+        };
+        let metered = meter_image(frame, &camera, radiance, width);
+        display.exposure = Exposure::from_ev100(auto.target_ev100(metered));
+    }
+    display
+}
+
+/// Linear radiance through `display`'s night vision, exposure, tone curve and encoding, in `f64`
+/// (the core's display model, which the GPU's output pass is tested against), as RGBA of `bits`
+/// (8 or 16) per channel.
+fn display_image(radiance: &[LinearRgb], display: &DisplaySettings, width: u32, height: u32, bits: u32) -> Image<u16> {
     let top = f64::from((1u32 << bits) - 1);
     let encode = |v: f64| {
         let v = v.clamp(0.0, 1.0);
-        let v = match frame.display.encoding {
+        let v = match display.encoding {
             Encoding::Srgb => linear_to_srgb(v),
             Encoding::None => v,
         };
@@ -191,7 +226,7 @@ fn display_image(radiance: &[LinearRgb], frame: &Frame, width: u32, height: u32,
         pixels: radiance
             .par_iter()
             .flat_map_iter(|c| {
-                let d = frame.display.display_linear(*c);
+                let d = display.display_linear(*c);
                 [encode(d.r), encode(d.g), encode(d.b), top as u16]
             })
             .collect(),

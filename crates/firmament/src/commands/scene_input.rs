@@ -98,6 +98,10 @@ pub(crate) fn describe_scene(file: Option<&std::path::Path>, args: &SceneArgs) -
     }
 }
 
+/// The preset `render` and `view` draw when given neither a scene file nor a preset: the
+/// showcase (physical atmosphere at golden hour, objects, auto-exposure, bloom, the Sun's flare).
+pub(crate) const SHOWCASE_PRESET: &str = "golden-hour";
+
 /// `args`, with `preset` as the preset when neither a scene file nor a preset was given (for the
 /// commands that need an atmosphere scene by default).
 pub(crate) fn with_default_preset(args: &SceneArgs, scene: Option<&std::path::Path>, preset: &str) -> SceneArgs {

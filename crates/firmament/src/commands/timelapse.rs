@@ -427,6 +427,10 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         // Frame k is submitted before frame k − 1 is collected: the GPU renders one while the
         // other comes back, and the encoders work on the ones before.
         let mut in_flight: Option<(u32, SubmittedFrame)> = None;
+        // Auto-exposure adapts over the scene time between frames; a frame after a gap (frames
+        // kept from an earlier run) meters afresh.
+        let step_seconds = if n > 1 { span / f64::from(n - 1) } else { 0.0 };
+        let mut previous: Option<u32> = None;
         for &k in &todo {
             if stop.load(Ordering::SeqCst) {
                 break;
@@ -436,6 +440,9 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
             let frame = scene
                 .frame_at_date_time(civil)
                 .with_context(|| format!("cannot build {what} at {}", civil))?;
+            let follows = previous.is_some_and(|p| p + 1 == k);
+            renderer.set_exposure_interval(follows.then_some(step_seconds));
+            previous = Some(k);
             let submitted = renderer.submit(&ctx, &frame, width, height, readback)?;
             if let Some((previous, submitted)) = in_flight.replace((k, submitted)) {
                 queue.push(job(previous, submitted)?, &mut done)?;

@@ -397,6 +397,48 @@ fn corpus() -> Vec<Case> {
         )
         .file("s.toml", "[display]\nexposure = -1.0\n"),
         case(
+            "render: auto-exposure bounds reversed",
+            1,
+            &[
+                "render",
+                "--set",
+                "display.auto_ev_min=12",
+                "--set",
+                "display.auto_ev_max=3",
+            ],
+            &["display.auto_ev_min = 12: must be <= display.auto_ev_max (3)"],
+        ),
+        case(
+            "render: a NaN auto-exposure bound",
+            1,
+            &["render", "--set", "display.auto_ev_max=nan"],
+            &["display.auto_ev_max = NaN: must be in [-20, 40] (EV at ISO 100)"],
+        ),
+        case(
+            "render: a negative adaptation speed",
+            1,
+            &["render", "--set", "display.auto_speed_down=-1"],
+            &["display.auto_speed_down = -1: must be a finite number > 0 EV per second"],
+        ),
+        case(
+            "render: a negative bloom",
+            1,
+            &["render", "--set", "display.bloom=-0.1"],
+            &["display.bloom = -0.1: must be in [0, 1]"],
+        ),
+        case(
+            "render: an unknown exposure mode",
+            1,
+            &["render", "--set", "display.exposure_mode=program"],
+            &["exposure_mode", "manual", "auto"],
+        ),
+        case(
+            "render: bloom in a 16-bit PNG",
+            1,
+            &["render", "--set", "display.bloom=0.1", "--png-bits", "16"],
+            &["display.bloom = 0.1: --png-bits 16"],
+        ),
+        case(
             "render: a NaN planet radius",
             1,
             &["render", "s.toml"],

@@ -37,9 +37,15 @@ fn the_default_render_writes_a_believable_png() {
     assert_eq!(image.dimensions(), (1280, 720));
     let distinct: std::collections::HashSet<_> = image.pixels().map(|p| p.0).collect();
     assert!(distinct.len() > 500, "only {} colours: not a gradient", distinct.len());
-    // Sunset: a blue sky above, the warm horizon band below it.
+    // Golden hour: a blue sky above, exposed (neither black nor burnt out).
     let top = image.get_pixel(100, 10).0;
     assert!(top[2] > top[0], "the top of the sky should be blue: {top:?}");
+    let mean = image
+        .pixels()
+        .map(|p| p.0.iter().map(|&v| f64::from(v)).sum::<f64>())
+        .sum::<f64>()
+        / (3.0 * 1280.0 * 720.0 * 255.0);
+    assert!((0.2..0.7).contains(&mean), "mean display value {mean}");
     assert_eq!(
         files_in(dir.path()),
         vec![dir.path().join("firmament.png")],
@@ -56,6 +62,8 @@ fn exr_pixels_are_the_keyframe_colours_in_linear_float() {
             dir.path(),
             &[
                 "render",
+                "--preset",
+                "default",
                 "--time",
                 "12:00",
                 "--width",
@@ -184,7 +192,15 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
             "camera.fov_y = 180: must be in (0, 180) degrees",
         ),
         (
-            &["render", "--set", "camera.position=[0, 0, -10]", "-o", "o.png"],
+            &[
+                "render",
+                "--preset",
+                "default",
+                "--set",
+                "camera.position=[0, 0, -10]",
+                "-o",
+                "o.png",
+            ],
             1,
             "the camera must be above the ground",
         ),
@@ -543,7 +559,10 @@ fn reference_render_agrees_with_the_gpu() {
 #[test]
 fn reference_render_of_a_gradient_sky_is_refused() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let out = firmament(dir.path(), &["render", "--reference", "-o", "x.png"]);
+    let out = firmament(
+        dir.path(),
+        &["render", "--preset", "default", "--reference", "-o", "x.png"],
+    );
     assert_eq!(out.status.code(), Some(1));
     assert!(
         stderr(&out).contains("--reference renders the atmosphere"),

@@ -469,6 +469,8 @@ fn exr_frames_are_compressed_as_chosen_and_hold_the_same_floats() {
             d,
             &[
                 "render",
+                "--preset",
+                "default",
                 "--set",
                 "time.date_time=\"2024-03-20T16:00:00Z\"",
                 "--width",
@@ -563,6 +565,58 @@ fn sky_luminance_decreases_monotonically_through_sunset_and_twilight() {
         assert!(pair[1] <= pair[0], "PNG mean luminance rose: {png:?}");
     }
     assert!(png[5] < png[0], "{png:?}");
+}
+
+#[test]
+fn an_auto_exposed_time_lapse_into_night_stays_exposed_and_repeats_byte_for_byte() {
+    // 21 June at 52° N, looking west from 16:00 into the night (sun 10° down at 22:00).
+    let run = |out: &str| {
+        vec![
+            "timelapse",
+            "--preset",
+            "earth-sunset",
+            "--set",
+            "display.exposure_mode=auto",
+            "--set",
+            "planet.latitude=52",
+            "--set",
+            "camera.heading=290",
+            "--set",
+            "camera.pitch=15",
+            "--from",
+            "2025-06-21T16:00:00Z",
+            "--to",
+            "2025-06-21T22:00:00Z",
+            "--frames",
+            "7",
+            "--width",
+            "64",
+            "--height",
+            "36",
+            "-o",
+            out,
+        ]
+        .into_iter()
+        .map(str::to_owned)
+        .collect::<Vec<_>>()
+    };
+    let dir = tempfile::tempdir().expect("temp dir");
+    for out in ["first", "second"] {
+        let ran = firmament(dir.path(), &args(&run(out)));
+        assert!(ran.status.success(), "{}", stderr(&ran));
+    }
+    for k in 1..=7 {
+        let name = format!("frame_000{k}.png");
+        let first = std::fs::read(dir.path().join("first").join(&name)).expect("a frame");
+        let second = std::fs::read(dir.path().join("second").join(&name)).expect("a frame");
+        assert!(first == second, "{name} differs between two runs");
+        let image = image::open(dir.path().join("first").join(&name))
+            .expect("a PNG")
+            .to_rgb8();
+        let mean = image.pixels().flat_map(|p| p.0).map(f64::from).sum::<f64>()
+            / (3.0 * f64::from(image.width() * image.height()) * 255.0);
+        assert!((0.25..=0.65).contains(&mean), "{name}: mean display value {mean}");
+    }
 }
 
 /// Starts the time-lapse `run` (its output folder `lapse`) in `dir` and returns once its first

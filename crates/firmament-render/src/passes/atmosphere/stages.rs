@@ -1,8 +1,11 @@
-//! The building blocks of the atmosphere pass: bind group layout entries, and a pipeline with its
-//! bind group for full-screen draws (`Stage`, drawn into the caller's pass) and compute dispatches
-//! (`ComputeStage`).
+//! The building blocks of the atmosphere pass: its binding numbers, its own layout entries, and a
+//! pipeline with its bind group for full-screen draws (`Stage`, drawn into the caller's pass);
+//! compute dispatches and the common entries are `passes::compute`'s.
 
 use crate::passes::common::PassPipeline;
+pub(super) use crate::passes::compute::{
+    ComputeStage, bind_group, sampler_entry, storage_buffer_entry, storage_entry, texture_entry,
+};
 
 /// Binding numbers shared by every atmosphere shader: those `shaders/atmosphere/bindings.wgsl`
 /// declares (a test compares the two).
@@ -31,79 +34,6 @@ pub(super) mod binding {
     pub(crate) const MULTISCATTERING_ORDERS: u32 = 28;
 }
 
-/// A sampled 2D texture, seen by the fragment and compute stages.
-pub(super) fn texture_entry(binding: u32, filterable: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-/// A filtering sampler, seen by the fragment and compute stages.
-pub(super) fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-        count: None,
-    }
-}
-
-/// A write-only 2D storage texture of `format`, for compute stages.
-pub(super) fn storage_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::StorageTexture {
-            access: wgpu::StorageTextureAccess::WriteOnly,
-            format,
-            view_dimension: wgpu::TextureViewDimension::D2,
-        },
-        count: None,
-    }
-}
-
-/// A read-write storage buffer, for compute stages.
-pub(super) fn storage_buffer_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-/// A bind group of `resources` (binding, resource) for `layout`, labelled for `owner`.
-pub(super) fn bind_group(
-    device: &wgpu::Device,
-    owner: &str,
-    layout: &wgpu::BindGroupLayout,
-    resources: &[(u32, wgpu::BindingResource<'_>)],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(&format!("firmament {owner} bind group")),
-        layout,
-        entries: &entries,
-    })
-}
-
 /// One of the pass's render pipelines with its bind group.
 #[derive(Debug)]
 pub(super) struct Stage {
@@ -123,86 +53,6 @@ impl Stage {
         let (pipeline, layout) = pipeline.build(device);
         let bind_group = bind_group(device, owner, &layout, resources);
         Self { pipeline, bind_group }
-    }
-}
-
-/// A compute pipeline (entry point `cs_main`) with its bind group.
-#[derive(Debug)]
-pub(super) struct ComputeStage {
-    owner: &'static str,
-    pipeline: wgpu::ComputePipeline,
-    layout: wgpu::BindGroupLayout,
-    bind_group: wgpu::BindGroup,
-}
-
-impl ComputeStage {
-    /// Builds the pipeline from `source` with one bind group of `entries` holding `resources`.
-    pub(super) fn new(
-        device: &wgpu::Device,
-        owner: &'static str,
-        source: &str,
-        entries: &[wgpu::BindGroupLayoutEntry],
-        resources: &[(u32, wgpu::BindingResource<'_>)],
-    ) -> Self {
-        Self::with_constants(device, owner, source, entries, resources, &[])
-    }
-
-    /// [`new`](Self::new) with pipeline-overridable `constants` set.
-    pub(super) fn with_constants(
-        device: &wgpu::Device,
-        owner: &'static str,
-        source: &str,
-        entries: &[wgpu::BindGroupLayoutEntry],
-        resources: &[(u32, wgpu::BindingResource<'_>)],
-        constants: &[(&str, f64)],
-    ) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&format!("firmament {owner} shader")),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(&format!("firmament {owner} bind group layout")),
-            entries,
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(&format!("firmament {owner} pipeline layout")),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(&format!("firmament {owner} pipeline")),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("cs_main"),
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
-                ..Default::default()
-            },
-            cache: None,
-        });
-        let bind_group = bind_group(device, owner, &layout, resources);
-        Self {
-            owner,
-            pipeline,
-            layout,
-            bind_group,
-        }
-    }
-
-    /// Binds `resources` instead (new targets of the same layout).
-    pub(super) fn rebind(&mut self, device: &wgpu::Device, resources: &[(u32, wgpu::BindingResource<'_>)]) {
-        self.bind_group = bind_group(device, self.owner, &self.layout, resources);
-    }
-
-    /// Dispatches `workgroups` in a compute pass of its own.
-    pub(super) fn dispatch(&self, encoder: &mut wgpu::CommandEncoder, workgroups: (u32, u32, u32)) {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(&format!("firmament {}", self.owner)),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
     }
 }
 

@@ -1,5 +1,6 @@
 //! Benchmarks: the atmosphere pass (per-pass GPU time, and the LUT path against the brute-force
-//! per-pixel march) and the object pass (Gouraud against Phong shading).
+//! per-pixel march), the camera passes (auto-exposure, bloom) and the object pass (Gouraud
+//! against Phong shading).
 //!
 //! Each pass is submitted alone and waited for. Where the device has timestamp queries inside
 //! command encoders ([`pass_timing_supported`]; [`GpuContext::from_adapter`] requests them
@@ -17,13 +18,14 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use firmament_core::Camera;
+use firmament_core::auto_exposure::{AutoExposure, ExposureMode};
 use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading};
 use firmament_core::frame::AtmosphereSky;
+use firmament_core::{Camera, Frame};
 
 use firmament_render::pass_timing::{FrameTiming, PassTimer, pass_timing_supported};
 use firmament_render::passes::atmosphere::MEDIUM_BUILD_STEPS;
-use firmament_render::passes::{AtmospherePass, ObjectPass, SkyMethod, begin_clear_pass};
+use firmament_render::passes::{AtmospherePass, BloomPass, ExposurePass, ObjectPass, SkyMethod, begin_clear_pass};
 use firmament_render::readback::{decode_f16, read_texture};
 use firmament_render::wgpu;
 use firmament_render::{FrameTargets, GpuContext, RenderError};
@@ -625,5 +627,51 @@ pub(crate) fn bench_embedding(
         embedded_hdr_ms,
         embedded_output_ms,
         embedded_output_no_aerial_ms,
+    })
+}
+
+/// Median milliseconds of the camera passes on a frame's HDR image.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CameraBench {
+    /// Auto-exposure: the luminance histogram and the adaptation.
+    pub(crate) exposure_ms: f64,
+    /// Bloom: the pyramid's way down and up.
+    pub(crate) bloom_ms: f64,
+}
+
+/// Times auto-exposure and bloom on `frame` (its display's settings or the defaults) at `width` ×
+/// `height`: their cost depends on the image's size, not its content.
+pub(crate) fn bench_camera(
+    ctx: &GpuContext,
+    frame: &Frame,
+    width: u32,
+    height: u32,
+    frames: u32,
+) -> Result<CameraBench, RenderError> {
+    ctx.check_image_size(width, height)?;
+    let targets = FrameTargets::new(&ctx.device, width, height);
+    let camera = Camera {
+        aspect: f64::from(width) / f64::from(height),
+        ..frame.camera
+    };
+    let auto = match frame.display.exposure_mode {
+        ExposureMode::Auto(auto) => auto,
+        ExposureMode::Manual => AutoExposure::default(),
+    };
+    let mut exposure = ExposurePass::new(&ctx.device);
+    exposure.prepare(
+        &ctx.device,
+        &ctx.queue,
+        frame,
+        &camera,
+        &auto,
+        &targets.hdr_view,
+        (width, height),
+    );
+    let mut bloom = BloomPass::new(&ctx.device);
+    bloom.prepare(&ctx.device, &targets.hdr_view, (width, height));
+    Ok(CameraBench {
+        exposure_ms: median_ms(ctx, frames, &targets.hdr, |encoder| exposure.record(encoder)),
+        bloom_ms: median_ms(ctx, frames, &targets.hdr, |encoder| bloom.record(encoder)),
     })
 }

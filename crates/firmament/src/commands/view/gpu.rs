@@ -211,9 +211,11 @@ impl Gpu {
         self.renderer.medium_lut_builds().1
     }
 
-    /// Sets the flares' fade rate for frames `interval` seconds apart.
+    /// Sets the flares' fade rate and auto-exposure's adaptation for frames `interval` seconds
+    /// apart.
     pub(crate) fn set_frame_interval(&mut self, interval: Option<f64>) {
         self.renderer.set_flare_interval(interval);
+        self.renderer.set_exposure_interval(interval);
     }
 
     /// Draws `frame` at `scene_size`, blits it over the window and draws `ui` over that. egui's

@@ -47,7 +47,12 @@ use options::ViewOptions;
 
 /// Opens the viewer and runs it until the window closes (or `--frames` are drawn).
 pub(crate) fn run(args: &ViewArgs) -> Result<()> {
-    let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
+    let scene_args = super::scene_input::with_default_preset(
+        &args.scene_args,
+        args.scene.as_deref(),
+        super::scene_input::SHOWCASE_PRESET,
+    );
+    let what = super::scene_input::describe_scene(args.scene.as_deref(), &scene_args);
     crate::limits::check_pixels("the window (--size)", args.size.0, args.size.1)?;
     // Check the outputs before opening anything, so a typo fails at once.
     if let Some(path) = &args.screenshot {
@@ -60,8 +65,8 @@ pub(crate) fn run(args: &ViewArgs) -> Result<()> {
     let fault = fault::InjectedFault::from_env()?;
     let doc = super::scene_input::load_document(
         args.scene.as_deref(),
-        args.scene_args.preset.as_deref(),
-        &args.scene_args.overrides,
+        scene_args.preset.as_deref(),
+        &scene_args.overrides,
     )
     .with_context(|| format!("cannot build {what}"))?;
     let session = session::Session::new(doc).with_context(|| format!("cannot build {what}"))?;
