@@ -7,8 +7,10 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use firmament_core::astro::CivilDateTime;
 
-/// firmament renders skies — a keyframed gradient sky with a day/night cycle, sun disc and glow —
-/// headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float).
+/// firmament renders skies — physically based atmospheres around ellipsoid planets lit by several
+/// suns, the sky at a real date and place, a keyframed gradient sky, classic lit objects, lens
+/// flares — headless to PNG (display-referred sRGB) or EXR (linear, scene-referred float), as
+/// time-lapses, or in a window.
 #[derive(Debug, Parser)]
 #[command(name = "firmament", version, about, long_about = None, after_help = EXAMPLES)]
 pub(crate) struct Cli {
@@ -21,7 +23,7 @@ pub(crate) struct Cli {
 
 const EXAMPLES: &str = "\
 Examples:
-  firmament render                              # the default scene → firmament.png
+  firmament render                              # the showcase (golden-hour) → firmament.png
   firmament render --preset dawn -o dawn.png
   firmament render scene.toml --time 06:30 -o morning.exr
   firmament render --set camera.fov_y=90 --set display.tone_curve=aces_fitted
@@ -33,6 +35,8 @@ Examples:
   firmament sun --time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786
   firmament view --preset earth-sunset          # fly around; F1 panel, F12 screenshot
   firmament timelapse --from 2024-03-20T16:00Z --to 2024-03-20T20:00Z --frames 120 -o lapse
+  firmament completions bash > ~/.local/share/bash-completion/completions/firmament
+  firmament manpages --dir ~/.local/share/man/man1
 
 Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
 Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
@@ -59,6 +63,24 @@ pub(crate) enum Command {
     /// Open a window on a scene: fly around (mouse and WASD/QE, or NeHe's keys), run and scrub
     /// the time, edit every scene value live in the panel, save the scene and screenshots.
     View(ViewArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) to standard output.
+    Completions(CompletionsArgs),
+    /// Write the man pages, `firmament.1` and one per command, into a folder.
+    Manpages(ManpagesArgs),
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct CompletionsArgs {
+    /// The shell to complete for.
+    #[arg(value_enum)]
+    pub(crate) shell: clap_complete::Shell,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ManpagesArgs {
+    /// The folder to write them into (it must exist), e.g. `~/.local/share/man/man1`.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) dir: PathBuf,
 }
 
 /// Where a scene comes from and what overrides it.

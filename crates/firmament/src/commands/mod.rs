@@ -2,6 +2,7 @@
 
 mod bench;
 mod check;
+mod completions;
 mod presets;
 mod render;
 mod scene_input;
@@ -24,6 +25,8 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::Sun(args) => sun::run(&args),
         Command::Timelapse(args) => timelapse::run(&args),
         Command::View(args) => view::run(&args),
+        Command::Completions(args) => completions::run_completions(&args),
+        Command::Manpages(args) => completions::run_manpages(&args),
         Command::Presets => {
             presets::run();
             Ok(())

@@ -421,6 +421,18 @@ fn corpus() -> Vec<Case> {
             &["display.auto_speed_down = -1: must be a finite number > 0 EV per second"],
         ),
         case(
+            "completions: an unknown shell",
+            2,
+            &["completions", "tcsh"],
+            &["invalid value 'tcsh'"],
+        ),
+        case(
+            "manpages: no such folder",
+            1,
+            &["manpages", "--dir", "man/pages"],
+            &["--dir man/pages: not a folder"],
+        ),
+        case(
             "render: a negative bloom",
             1,
             &["render", "--set", "display.bloom=-0.1"],

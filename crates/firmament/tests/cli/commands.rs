@@ -760,3 +760,44 @@ fn time_sets_the_clock_on_a_dated_scene() {
     assert!(night > 0.0 && night < 1.0, "moonlit night: {night} cd/m²");
     assert!(noon > 1000.0 * night, "noon {noon} vs night {night} cd/m²");
 }
+
+#[test]
+fn completions_and_man_pages_come_from_the_command_line() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let d = dir.path();
+    let out = firmament(d, &["completions", "bash"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let script = String::from_utf8_lossy(&out.stdout).into_owned();
+    for word in ["firmament", "timelapse", "--preset", "--exr-compression", "manpages"] {
+        assert!(script.contains(word), "the bash script lacks {word}");
+    }
+    for shell in ["zsh", "fish", "elvish", "powershell"] {
+        let out = firmament(d, &["completions", shell]);
+        assert!(
+            out.status.success() && out.stdout.len() > 1000,
+            "{shell}: {}",
+            stderr(&out)
+        );
+    }
+    std::fs::create_dir(d.join("man")).expect("a folder");
+    let out = firmament(d, &["manpages", "--dir", "man"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    for page in [
+        "firmament.1",
+        "firmament-render.1",
+        "firmament-timelapse.1",
+        "firmament-view.1",
+    ] {
+        let text = std::fs::read_to_string(d.join("man").join(page)).unwrap_or_else(|e| panic!("{page}: {e}"));
+        assert!(
+            text.starts_with(".ie") || text.contains(".TH"),
+            "{page} is not a man page"
+        );
+    }
+    assert!(
+        std::fs::read_to_string(d.join("man/firmament-render.1"))
+            .expect("the render page")
+            .contains("png\\-bits"),
+        "the render page lists its options"
+    );
+}
