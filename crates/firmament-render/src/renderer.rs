@@ -456,11 +456,6 @@ impl Renderer {
         self.camera.exposure.set_interval(seconds);
     }
 
-    /// Forgets the adapted exposure: the next metered frame jumps to its meter's reading.
-    pub fn reset_exposure(&self, ctx: &GpuContext) {
-        self.camera.exposure.reset(&ctx.queue);
-    }
-
     /// The auto-exposure pass (its state buffer, for tests and tools).
     pub fn exposure(&self) -> &ExposurePass {
         &self.camera.exposure

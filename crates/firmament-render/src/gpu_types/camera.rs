@@ -5,7 +5,7 @@
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
 use firmament_core::auto_exposure::{
-    AutoExposure, METERING_BRIGHT_FRACTION, METERING_CELL, METERING_DARK_FRACTION, METERING_LOG2_MAX, METERING_LOG2_MIN,
+    AutoExposure, METERING_BRIGHT_FRACTION, ev100_for_luminance, METERING_CELL, METERING_DARK_FRACTION, METERING_LOG2_MAX, METERING_LOG2_MIN,
     masked_cos, sun_discs,
 };
 use firmament_core::frame::{Frame, MAX_SUNS};
@@ -26,8 +26,8 @@ pub struct MeteringUniforms {
     pub discs: [[f32; 4]; MAX_SUNS],
     /// log2 of the lowest and highest metered luminance (cd/m²); the dark and bright shares.
     pub range: [f32; 4],
-    /// The EV100 bounds and the compensation (EV); a bound on the angle from a meter cell's
-    /// centre to its pixels' (radians).
+    /// The EV100 bounds; the meter's offset, EV100 − log2(L) (`log2(100 / K)` less the
+    /// compensation); a bound on the angle from a meter cell's centre to its pixels' (radians).
     pub ev: [f32; 4],
     /// The largest rise and fall of the EV100 this frame; 1 in `z` to jump to the target.
     pub step: [f32; 4],
@@ -60,7 +60,7 @@ impl MeteringUniforms {
             ev: [
                 auto.ev100_min as f32,
                 auto.ev100_max as f32,
-                auto.compensation_ev as f32,
+                (ev100_for_luminance(1.0) - auto.compensation_ev) as f32,
                 cell_radius(camera, size.1) as f32,
             ],
             step: [rise as f32, fall as f32, jump, 0.0],

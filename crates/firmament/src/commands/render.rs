@@ -71,7 +71,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             (format, png16),
             compression,
             radiance,
-            &reference_display(&frame, radiance, width),
+            &reference_display(&frame, radiance, (width, height)),
             width,
             height,
         )
@@ -194,11 +194,11 @@ fn reference_hdr(radiance: &[LinearRgb], width: u32, height: u32) -> Image<f32> 
 
 /// A reference image's display: the frame's, its exposure metered from `radiance` (the core's
 /// meter, which the GPU's is tested against) when it is auto.
-fn reference_display(frame: &Frame, radiance: &[LinearRgb], width: u32) -> DisplaySettings {
+fn reference_display(frame: &Frame, radiance: &[LinearRgb], (width, height): (u32, u32)) -> DisplaySettings {
     let mut display = frame.display;
     if let ExposureMode::Auto(auto) = display.exposure_mode {
         let camera = firmament_core::Camera {
-            aspect: f64::from(width) / (radiance.len() as f64 / f64::from(width)),
+            aspect: f64::from(width) / f64::from(height),
             ..frame.camera
         };
         let metered = meter_image(frame, &camera, radiance, width);

@@ -48,7 +48,7 @@ impl ExposurePass {
         let state = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("firmament ExposurePass state"),
             size: std::mem::size_of::<ExposureStateGpu>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
@@ -139,11 +139,6 @@ impl ExposurePass {
         let groups = |side: u32| side.div_ceil(METERING_TILE);
         self.meter.dispatch(encoder, (groups(self.size.0), groups(self.size.1), 1));
         self.adapt.dispatch(encoder, (1, 1, 1));
-    }
-
-    /// Forgets the exposure: the next frame meters afresh, whatever the interval.
-    pub fn reset(&self, queue: &wgpu::Queue) {
-        queue.write_buffer(&self.state, 0, bytemuck::bytes_of(&ExposureStateGpu::default()));
     }
 
     /// The 1 × 1 `R32Float` texture holding the exposure multiplier the last recorded frame chose.

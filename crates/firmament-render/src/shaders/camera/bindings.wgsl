@@ -23,7 +23,7 @@ struct Metering {
     clip_to_world: mat4x4<f32>,                 // clip → camera-relative world (directions)
     discs: array<vec4<f32>, METERING_MAX_DISCS>, // xyz unit direction to a sun; w = cos of the masked radius
     range: vec4<f32>,                           // log2 luminance (cd/m²) of the lowest and highest bin's edges; dark and bright shares dropped
-    ev: vec4<f32>,                              // EV100 bounds (min, max); compensation (EV); w = a bound on a cell's angular radius (rad)
+    ev: vec4<f32>,                              // EV100 bounds (min, max); z = EV100 − log2(L): log2(100 / K) less the compensation; w = a bound on a cell's angular radius (rad)
     step: vec4<f32>,                            // largest rise and fall this frame (EV); z = 1: jump to the target; unused
     counts: vec4<u32>,                          // discs; image width, height (pixels); unused
 }

@@ -12,9 +12,6 @@
 var<workgroup> bin_counts: array<f32, METERING_BINS>;
 var<workgroup> bin_means: array<f32, METERING_BINS>; // mean log2 luminance of the bin's pixels
 
-// The reflected-light meter's log2(100 / K), K = 12.5 (ISO 2720).
-const METER_LOG2_SCALE: f32 = 3.0;
-
 @compute @workgroup_size(256)
 fn cs_main(@builtin(local_invocation_index) bin: u32) {
     let count = atomicLoad(&histogram.counts[bin]);
@@ -52,7 +49,7 @@ fn cs_main(@builtin(local_invocation_index) bin: u32) {
         }
         state.metered_log2 = sum / max(weight, 1e-30);
         state.target_ev100 = clamp(
-            state.metered_log2 + METER_LOG2_SCALE - metering.ev.z,
+            state.metered_log2 + metering.ev.z,
             metering.ev.x,
             metering.ev.y,
         );
