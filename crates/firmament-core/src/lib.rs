@@ -25,6 +25,8 @@
 //! - [`sky`]: the keyframed gradient sky, the sun's diurnal path, the time of day, the night sky.
 //! - [`classic`]: OpenGL 2.1 fixed-function lighting and fog, and the GLTools/GLU meshes.
 //! - [`flare`]: lens-flare elements and their placement; [`texture`]: texture images.
+//! - [`occluder`]: opaque spheres and boxes whose shadows the reference casts, to check the GPU's
+//!   light shafts and shadows.
 //! - [`frame`]: everything one rendered frame needs, gathered; [`display`] and [`color`]: exposure,
 //!   tone curves, colour spaces; [`geometry`]: rays, spheres, ellipsoids.
 
@@ -40,6 +42,7 @@ pub mod flare;
 pub mod frame;
 pub mod geometry;
 pub mod night_vision;
+pub mod occluder;
 pub mod sky;
 pub mod texture;
 

@@ -164,8 +164,8 @@ pub use error::{LimitShortfall, RenderError};
 pub use firmament_core::DepthConvention;
 pub use gpu_types::SkyLightingGpu;
 pub use pass_timing::{
-    PHASE_AERIAL_PERSPECTIVE, PHASE_BLOOM, PHASE_EXPOSURE, PHASE_FLARES, PHASE_LUTS, PHASE_SKY_AND_OBJECTS,
-    PHASE_TONEMAP, PHASES, PassTime, PassTimes, pass_timing_supported,
+    PHASE_AERIAL_PERSPECTIVE, PHASE_BLOOM, PHASE_EXPOSURE, PHASE_FLARES, PHASE_LUTS, PHASE_SHADOWS,
+    PHASE_SKY_AND_OBJECTS, PHASE_TONEMAP, PHASES, PassTime, PassTimes, pass_timing_supported,
 };
 pub use passes::atmosphere::{AerialPerspectiveBindings, aerial_perspective_layout_entries, sky_lighting_layout_entry};
 pub use renderer::Renderer;

@@ -29,6 +29,8 @@ use crate::requirements::TIMESTAMP_FEATURES;
 /// The atmosphere's look-up tables (sky-view LUT, and the medium LUTs when the medium changed).
 /// Only in frames whose sky is a physical atmosphere.
 pub const PHASE_LUTS: &str = "LUTs";
+/// The sun shadow maps of firmament's objects. Only in frames with shadows.
+pub const PHASE_SHADOWS: &str = "shadows";
 /// The main pass: firmament's objects, the sky behind them, the stars and the Moon (on the
 /// [`record_into`](crate::Renderer::record_into) path: the sky, the stars and the Moon).
 pub const PHASE_SKY_AND_OBJECTS: &str = "sky & objects";
@@ -48,8 +50,9 @@ pub const PHASE_TONEMAP: &str = "tonemap";
 
 /// Every phase a frame can have, in the order they run. A frame's [`PassTimes`] holds the ones it
 /// ran, in this order.
-pub const PHASES: [&str; 7] = [
+pub const PHASES: [&str; 8] = [
     PHASE_LUTS,
+    PHASE_SHADOWS,
     PHASE_SKY_AND_OBJECTS,
     PHASE_AERIAL_PERSPECTIVE,
     PHASE_FLARES,

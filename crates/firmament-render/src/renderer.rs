@@ -1,4 +1,4 @@
-//! The frame renderer: objects, then the sky behind them and the stars and the Moon added over
+//! The frame renderer: the objects' sun shadows, objects, then the sky behind them and the stars and the Moon added over
 //! it, into HDR targets; aerial perspective over the objects when the sky is an atmosphere; lens
 //! flares over everything; the camera's auto-exposure meter and bloom; the output pass → the
 //! caller's view.
@@ -11,8 +11,8 @@ use firmament_core::frame::Sky;
 use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::pass_timing::{
-    FrameTiming, PHASE_AERIAL_PERSPECTIVE, PHASE_FLARES, PHASE_LUTS, PHASE_SKY_AND_OBJECTS, PHASE_TONEMAP, PassTimer,
-    PassTimes,
+    FrameTiming, PHASE_AERIAL_PERSPECTIVE, PHASE_FLARES, PHASE_LUTS, PHASE_SHADOWS, PHASE_SKY_AND_OBJECTS,
+    PHASE_TONEMAP, PassTimer, PassTimes,
 };
 use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
@@ -249,6 +249,10 @@ impl Renderer {
         if self.sky == SkyKind::Atmosphere && !self.lighting_recorded.replace(false) {
             own.atmosphere.record_luts(encoder);
             timing.mark(encoder, PHASE_LUTS);
+        }
+        if self.objects.has_shadows() {
+            self.objects.record_shadows(encoder);
+            timing.mark(encoder, PHASE_SHADOWS);
         }
         let clear = match self.sky {
             SkyKind::Clear(color) => color,

@@ -29,9 +29,9 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 ///
 /// | limit | firmament's use | where |
 /// |---|---|---|
-/// | `max_bind_groups` | 1 | every pipeline has one bind group |
+/// | `max_bind_groups` | 2 | objects: their own group and the sun shadow maps' |
 /// | `max_sampled_textures_per_shader_stage` | 5 | the atmosphere's sky as a compute pass: transmittance, irradiance, sky view, the scattering moments (one array) and the depth buffer |
-/// | `max_samplers_per_shader_stage` | 1 | |
+/// | `max_samplers_per_shader_stage` | 2 | objects: their texture's sampler and the shadow maps' comparison sampler |
 /// | `max_storage_buffers_per_shader_stage` | 2 | lens flares: their records and their state (occlusion, binning, elements) |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
 /// | `max_uniform_buffers_per_shader_stage` | 3 | the atmosphere's sky lighting |
@@ -40,7 +40,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | `max_inter_stage_shader_variables` | 9 | objects: eight varyings and `front_facing` |
 /// | `max_compute_workgroup_size_x`, `_y`, `_z` | 256, 8, 1 | sky lighting and the transmittance LUT (256 × 1), the LUTs (8 × 8) |
 /// | `max_compute_invocations_per_workgroup` | 256 | sky lighting, the transmittance LUT |
-/// | `max_texture_dimension_2d` | 1536 | the sky-view LUT: a 192-texel tile for each of 8 suns |
+/// | `max_texture_dimension_2d` | 2048 | the default sun shadow map (`shadows.map_size`, clamped to the device's largest texture); the sky-view LUT takes 1536, a 192-texel tile for each of 8 suns |
 ///
 /// The others keep `downlevel_defaults()`' values: sizes that depend on the scene (buffers and
 /// bindings, flare-image layers, object textures), workgroup memory (which wgpu does not check)
@@ -60,9 +60,9 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// ```
 pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits {
-        max_bind_groups: 1,
+        max_bind_groups: 2,
         max_sampled_textures_per_shader_stage: 5,
-        max_samplers_per_shader_stage: 1,
+        max_samplers_per_shader_stage: 2,
         max_storage_buffers_per_shader_stage: 2,
         max_storage_textures_per_shader_stage: 2,
         max_uniform_buffers_per_shader_stage: 3,
@@ -73,7 +73,7 @@ pub fn required_limits() -> wgpu::Limits {
         max_compute_workgroup_size_y: 8,
         max_compute_workgroup_size_z: 1,
         max_compute_invocations_per_workgroup: 256,
-        max_texture_dimension_2d: 1536,
+        max_texture_dimension_2d: 2048,
         ..wgpu::Limits::downlevel_defaults()
     }
 }
@@ -144,7 +144,7 @@ mod tests {
         assert_eq!(
             named,
             [
-                ("max_texture_dimension_2d", 1536, 512),
+                ("max_texture_dimension_2d", 2048, 512),
                 ("max_storage_buffers_per_shader_stage", 2, 0),
                 ("min_uniform_buffer_offset_alignment", 256, 512),
             ]

@@ -486,8 +486,13 @@ fn dotted(serde_path: &str) -> String {
 }
 
 /// The value the missing key `path` takes in `scene` now, for the keys whose value the scene
-/// derives from the body: the planet's shape and the atmosphere's medium.
+/// derives from the body (the planet's shape and the atmosphere's medium) or from other keys
+/// (`shadows.enabled`, from the lighting).
 fn effective_value(scene: &Scene, path: &str) -> Option<toml::Value> {
+    if path == "shadows.enabled" {
+        // Absent, it follows the lighting: its value then is what the scene does now.
+        return Some(toml::Value::Boolean(scene.shadows_enabled()));
+    }
     let float = toml::Value::Float;
     let triple = |v: firmament_core::atmosphere::Spectrum| toml::Value::Array(v.to_array().map(float).to_vec());
     let scale_height = |profile: &firmament_core::atmosphere::DensityProfile| {

@@ -86,13 +86,13 @@ pub use document::{SceneDocument, SceneOrigin, SceneSource, load, load_file};
 pub use error::SceneError;
 pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, EmpiricalSection, ExposureModeName,
-    GradientSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene, SkyModelName,
-    SkySection, SunEntry, SunSection, TimeSection,
+    GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene,
+    SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,
     FogModeName, FogSection, GlColor, LightEntry, LightSpaceName, LightingModelName, LightingSection, MaterialEntry,
-    MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry, TextureEntry, TransformEntry,
+    MeshEntry, ObjectEntry, ShadingName, ShadowsSection, SpecularName, SpinEntry, TextureEntry, TransformEntry,
 };
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;

@@ -7,6 +7,7 @@
 mod atmosphere;
 mod flare;
 mod objects;
+mod shadows;
 
 use serde::Deserialize;
 
@@ -19,6 +20,7 @@ pub use self::objects::{
     LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
     TextureEntry, TransformEntry,
 };
+pub use self::shadows::{GroundSection, ShadowsSection};
 use crate::color::SceneColor;
 use crate::error::{SceneError, did_you_mean};
 
@@ -61,6 +63,13 @@ pub struct Scene {
     pub objects: Vec<ObjectEntry>,
     /// Fog over objects.
     pub fog: FogSection,
+    /// The suns' shadows over objects (`lighting.model = "sky"`).
+    #[serde(default)]
+    pub shadows: ShadowsSection,
+    /// The planet's surface near the camera, shadowed and bouncing light (`lighting.model =
+    /// "sky"`).
+    #[serde(default)]
+    pub ground: GroundSection,
     /// Lens flares of the suns and the lights marked `flare = true`.
     pub flare: FlareSection,
     /// The folder relative mesh and texture paths are taken from: the scene file's folder (the
@@ -70,6 +79,14 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Whether the suns cast shadows: `shadows.enabled`, or when it is absent, whether
+    /// `lighting.model = "sky"` and `lighting.shading = "phong"`.
+    pub fn shadows_enabled(&self) -> bool {
+        self.shadows
+            .enabled
+            .unwrap_or(self.lighting.model == LightingModelName::Sky && self.lighting.shading == ShadingName::Phong)
+    }
+
     /// Every file the scene reads — mesh files (`objects[i].mesh.path`), texture files
     /// (`objects[i].texture.file`) and flare images (`flare.elements[i].file`) — as its key and
     /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),

@@ -6,7 +6,9 @@
 //! physical radiance; they are clamped where GL clamps them.
 
 pub mod fog;
+pub mod ground;
 pub mod lighting;
 pub mod mesh;
 pub mod scene;
+pub mod shadow;
 pub mod sky_light;

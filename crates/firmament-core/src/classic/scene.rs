@@ -17,7 +17,9 @@ use glam::{DMat4, DVec3, DVec4};
 
 use super::fog::{Fog, FogSun, HeightFog};
 use super::lighting::{Light, LightModel, Material, SpecularModel};
+use crate::classic::ground::Ground;
 use crate::classic::mesh::Mesh;
+use crate::classic::shadow::Shadows;
 use crate::texture::{TextureFilter, TextureImage};
 
 /// Most lights classic lighting takes at once (GL guarantees 8; so do we).
@@ -191,6 +193,10 @@ pub struct ObjectLayer {
     pub lighting: ObjectLighting,
     /// Fog over them.
     pub fog: SceneFog,
+    /// Sun shadows cast by the objects onto themselves and the ground (none by default, as GL).
+    pub shadows: Shadows,
+    /// The planet's surface near the camera, and the light it bounces up (under a physical sky).
+    pub ground: Option<Ground>,
 }
 
 /// An object's model matrix from a list of GL-style steps, applied in the listed order as

@@ -13,15 +13,19 @@
 
 use glam::{DVec3, DVec4};
 
+use super::ground::{Ground, ground_object};
 use super::lighting::{Light, LightModel, SpecularModel};
 use super::scene::{ClassicLighting, LightSpace, SceneLight, Shading};
+use super::shadow::ShadowLight;
 use crate::atmosphere::SpectralConversion;
-use crate::atmosphere::reference::{Reference, ReferenceSettings};
+use crate::atmosphere::reference::{GroundIrradiance, Reference, ReferenceSettings};
 use crate::frame::AtmosphereSky;
 
-/// Monte Carlo paths for the sky irradiance: its standard error is about 1/√paths of the value
-/// (3 % at 1024), plenty for an ambient term.
-pub const SKY_IRRADIANCE_PATHS: usize = 1024;
+/// Monte Carlo paths for the sky irradiance. Every point draws the same random numbers, so the
+/// estimate is smooth in space (no flicker as the camera moves) and its error is a bias: 3–4 % low
+/// at 1024 or 2048 paths, under 0.5 % from 3072 on (against 65 536, the Earth at noon and with
+/// the Sun 25° up). About 0.1 s a frame on two cores.
+pub const SKY_IRRADIANCE_PATHS: usize = 4096;
 
 /// The light a physical sky gives objects: build once per frame, then ask per point.
 #[derive(Debug)]
@@ -29,6 +33,8 @@ pub struct SkyLight<'a> {
     sky: &'a AtmosphereSky,
     reference: Reference,
     conversion: SpectralConversion,
+    /// The last point's irradiance ([`Self::lighting`] and [`Self::ground`] share it).
+    irradiance: std::sync::Mutex<Option<(DVec3, GroundIrradiance)>>,
 }
 
 impl<'a> SkyLight<'a> {
@@ -42,6 +48,21 @@ impl<'a> SkyLight<'a> {
             sky,
             reference: Reference::new(sky.atmosphere, &sky.suns, settings),
             conversion: sky.atmosphere.spectral_conversion(),
+            irradiance: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// The irradiance on a horizontal surface at `point` (world frame, metres), computed once
+    /// per point.
+    fn irradiance(&self, point: DVec3) -> GroundIrradiance {
+        let mut last = self.irradiance.lock().unwrap_or_else(|e| e.into_inner());
+        match *last {
+            Some((at, value)) if at == point => value,
+            _ => {
+                let value = self.reference.ground_irradiance(point);
+                *last = Some((point, value));
+                value
+            }
         }
     }
 
@@ -91,7 +112,7 @@ impl<'a> SkyLight<'a> {
         ClassicLighting {
             lights,
             model: LightModel {
-                ambient: self.rgb(self.reference.ground_irradiance(camera).sky),
+                ambient: self.rgb(self.irradiance(camera).sky),
                 local_viewer: true,
                 two_side: false,
                 separate_specular: false,
@@ -101,6 +122,66 @@ impl<'a> SkyLight<'a> {
             shading,
             specular,
         }
+    }
+}
+
+impl SkyLight<'_> {
+    /// The ground under a camera at `camera` (world frame, metres): the surface patch in the
+    /// medium's ground albedo and the light it bounces up ([`Ground`]); `None` below the surface.
+    /// The sky's irradiance is the same estimate as [`Self::lighting`]'s ambient (same seed).
+    pub fn ground(&self, camera: DVec3) -> Option<Ground> {
+        let atmosphere = &self.sky.atmosphere;
+        let irradiance = self.irradiance(camera);
+        let albedo = atmosphere.medium.ground_albedo;
+        // The albedo as linear sRGB: what it reflects of this light, channel by channel (exact for
+        // a grey ground, whatever the light's colour).
+        let lit = self.rgb(irradiance.direct + irradiance.sky);
+        let reflected = self.rgb(albedo * (irradiance.direct + irradiance.sky));
+        let mean = (albedo.x + albedo.y + albedo.z) / 3.0;
+        let channel = |r: f64, l: f64| if l > 0.0 { (r / l).clamp(0.0, 1.0) } else { mean };
+        let albedo_rgb = DVec4::new(
+            channel(reflected.x, lit.x),
+            channel(reflected.y, lit.y),
+            channel(reflected.z, lit.z),
+            1.0,
+        );
+        let (mut object, up, camera_height_m) = ground_object(&atmosphere.planet, camera, albedo_rgb)?;
+        // A centimetre above the foot point: on the surface itself, rounding decides whether the
+        // path to a sun starts below the ground.
+        object.light_colors = self.sun_colors(object.model.transform_point3(DVec3::Z * 0.01));
+        Some(Ground {
+            object,
+            up,
+            camera_height_m,
+            sky: self.rgb(irradiance.sky),
+            bounced_sun: self.rgb(albedo * irradiance.direct),
+            bounced_sky: self.rgb(albedo * irradiance.sky),
+        })
+    }
+
+    /// The suns that cast shadows at a camera at `camera` (world frame, metres): those above its
+    /// horizon, brightest first (by the luminance of their light there), at most `max_lights`.
+    /// `light` indexes the frame's suns, which are [`Self::lighting`]'s lights in order.
+    pub fn shadow_lights(&self, camera: DVec3, max_lights: u32) -> Vec<ShadowLight> {
+        let mut lit: Vec<(usize, f64)> = self
+            .sun_colors(camera)
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (i, 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z))
+            .filter(|&(_, y)| y > 0.0)
+            .collect();
+        lit.sort_by(|a, b| b.1.total_cmp(&a.1));
+        lit.into_iter()
+            .take(max_lights as usize)
+            .map(|(i, _)| {
+                let sun = &self.sky.suns[i];
+                ShadowLight {
+                    light: i,
+                    direction: sun.direction.normalize(),
+                    angular_radius: sun.angular_radius,
+                }
+            })
+            .collect()
     }
 }
 

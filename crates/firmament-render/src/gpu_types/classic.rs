@@ -1,12 +1,13 @@
 //! `f32` uniforms of the classic (fixed-function) object pass: one [`ClassicFrameUniforms`] per
 //! frame (projection, lights in eye space, light model, fog) and one [`ClassicObjectUniforms`]
-//! per object (model-view, normal matrix, materials).
+//! per object (model-view, normal matrix, materials); the shadow maps' are in `shadow.rs`.
 //!
 //! Eye-space quantities are computed in `f64` (view × model, lights through the view) and rounded
 //! once, so a far-away camera loses nothing before the cast.
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::classic::fog::{FogCoordinate, FogMode};
+use firmament_core::classic::ground::Ground;
 use firmament_core::classic::lighting::{Material, SpecularModel};
 use firmament_core::classic::scene::{MAX_CLASSIC_LIGHTS, ObjectLighting, SceneFog, SceneObject, Shading};
 use glam::{DMat3, DMat4, DVec3};
@@ -74,6 +75,14 @@ pub struct ClassicFrameUniforms {
     pub fog_sun: [f32; 4],
     /// Height fog's sun: in-scattered colour at the lobe's centre.
     pub fog_sun_color: [f32; 4],
+    /// World up in eye space; `w` = the camera's height above the ground patch, metres.
+    pub ground_up: [f32; 4],
+    /// The ground's radiance from the suns, unshadowed (cd/m², linear sRGB).
+    pub bounced_sun: [f32; 4],
+    /// The ground's radiance from the sky (cd/m², linear sRGB).
+    pub bounced_sky: [f32; 4],
+    /// `x` = 1: the ambient by view factors of sky and ground ([`Ground`]); `yzw` unused.
+    pub ground_mode: [u32; 4],
     /// Lights in eye space; only the first `model_flags[0]` are used.
     pub lights: [ClassicLightUniform; MAX_CLASSIC_LIGHTS],
 }
@@ -212,6 +221,18 @@ impl ClassicFrameUniforms {
             }
         }
         uniforms
+    }
+
+    /// Sets the view-factor ambient of `ground` (world → eye `view`); `scene_ambient` becomes
+    /// the sky's part ([`Ground::sky`]).
+    pub fn with_ground(mut self, ground: &Ground, view: &DMat4) -> Self {
+        let up = view.transform_vector3(ground.up).normalize_or_zero().as_vec3();
+        self.ground_up = [up.x, up.y, up.z, ground.camera_height_m as f32];
+        self.scene_ambient = v4(ground.sky);
+        self.bounced_sun = v4(ground.bounced_sun);
+        self.bounced_sky = v4(ground.bounced_sky);
+        self.ground_mode = [1, 0, 0, 0];
+        self
     }
 }
 

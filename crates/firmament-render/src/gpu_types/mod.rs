@@ -24,6 +24,7 @@ pub mod flare;
 pub mod night_sky;
 mod pack;
 mod planet_view;
+pub mod shadow;
 pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
@@ -33,6 +34,7 @@ pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUnif
 pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};
+pub use shadow::{ShadowCascadeGpu, ShadowCasterUniform, ShadowFrameUniforms};
 pub use sky_lighting::{SkyLightingGpu, SkyLightingParamsUniforms, SkyLightingSunGpu};
 
 /// Clip space → camera-relative world position, for passes that only need view directions.

@@ -223,6 +223,17 @@ impl PassPipeline<'_> {
         device: &wgpu::Device,
         blend: Option<wgpu::BlendState>,
     ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+        self.build_with_groups(device, blend, &[])
+    }
+
+    /// Builds the pipeline with `blend` and the layouts of `later_groups` as bind groups 1, 2, …
+    /// after its own (group 0, whose layout it returns).
+    pub(crate) fn build_with_groups(
+        &self,
+        device: &wgpu::Device,
+        blend: Option<wgpu::BlendState>,
+        later_groups: &[&wgpu::BindGroupLayout],
+    ) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
         let targets = [Some(wgpu::ColorTargetState {
             format: self.color,
             blend,
@@ -239,7 +250,9 @@ impl PassPipeline<'_> {
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&format!("firmament {owner} pipeline layout")),
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &std::iter::once(Some(&layout))
+                .chain(later_groups.iter().map(|&l| Some(l)))
+                .collect::<Vec<_>>(),
             immediate_size: 0,
         });
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -4,20 +4,26 @@
 //!
 //! Meshes and textures are uploaded once and kept while frames keep naming the same `Arc`s, so a
 //! time-lapse or the viewer uploads only per-object uniforms each frame.
+//!
+//! Under a physical sky the layer may carry the ground near the camera (drawn after the objects,
+//! shadowed, casting nothing) and sun shadows (`shadow_maps.rs`: maps drawn by
+//! [`ObjectPass::record_shadows`] before the objects, sampled per fragment).
 
 mod gpu_mesh;
+mod shadow_maps;
 
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
 use firmament_core::Camera;
 use firmament_core::classic::mesh::Mesh;
-use firmament_core::classic::scene::{ObjectLayer, Shading};
+use firmament_core::classic::scene::{ObjectLayer, ObjectLighting, Shading};
 use firmament_core::texture::TextureFilter;
 use firmament_core::texture::TextureImage;
 
 pub use self::gpu_mesh::GpuMesh;
 use self::gpu_mesh::{GpuTexture, SHADE_ATTRIBUTES, VERTEX_ATTRIBUTES, VERTEX_STRIDE, sampler};
+use self::shadow_maps::ShadowMaps;
 use crate::gpu_types::{ClassicFrameUniforms, ClassicObjectUniforms};
 use crate::passes::common::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
@@ -63,7 +69,9 @@ pub struct ObjectPass {
     linear: wgpu::Sampler,
     meshes: HashMap<MeshKey, CachedMesh>,
     textures: HashMap<usize, CachedTexture>,
+    /// The layer's objects, then its ground (if any).
     draws: Vec<ObjectDraw>,
+    shadows: ShadowMaps,
 }
 
 impl ObjectPass {
@@ -95,6 +103,7 @@ impl ObjectPass {
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             count: None,
         };
+        let shadows = ShadowMaps::new(device);
         let (pipeline, layout) = PassPipeline {
             owner: "ObjectPass",
             source: &shaders::CLASSIC_LIGHTING,
@@ -127,7 +136,7 @@ impl ObjectPass {
             },
             constants: &[],
         }
-        .build(device);
+        .build_with_groups(device, None, &[shadows.sample_layout()]);
         let white = TextureImage {
             width: 1,
             height: 1,
@@ -143,6 +152,7 @@ impl ObjectPass {
             meshes: HashMap::new(),
             textures: HashMap::new(),
             draws: Vec::new(),
+            shadows,
         }
     }
 
@@ -151,20 +161,28 @@ impl ObjectPass {
     /// textures no longer named are dropped.
     pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, layer: &ObjectLayer, camera: &Camera) {
         let view = camera.view_matrix();
-        let frame = ClassicFrameUniforms::new(
+        let mut frame = ClassicFrameUniforms::new(
             &layer.lighting,
             &layer.fog,
             &view,
             &camera.projection_matrix(),
             camera.position.z,
         );
+        let ground = match (&layer.lighting, &layer.ground) {
+            (ObjectLighting::Sky(_), Some(ground)) => Some(ground),
+            _ => None,
+        };
+        if let Some(ground) = ground {
+            frame = frame.with_ground(ground, &view);
+        }
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&frame));
         let flat = layer.lighting.equations().is_some_and(|c| c.shading == Shading::Flat);
 
         let mut used_meshes = HashSet::new();
         let mut used_textures = HashSet::new();
-        self.draws.truncate(layer.objects.len());
-        for (i, object) in layer.objects.iter().enumerate() {
+        let drawn = layer.objects.iter().chain(ground.map(|g| &g.object));
+        self.draws.truncate(layer.objects.len() + usize::from(ground.is_some()));
+        for (i, object) in drawn.enumerate() {
             let mesh_key = (Arc::as_ptr(&object.mesh) as usize, flat);
             if !self.meshes.contains_key(&mesh_key)
                 && let Some(gpu) = GpuMesh::new(device, &object.mesh, flat)
@@ -210,6 +228,8 @@ impl ObjectPass {
             let uniforms = ClassicObjectUniforms::new(object, &view);
             queue.write_buffer(&draw.uniforms, 0, bytemuck::bytes_of(&uniforms));
         }
+        let casters: Vec<MeshKey> = self.draws.iter().take(layer.objects.len()).map(|d| d.mesh).collect();
+        self.shadows.prepare(device, queue, layer, camera, &casters);
         self.meshes.retain(|key, _| used_meshes.contains(key));
         self.textures.retain(|key, _| used_textures.contains(key));
     }
@@ -256,6 +276,7 @@ impl ObjectPass {
     /// attachment).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(1, self.shadows.sample_bind_group(), &[]);
         for draw in &self.draws {
             // Absent only when the mesh could not be uploaded (no triangles).
             let Some(mesh) = self.meshes.get(&draw.mesh) else {
@@ -266,8 +287,23 @@ impl ObjectPass {
         }
     }
 
+    /// Whether the prepared frame has shadow maps to draw.
+    pub fn has_shadows(&self) -> bool {
+        !self.shadows.is_empty()
+    }
+
+    /// Draws the sun shadow maps of the prepared frame (nothing when it has no shadows): before
+    /// [`draw`](Self::draw) or [`record`](Self::record), in the same or an earlier encoder.
+    pub fn record_shadows(&self, encoder: &mut wgpu::CommandEncoder) {
+        if !self.shadows.is_empty() {
+            self.shadows
+                .record(encoder, |key| self.meshes.get(key).map(|m| &m.gpu));
+        }
+    }
+
     /// Draws the prepared objects into `color` and `depth`, both loaded (clear them first).
     pub fn record(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView, depth: &wgpu::TextureView) {
+        self.record_shadows(encoder);
         let mut pass = begin_load_pass(encoder, "firmament ObjectPass", color, depth);
         self.draw(&mut pass);
     }

@@ -10,8 +10,13 @@
 // Gouraud over a mesh whose vertices carry their triangle's provoking (GL: last) vertex as
 // `shade_*` (see `GpuMesh`), so all three light the same point and no flat interpolation
 // qualifier (WGSL's takes the first vertex) is involved.
+// Under a physical sky (`mode.z` = 1) two things go past GL, both off in classic scenes: sun
+// shadows (shadow/sampling.wgsl; per fragment, so Phong only) and, with a ground
+// (`ground_mode.x` = 1), an ambient term by view factors — the sky's light over (1 + n·up)/2,
+// the ground's bounce over (1 − n·up)/2 (`firmament_core::classic::ground`).
 
 #import generated/constants
+#import shadow/sampling
 
 const MAX_LIGHTS: u32 = 8u;
 
@@ -56,6 +61,13 @@ struct ClassicFrame {
     // Height fog's sun: xyz = unit direction to it (eye space), w = lobe exponent.
     fog_sun: vec4<f32>,
     fog_sun_color: vec4<f32>,
+    // World up in eye space; w = the camera's height above the ground patch (m).
+    ground_up: vec4<f32>,
+    // The ground's radiance from the suns (unshadowed) and from the sky (cd/m², linear sRGB).
+    bounced_sun: vec4<f32>,
+    bounced_sky: vec4<f32>,
+    // x = 1: the view-factor ambient (scene_ambient is the sky's part on a horizontal surface)
+    ground_mode: vec4<u32>,
     lights: array<ClassicLight, MAX_LIGHTS>,
 }
 
@@ -107,14 +119,34 @@ struct Lit {
     secondary: vec4<f32>,
 }
 
-fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
+// The ambient light on a surface of unit eye-space normal n at eye-space point p: GL's scene
+// ambient, or under a physical sky with a ground the sky and the ground by their view factors,
+// the ground's sunlit part shadowed as at the ground point below p (`shadowed`: per fragment).
+fn ambient_light(p: vec3<f32>, n: vec3<f32>, shadowed: bool) -> vec4<f32> {
+    if frame.ground_mode.x == 0u {
+        return frame.scene_ambient;
+    }
+    let up = frame.ground_up.xyz;
+    let up_facing = 0.5 * (1.0 + dot(n, up));
+    var sun = 1.0;
+    if shadowed && frame.model_flags.x > 0u {
+        // The point of the ground plane straight below p (the plane lies camera height below
+        // the eye), lit by the first sun as that ground sees it.
+        let below = p - up * (dot(p, up) + frame.ground_up.w);
+        sun = shadow_visibility(0u, below, up, normalize(frame.lights[0].position.xyz));
+    }
+    let ground = frame.bounced_sky.rgb + frame.bounced_sun.rgb * sun;
+    return vec4<f32>(frame.scene_ambient.rgb * up_facing + ground * (1.0 - up_facing), 1.0);
+}
+
+fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool, shadowed: bool) -> Lit {
     var m = object.front;
     var n = normalize(normal);
     if back {
         m = object.back;
         n = -n;
     }
-    var color = m.emission + m.ambient * frame.scene_ambient;
+    var color = m.emission + m.ambient * ambient_light(position, n, shadowed);
     var specular_sum = vec4<f32>(0.0);
     let to_eye = normalize(-position);
     let local_viewer = frame.model_flags.y != 0u;
@@ -142,7 +174,10 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool) -> Lit {
             let cos_angle = dot(-to_light, normalize(light.spot_direction.xyz));
             spot = select(0.0, pow(max(cos_angle, 0.0), light.spot_attenuation.x), cos_angle >= light.spot_direction.w);
         }
-        let factor = attenuation * spot;
+        var factor = attenuation * spot;
+        if shadowed {
+            factor *= shadow_visibility(i, position, n, to_light);
+        }
         let n_dot_l = max(dot(n, to_light), 0.0);
         color = color + factor * (m.ambient * light.ambient + n_dot_l * m.diffuse * light.diffuse);
         if n_dot_l != 0.0 {
@@ -199,7 +234,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
         let p = shade_eye.xyz / shade_eye.w;
         let n = object.normal_matrix * in.shade_normal;
         let clamp_vertex = frame.mode.z == 0u && frame.mode.w == 0u;
-        var front = shade(p, n, false);
+        var front = shade(p, n, false, false);
         if clamp_vertex {
             front = clamped(front);
         }
@@ -207,7 +242,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
         out.front_secondary = front.secondary;
         // The back colours are only read with two-sided lighting; don't pay for them otherwise.
         if frame.model_flags.z != 0u {
-            var back = shade(p, n, true);
+            var back = shade(p, n, true, false);
             if clamp_vertex {
                 back = clamped(back);
             }
@@ -229,7 +264,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locatio
         lit.primary = select(in.front_primary, in.back_primary, back);
         lit.secondary = select(in.front_secondary, in.back_secondary, back);
     } else if frame.mode.x == SHADING_PHONG {
-        lit = shade(in.eye_position, in.eye_normal, back);
+        lit = shade(in.eye_position, in.eye_normal, back, shadows.counts.w != 0u);
     } else {
         // Lighting off: the current colour (clamped below); no secondary colour.
         lit.primary = object.front.diffuse;

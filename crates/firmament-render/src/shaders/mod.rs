@@ -37,6 +37,8 @@ const FILES: &[(&str, &str)] = &[
     ("sky_gradient", include_str!("sky_gradient.wgsl")),
     ("tonemap", include_str!("tonemap.wgsl")),
     ("empirical_sky", include_str!("empirical_sky.wgsl")),
+    ("shadow/sampling", include_str!("shadow/sampling.wgsl")),
+    ("shadow/shadow_map", include_str!("shadow/shadow_map.wgsl")),
     ("classic_lighting", include_str!("classic_lighting.wgsl")),
     ("night_sky", include_str!("night_sky.wgsl")),
     ("flare/bindings", include_str!("flare/bindings.wgsl")),
@@ -219,6 +221,8 @@ pub static ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME: Shader = entry!("atmosphere/aer
 pub static ATMOSPHERE_AERIAL_PERSPECTIVE: Shader = entry!("atmosphere/aerial_perspective");
 /// The object pass: classic (fixed-function) lighting, textures and fog.
 pub static CLASSIC_LIGHTING: Shader = entry!("classic_lighting");
+/// The shadow-map pass: casters' depth seen from a sun.
+pub static SHADOW_MAP: Shader = entry!("shadow/shadow_map");
 /// The lens-flare occlusion pass (compute).
 pub static FLARE_OCCLUSION: Shader = entry!("flare_occlusion");
 /// The lens-flare element pass.
@@ -239,7 +243,7 @@ pub static BLOOM_UP: Shader = entry!("camera/bloom_up");
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 21] = [
+pub static ENTRIES: [&Shader; 22] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -252,6 +256,7 @@ pub static ENTRIES: [&Shader; 21] = [
     &ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME,
     &ATMOSPHERE_AERIAL_PERSPECTIVE,
     &CLASSIC_LIGHTING,
+    &SHADOW_MAP,
     &FLARE_OCCLUSION,
     &FLARE,
     &NIGHT_SKY,
@@ -358,7 +363,8 @@ mod tests {
     use crate::gpu_types::{
         AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, ClassicFrameUniforms,
         ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, FlareFrameUniforms,
-        FlareInstance, FlareSourceGpu, GradientSkyUniforms, TonemapUniforms,
+        FlareInstance, FlareSourceGpu, GradientSkyUniforms, ShadowCascadeGpu, ShadowCasterUniform, ShadowFrameUniforms,
+        TonemapUniforms,
     };
 
     fn validate(name: &str, source: &str) -> naga::Module {
@@ -913,9 +919,22 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 eye_up,
                 fog_sun,
                 fog_sun_color,
+                ground_up,
+                bounced_sun,
+                bounced_sky,
+                ground_mode,
                 lights
             ]
         );
+        assert_layout!(classic, "ShadowCascade", ShadowCascadeGpu, [eye_to_clip, params]);
+        assert_layout!(
+            classic,
+            "ShadowFrame",
+            ShadowFrameUniforms,
+            [counts, bias, slot_of_light, tan_radius, cascades]
+        );
+        let shadow_map = validate("shadow/shadow_map", &SHADOW_MAP);
+        assert_layout!(shadow_map, "ShadowCaster", ShadowCasterUniform, [model_to_clip]);
         assert_layout!(
             classic,
             "ClassicObject",

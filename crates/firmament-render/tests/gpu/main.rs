@@ -16,6 +16,7 @@ mod multiscattering;
 mod night_sky;
 mod objects;
 mod pass_timing;
+mod shadows;
 mod sky;
 mod sky_lighting;
 mod support;

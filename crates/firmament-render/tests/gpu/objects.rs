@@ -208,6 +208,7 @@ fn superbible_ads_and_phong() {
             objects: vec![sphere(&mesh, superbible_material())],
             lighting: classic(vec![superbible_light()], model, shading, SpecularModel::Blinn),
             fog: SceneFog::None,
+            ..Default::default()
         };
         check(name, &layer);
     }
@@ -223,6 +224,7 @@ fn vertex_colours_above_one_interpolate_unclamped_when_asked() {
         objects: vec![sphere(&mesh, superbible_material())],
         lighting: classic(vec![superbible_light()], model, Shading::Gouraud, SpecularModel::Phong),
         fog,
+        ..Default::default()
     };
     let ads = |clamp_vertex_color| LightModel {
         ambient: DVec4::ONE,
@@ -298,6 +300,7 @@ fn spots_attenuation_and_viewers() {
             objects: vec![sphere(&mesh, superbible_material())],
             lighting: classic(vec![superbible_light(), spot_light()], model, shading, specular),
             fog: SceneFog::None,
+            ..Default::default()
         };
         check(name, &layer);
     }
@@ -316,6 +319,7 @@ fn flat_shading_takes_the_last_vertex() {
             SpecularModel::Blinn,
         ),
         fog: SceneFog::None,
+        ..Default::default()
     };
     check("flat", &layer);
 }
@@ -355,6 +359,7 @@ fn all_eight_lights_at_once() {
         objects: vec![sphere(&mesh, material)],
         lighting: classic(lights, LightModel::default(), Shading::Phong, SpecularModel::Blinn),
         fog: SceneFog::None,
+        ..Default::default()
     };
     check("8 lights", &layer);
 }
@@ -406,6 +411,7 @@ fn two_sided_lighting_on_and_off() {
             objects: two_quads(front, back),
             lighting: classic(vec![light], model, Shading::Phong, SpecularModel::Blinn),
             fog: SceneFog::None,
+            ..Default::default()
         };
         check(name, &layer);
     }
@@ -441,6 +447,7 @@ fn textures_modulate_before_the_separate_specular() {
             objects: vec![object],
             lighting: classic(vec![superbible_light()], model, Shading::Gouraud, SpecularModel::Blinn),
             fog: SceneFog::None,
+            ..Default::default()
         };
         let tolerance = match filter {
             TextureFilter::Linear => linear_tolerance,
@@ -464,6 +471,7 @@ fn textures_modulate_before_the_separate_specular() {
         objects: vec![object],
         lighting: ObjectLighting::Unlit,
         fog: SceneFog::None,
+        ..Default::default()
     };
     check_within("unlit, textured", &layer, linear_tolerance);
 }
@@ -508,6 +516,7 @@ fn every_fog_mode_and_coordinate() {
                 coordinate,
                 color,
             }),
+            ..Default::default()
         };
         check(name, &layer);
     }
@@ -528,6 +537,7 @@ fn every_fog_mode_and_coordinate() {
             color,
             sun,
         },
+        ..Default::default()
     };
     check("height fog", &height_fog(None));
     // Sunlight in-scattered around the sun's direction, which passes just left of the sphere.
@@ -557,6 +567,7 @@ fn the_renderer_writes_the_equations_colours_as_8_bit_gl_pixels() {
             SpecularModel::Phong,
         ),
         fog: SceneFog::None,
+        ..Default::default()
     };
     let frame = firmament_core::Frame {
         camera: eye_camera(),
@@ -639,6 +650,7 @@ fn sky_lit_objects_keep_radiance_above_one() {
         objects: vec![sphere(&mesh, material)],
         lighting: ObjectLighting::Sky(lighting.clone()),
         fog: SceneFog::None,
+        ..Default::default()
     };
     check("sky-lit, unclamped", &layer);
 
@@ -653,6 +665,7 @@ fn sky_lit_objects_keep_radiance_above_one() {
         objects: vec![reddened, plain],
         lighting: ObjectLighting::Sky(lighting),
         fog: SceneFog::None,
+        ..Default::default()
     };
     check("sky-lit, per-object sun colours", &layer);
 }
@@ -702,6 +715,7 @@ fn vertex_fog_coordinates_from_the_mesh_or_the_object() {
                 coordinate: FogCoordinate::Vertex,
                 color: rgba(0.2, 0.3, 0.8),
             }),
+            ..Default::default()
         };
         check(name, &layer);
     }

@@ -4,8 +4,9 @@
 //! steps turn them into the core's types, checking each value on the way (each error names the
 //! scene key): `atmosphere` (`[planet]`, `[atmosphere]`, `[[suns]]` → [`AtmosphereSky`], or the
 //! seed's [`EmpiricalSky`]), `time` (`[time]` → the frame's moment and the real sun), `objects`
-//! (`[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]` → the object layer), `flare` (`[flare]` →
-//! the flare layer) and `night` (the stars and the Moon at a real instant).
+//! (`[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]`, `[shadows]`, `[ground]` → the object
+//! layer), `flare` (`[flare]` → the flare layer) and `night` (the stars and the Moon at a real
+//! instant).
 
 pub(crate) mod atmosphere;
 pub(crate) mod flare;

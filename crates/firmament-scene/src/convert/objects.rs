@@ -1,6 +1,6 @@
-//! From `[lighting]`, `[[lights]]`, `[[objects]]` and `[fog]` to the core's [`ObjectLayer`]:
-//! the rules each value must follow, GL's initial values for what is left out, and the meshes and
-//! textures built or loaded.
+//! From `[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]`, `[shadows]` and `[ground]` to the
+//! core's [`ObjectLayer`]: the rules each value must follow, GL's initial values for what is left
+//! out, and the meshes and textures built or loaded.
 
 use std::path::Path;
 use std::sync::Arc;
@@ -13,6 +13,7 @@ use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, MAX_CLASSIC_LIGHTS, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight,
     SceneObject, Shading, TransformStep, transform_from_steps,
 };
+use firmament_core::classic::shadow::{ShadowSettings, Shadows};
 use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::frame::Sky;
 use firmament_core::texture::TextureFilter;
@@ -490,17 +491,70 @@ fn fog_sun(scene: &Scene) -> Result<Option<FogSun>, SceneError> {
     }))
 }
 
-/// Checks every rule of `[lighting]`, `[[lights]]`, `[[objects]]` and `[fog]` without loading
-/// files (loading happens in [`object_layer`]).
+/// The shadow settings of `[shadows]` when the suns cast (`None` when they do not). The numeric
+/// keys are checked in every scene, shadows on or off, so that a bad value is found before it is
+/// used; `shadows.enabled = true` needs `lighting.model = "sky"` and `lighting.shading = "phong"`.
+fn shadow_settings(scene: &Scene) -> Result<Option<ShadowSettings>, SceneError> {
+    let settings = scene.shadows.settings();
+    // The core's rules name the scene's keys (`shadows.map_size`, …) already.
+    settings.validate().map_err(|e| match e {
+        firmament_core::CoreError::Invalid { field, value, rule } => SceneError::invalid(field, value, rule),
+        other => SceneError::invalid("shadows", "", other.to_string()),
+    })?;
+    if scene.shadows.enabled == Some(true) {
+        let l = &scene.lighting;
+        check(
+            l.model == LightingModelName::Sky,
+            "shadows.enabled",
+            true,
+            &format!(
+                "shadows need lighting.model = \"sky\" (they are cast by the atmosphere's suns), and lighting.model \
+                 is \"{}\": set shadows.enabled = false or leave it out",
+                lighting_model_name(l.model)
+            ),
+        )?;
+        check(
+            l.shading == ShadingName::Phong,
+            "shadows.enabled",
+            true,
+            &format!(
+                "shadows are computed per fragment and need lighting.shading = \"phong\", and lighting.shading is \
+                 \"{}\"",
+                shading_name(l.shading)
+            ),
+        )?;
+    }
+    Ok(scene.shadows_enabled().then_some(settings))
+}
+
+fn lighting_model_name(model: LightingModelName) -> &'static str {
+    match model {
+        LightingModelName::Classic => "classic",
+        LightingModelName::Unlit => "unlit",
+        LightingModelName::Sky => "sky",
+    }
+}
+
+fn shading_name(shading: ShadingName) -> &'static str {
+    match shading {
+        ShadingName::Flat => "flat",
+        ShadingName::Gouraud => "gouraud",
+        ShadingName::Phong => "phong",
+    }
+}
+
+/// Checks every rule of `[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]` and `[shadows]`
+/// without loading files (loading happens in [`object_layer`]).
 pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     lighting(scene, None)?;
+    shadow_settings(scene)?;
     fog(scene)?;
     objects(scene, TimeOfDay::MIDNIGHT, false)?;
     Ok(())
 }
 
-/// The scene's objects at `time` (for spins), their lighting and fog; builds the built-in meshes
-/// and loads mesh and texture files.
+/// The scene's objects at `time` (for spins), their lighting and fog, and under a sky light the
+/// suns' shadows and the ground; builds the built-in meshes and loads mesh and texture files.
 pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay, sky: &Sky) -> Result<ObjectLayer, SceneError> {
     let mut objects = objects(scene, time, true)?;
     // Objects lit by the sky: one sky light for the frame (`lighting` requires an atmosphere).
@@ -509,15 +563,30 @@ pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay, sky: &Sky) -> Result<
         _ => None,
     };
     let lighting = lighting(scene, sky_light.as_ref())?;
+    let shadow_settings = shadow_settings(scene)?;
+    let (mut shadows, mut ground) = (Shadows::default(), None);
     if let Some(light) = &sky_light {
         // Each object sees the suns through the air at its own origin.
         for object in &mut objects {
             object.light_colors = light.sun_colors(object.model.transform_point3(DVec3::ZERO));
+        }
+        // The camera, as `lighting` takes the sky's light at it.
+        let camera = DVec3::from_array(scene.camera.position);
+        if let Some(settings) = shadow_settings {
+            shadows = Shadows {
+                settings: Some(settings),
+                lights: light.shadow_lights(camera, settings.max_lights),
+            };
+        }
+        if scene.ground.enabled {
+            ground = light.ground(camera);
         }
     }
     Ok(ObjectLayer {
         objects,
         lighting,
         fog: fog(scene)?,
+        shadows,
+        ground,
     })
 }

@@ -10,5 +10,6 @@ mod empirical_scenes;
 mod flare_scenes;
 mod object_scenes;
 mod scene_files;
+mod shadow_scenes;
 mod support;
 mod time_scenes;

@@ -245,6 +245,7 @@ fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
                 "timing": result.timing.describe(),
                 "gouraud_ms": result.gouraud_ms,
                 "phong_ms": result.phong_ms,
+                "shadows_ms": result.shadows_ms,
                 }),
                 &baselines,
                 &[("gouraud_ms", result.gouraud_ms), ("phong_ms", result.phong_ms)],
@@ -268,11 +269,19 @@ fn print_objects(b: &ObjectBench, baselines: &Baselines) {
         b.frames,
         b.timing.describe()
     );
-    baselines.print_rows(&[
+    let mut rows = vec![
         ("Gouraud (lit per vertex)", b.gouraud_ms),
         ("Phong (lit per fragment)", b.phong_ms),
-    ]);
+    ];
+    rows.extend(
+        b.shadows_ms
+            .map(|ms| ("Phong with sun shadows (maps drawn and sampled)", ms)),
+    );
+    baselines.print_rows(&rows);
     println!("  Phong / Gouraud: {:.2}x", b.phong_ms / b.gouraud_ms);
+    if let Some(ms) = b.shadows_ms {
+        println!("  with shadows / without: {:.2}x", ms / b.phong_ms);
+    }
 }
 
 /// `--flares`: the occlusion and element passes with 1, 8 and 64 sources.

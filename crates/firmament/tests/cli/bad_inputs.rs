@@ -557,6 +557,44 @@ fn corpus() -> Vec<Case> {
             &["render", "--set", "flare.enabled=true", "--set", "flare.samples=100000"],
             &["flare.samples = 100000: must be 1 to 256 (MAX_FLARE_SAMPLES, a fixed limit"],
         ),
+        // ---- render: shadows -------------------------------------------------------------------
+        case(
+            "render: a shadow map of 100 texels",
+            1,
+            &["render", "--preset", "earth-objects", "--set", "shadows.map_size=100"],
+            &["shadows.map_size = 100: must be 256 to 8192 texels"],
+        ),
+        case(
+            "render: 9 shadow cascades in a file",
+            1,
+            &["render", "s.toml"],
+            &["shadows.cascades = 9: must be 1 to 4"],
+        )
+        .file("s.toml", "preset = \"earth-objects\"\n[shadows]\ncascades = 9\n"),
+        case(
+            "render: shadows of no sun",
+            1,
+            &["render", "--preset", "earth-objects", "--set", "shadows.max_suns=0"],
+            &["shadows.max_suns = 0: must be 1 to 8"],
+        ),
+        case(
+            "render: a negative shadow depth bias",
+            1,
+            &["render", "--preset", "earth-objects", "--set", "shadows.depth_bias=-1"],
+            &["shadows.depth_bias = -1: must be 0 to 16 texels"],
+        ),
+        case(
+            "render: shadows under classic lighting",
+            1,
+            &[
+                "render",
+                "--preset",
+                "fixed-function-tour",
+                "--set",
+                "shadows.enabled=true",
+            ],
+            &["shadows.enabled = true: shadows need lighting.model = \"sky\""],
+        ),
         case(
             "render: 16385 objects",
             1,
@@ -1128,7 +1166,7 @@ fn every_bad_input_fails_with_one_clear_message_and_writes_nothing() {
     let scratch = tempfile::tempdir().expect("temp dir");
     let cases = corpus();
     // The count the corpus has (docs/RELIABILITY.md), so that no case can vanish unnoticed.
-    let floor = if cfg!(target_os = "linux") { 97 } else { 91 };
+    let floor = if cfg!(target_os = "linux") { 102 } else { 96 };
     assert!(cases.len() >= floor, "only {} cases", cases.len());
     let mut failures = Vec::new();
     for case in &cases {

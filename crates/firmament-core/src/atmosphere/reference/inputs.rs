@@ -1,11 +1,12 @@
-//! What the reference integrates — an atmosphere, its suns and how hard to work
-//! ([`Reference`], [`ReferenceSettings`]) — and the part of a ray inside the air ([`segment`]):
-//! what the integrator (`mod.rs`) and the path tracer (`path_tracer.rs`) both need. The
-//! integrator's methods are in `mod.rs`.
+//! What the reference integrates — an atmosphere, its suns, what stands in their light and how
+//! hard to work ([`Reference`], [`ReferenceSettings`]) — and the part of a ray inside the air
+//! ([`segment`]): what the integrator (`mod.rs`) and the path tracer (`path_tracer.rs`) both need.
+//! The integrator's methods are in `mod.rs`.
 
 use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Planet, Sun};
 use crate::geometry::Ray;
+use crate::occluder::Occluder;
 
 /// How hard the reference works.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,11 +91,15 @@ pub(crate) fn segment(planet: &Planet, ray: &Ray) -> Option<Segment> {
     })
 }
 
-/// The reference integrator for one atmosphere lit by some suns.
+/// The reference integrator for one atmosphere lit by some suns, with optional opaque occluders
+/// ([`Reference::with_occluders`]).
 #[derive(Debug, Clone)]
 pub struct Reference {
     pub(super) atmosphere: Atmosphere,
     /// Suns in the planet frame (directions converted).
     pub(super) suns: Vec<Sun>,
     pub(super) settings: ReferenceSettings,
+    /// Occluders in the planet frame, converted once: 6.4e6 m from the centre f64 still resolves
+    /// about a nanometre, far below any shadow the tests look at.
+    pub(super) occluders: Vec<Occluder>,
 }

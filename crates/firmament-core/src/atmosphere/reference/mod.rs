@@ -16,6 +16,18 @@
 //!   included without bias; [`MultipleScattering::per_order`] shows how each order adds.
 //! - **Second order alone** ([`Reference::second_order`]): nested Gauss–Legendre quadrature, no
 //!   Monte Carlo, see `order_two.rs`: a deterministic check of the path tracer's `per_order[2]`.
+//! - **Occluders** ([`Reference::with_occluders`]): opaque black shapes, to check the GPU's light
+//!   shafts and shadows. A view ray ends at the first one it meets, exactly as at the surface of
+//!   [`Reference::radiance_before`] (no ground or sun disc behind it; every part, multiple
+//!   scattering included, stops there). **Occluders shadow single scattering and the direct sun
+//!   on the ground; multiple scattering and the sky's irradiance do not see them** — nor does
+//!   [`Reference::second_order`], not even on its view ray — which is what the GPU's shadowed
+//!   in-scattering models too. A point is lit by a sun only when the straight path from it
+//!   towards the sun misses every occluder (as well as the ground). The in-scattered light jumps
+//!   where the view ray crosses a shadow's edge, so the view ray's Simpson panels are split
+//!   there ([`Occluder::shadow_along`]): each piece between edges gets its share of
+//!   [`ReferenceSettings::view_steps`] (at least two panels) and is either lit or shadowed
+//!   throughout, so the quadrature stays accurate however thin the shaft.
 //!
 //! All inputs are in the world frame; the computation runs in the planet frame.
 //!
@@ -32,6 +44,7 @@ use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
 use crate::geometry::Ray;
+use crate::occluder::Occluder;
 use inputs::segment;
 use quadrature::adaptive_simpson;
 
@@ -50,7 +63,8 @@ pub struct RadianceParts {
     pub multiple: MultipleScattering,
     /// The suns' discs seen through the atmosphere.
     pub sun_discs: Spectrum,
-    /// Transmittance from the eye along the ray to space (zero when the ray meets the ground).
+    /// Transmittance from the eye along the ray to space (zero when the ray meets the ground), or
+    /// to the surface or occluder that ends it.
     pub transmittance: Spectrum,
 }
 
@@ -90,7 +104,17 @@ impl Reference {
             atmosphere,
             suns,
             settings,
+            occluders: Vec::new(),
         }
+    }
+
+    /// Sets the opaque occluders (world frame, metres; replacing any set before) that shadow
+    /// single scattering and the direct sun on the ground and end view rays; see the module docs
+    /// for what they leave out. Each should pass [`Occluder::validate`].
+    pub fn with_occluders(mut self, occluders: &[Occluder]) -> Self {
+        let planet = self.atmosphere.planet;
+        self.occluders = occluders.iter().map(|o| o.to_planet_frame(&planet)).collect();
+        self
     }
 
     /// A whole image seen by `camera` (its aspect ratio replaced by `width / height`): the total
@@ -174,10 +198,12 @@ impl Reference {
     /// surface. `transmittance` is then the transmittance from the eye to the surface, and
     /// nothing behind the surface (sun discs, ground, sky) is seen; the surface casts no shadow
     /// (the GPU's aerial perspective makes the same assumption). An infinite `distance` is
-    /// [`radiance`](Self::radiance).
+    /// [`radiance`](Self::radiance). An occluder nearer than `distance` ends the ray in the same
+    /// way.
     pub fn radiance_before(&self, view: &Ray, distance: f64) -> RadianceParts {
         let planet = &self.atmosphere.planet;
         let ray = planet.ray_to_planet_frame(view);
+        let distance = self.view_limit(&ray, distance);
         let (single, ground, transmittance) = self.single_scattering(&ray, distance);
         let multiple = path_tracer::multiple_scattering(self, &ray, 2, self.settings.paths, distance);
         let sun_discs = if distance.is_finite() {
@@ -212,6 +238,32 @@ impl Reference {
         order_two::second_order(self, &self.atmosphere.planet.ray_to_planet_frame(view), settings)
     }
 
+    /// Single scattering along a world-frame view ray that ends on an opaque black surface at
+    /// `distance` metres (infinite: none) or at the first occluder, W·m⁻²·sr⁻¹·nm⁻¹, and the
+    /// transmittance to where it ends (to space; zero when it meets the ground) — the
+    /// `single` and `transmittance` of [`radiance_before`](Self::radiance_before) without its
+    /// path tracing, so cheap enough to check light shafts pixel by pixel.
+    pub fn single_scattering_before(&self, view: &Ray, distance: f64) -> (Spectrum, Spectrum) {
+        let ray = self.atmosphere.planet.ray_to_planet_frame(view);
+        let (single, _, transmittance) = self.single_scattering(&ray, self.view_limit(&ray, distance));
+        (single, transmittance)
+    }
+
+    /// Where a planet-frame view ray ends: at `distance`, or nearer at the first occluder it meets
+    /// (0 when it starts inside one).
+    fn view_limit(&self, ray: &Ray, distance: f64) -> f64 {
+        self.occluders
+            .iter()
+            .filter_map(|o| o.hit(ray))
+            .filter(|&(_, far)| far > 0.0)
+            .fold(distance, |nearest, (near, _)| nearest.min(near.max(0.0)))
+    }
+
+    /// Whether an occluder stands between planet-frame point `p` and the sun in `direction`.
+    fn occluded(&self, p: DVec3, direction: DVec3) -> bool {
+        self.occluders.iter().any(|o| o.blocks(p, direction, f64::INFINITY))
+    }
+
     /// Single scattering, the directly sunlit ground seen along the ray, and the transmittance to
     /// space (or to an opaque surface at `limit` along the ray), for a planet-frame ray.
     fn single_scattering(&self, ray: &Ray, limit: f64) -> (Spectrum, Spectrum, Spectrum) {
@@ -220,34 +272,65 @@ impl Reference {
         let Some(segment) = segment(planet, ray).and_then(|s| s.before(limit).0) else {
             return (Spectrum::ZERO, Spectrum::ZERO, Spectrum::ONE);
         };
-        let n = self.settings.view_steps.max(2).next_multiple_of(2);
-        let dt = (segment.end - segment.start) / n as f64;
+        // Pieces between the occluders' shadow edges, where the integrand jumps (one piece when
+        // nothing is shadowed).
+        let mut edges = vec![segment.start, segment.end];
+        for sun in &self.suns {
+            for occluder in &self.occluders {
+                if let Some((a, b)) = occluder.shadow_along(ray, sun.direction, segment.start, segment.end) {
+                    edges.extend([a, b]);
+                }
+            }
+        }
+        edges.sort_by(f64::total_cmp);
+        edges.dedup();
+        let panels = self.settings.view_steps.max(2).next_multiple_of(2);
+        let length = segment.end - segment.start;
         // The medium is the shell: nothing to attenuate before the ray enters it.
         let mut depth = Spectrum::ZERO;
-        let mut sum = Spectrum::ZERO;
-        for i in 0..=n {
-            let t = segment.start + dt * i as f64;
-            if i > 0 {
-                depth += self.optical_depth_along(ray, t - dt, t);
-            }
-            let p = ray.at(t);
-            let coefficients = medium.at(planet.altitude(p));
-            let mut in_scattered = Spectrum::ZERO;
-            for sun in &self.suns {
-                let nu = ray.direction.dot(sun.direction);
-                let sun_transmittance = self.transmittance_to_space(p, sun.direction);
-                in_scattered += medium.scattering_phase(&coefficients, nu) * sun_transmittance * sun.irradiance;
-            }
-            let weight = if i == 0 || i == n {
-                1.0
-            } else if i % 2 == 1 {
-                4.0
+        let mut previous = segment.start;
+        let mut single = Spectrum::ZERO;
+        for piece in edges.windows(2) {
+            let (a, b) = (piece[0], piece[1]);
+            let n = if edges.len() == 2 {
+                panels
             } else {
-                2.0
+                ((panels as f64 * (b - a) / length).round() as usize)
+                    .max(2)
+                    .next_multiple_of(2)
             };
-            sum += in_scattered * (-depth).exp() * weight;
+            // Each sun lights all of the piece or none of it: ask at its middle, clear of edges.
+            let middle = ray.at(0.5 * (a + b));
+            let lit: Vec<bool> = self
+                .suns
+                .iter()
+                .map(|sun| !self.occluded(middle, sun.direction))
+                .collect();
+            let dt = (b - a) / n as f64;
+            let mut sum = Spectrum::ZERO;
+            for i in 0..=n {
+                let t = a + dt * i as f64;
+                depth += self.optical_depth_along(ray, previous, t);
+                previous = t;
+                let p = ray.at(t);
+                let coefficients = medium.at(planet.altitude(p));
+                let mut in_scattered = Spectrum::ZERO;
+                for (sun, _) in self.suns.iter().zip(&lit).filter(|(_, lit)| **lit) {
+                    let nu = ray.direction.dot(sun.direction);
+                    let sun_transmittance = self.transmittance_to_space(p, sun.direction);
+                    in_scattered += medium.scattering_phase(&coefficients, nu) * sun_transmittance * sun.irradiance;
+                }
+                let weight = if i == 0 || i == n {
+                    1.0
+                } else if i % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
+                sum += in_scattered * (-depth).exp() * weight;
+            }
+            single += sum * (dt / 3.0);
         }
-        let single = sum * (dt / 3.0);
         let end_transmittance = (-depth).exp();
         if !segment.ends_on_ground {
             return (single, Spectrum::ZERO, end_transmittance);
@@ -259,18 +342,23 @@ impl Reference {
         (single, ground, Spectrum::ZERO)
     }
 
-    /// Direct sun irradiance on a surface with normal `up` at a planet-frame point.
+    /// Direct sun irradiance on a surface with normal `up` at a planet-frame point: nothing from
+    /// a sun an occluder hides. Seen from 1 mm above the point, so that the ground under it
+    /// does not hide the sun by rounding.
     fn direct_irradiance(&self, p: DVec3, up: DVec3) -> Spectrum {
+        let from = p + up * 1e-3;
         self.suns
             .iter()
+            .filter(|sun| !self.occluded(from, sun.direction))
             .map(|sun| {
                 let cos = up.dot(sun.direction).max(0.0);
-                sun.irradiance * self.transmittance_to_space(p + up * 1e-3, sun.direction) * cos
+                sun.irradiance * self.transmittance_to_space(from, sun.direction) * cos
             })
             .sum()
     }
 
-    /// Irradiance on a horizontal surface at a world-frame point on (or above) the ground.
+    /// Irradiance on a horizontal surface at a world-frame point on (or above) the ground;
+    /// occluders hide the suns from `direct` but not the sky from `sky`.
     pub fn ground_irradiance(&self, world_point: DVec3) -> GroundIrradiance {
         let p = self.atmosphere.planet.to_planet_frame(world_point);
         let up = self.atmosphere.planet.up(p);
@@ -281,6 +369,8 @@ impl Reference {
     }
 }
 
+#[cfg(test)]
+mod occluder_tests;
 #[cfg(test)]
 mod order_two_tests;
 #[cfg(test)]

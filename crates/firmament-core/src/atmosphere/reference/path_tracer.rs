@@ -146,8 +146,12 @@ impl PathStart {
 
 /// Sky irradiance on a surface with normal `up` at planet-frame point `p`: π × the mean radiance
 /// (orders ≥ 1) over cosine-distributed directions.
+///
+/// Every point draws the same random numbers (the seed does not depend on `p` or `up`), so the
+/// estimate is a smooth function of where it is taken: objects lit by it do not flicker as the
+/// camera moves, and two nearby points differ by the physics, not by independent noise.
 pub(super) fn sky_irradiance(reference: &Reference, p: DVec3, up: DVec3, paths: usize) -> Spectrum {
-    let seed = hash(reference.settings.seed ^ 0x1AB5, p, up);
+    let seed = reference.settings.seed ^ 0x1AB5;
     let estimate = estimate(paths, |index| {
         let mut rng = Pcg64Mcg::seed_from_u64(seed ^ (index as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
         let direction = cosine_sample(up, &mut rng);

@@ -93,6 +93,18 @@ impl GpuMesh {
         }
     }
 
+    /// Binds only the position buffer (slot 0) and draws: for depth-only passes.
+    pub(crate) fn draw_positions(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        match &self.indices {
+            Some(indices) => {
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..self.count, 0, 0..1);
+            }
+            None => pass.draw(0..self.count, 0..1),
+        }
+    }
+
     /// Binds the buffers and draws (the pipeline and bind group are set by the caller).
     pub(crate) fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_vertex_buffer(0, self.vertices.slice(..));

@@ -313,6 +313,9 @@ pub(crate) struct ObjectBench {
     pub(crate) gouraud_ms: f64,
     /// Lit per fragment.
     pub(crate) phong_ms: f64,
+    /// Lit per fragment with the sun shadow maps drawn and sampled, when the layer has shadows
+    /// (`phong_ms` is then without them).
+    pub(crate) shadows_ms: Option<f64>,
 }
 
 /// `count` GLTools spheres of `slices × stacks` (1000 triangles each at 25 × 20) in a square grid
@@ -371,6 +374,7 @@ pub(crate) fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(Obj
             specular: SpecularModel::Blinn,
         }),
         fog: SceneFog::None,
+        ..Default::default()
     };
     let camera = Camera {
         position: DVec3::ZERO,
@@ -384,7 +388,8 @@ pub(crate) fn sphere_grid(count: usize, slices: u32, stacks: u32) -> Result<(Obj
 }
 
 /// Times the object pass on `layer` seen by `camera` at `width` × `height`, once with Gouraud
-/// and once with Phong shading (other classic settings as given; unlit layers are timed as is).
+/// and once with Phong shading, both without shadows (other classic settings as given; unlit
+/// layers are timed as is), and, when the layer has shadows, with Phong and its shadows.
 pub(crate) fn bench_objects(
     ctx: &GpuContext,
     layer: &ObjectLayer,
@@ -400,10 +405,13 @@ pub(crate) fn bench_objects(
     };
     let targets = FrameTargets::new(&ctx.device, width, height);
     let mut pass = ObjectPass::new(&ctx.device, &ctx.queue);
-    let mut time = |shading: Shading| {
+    let mut time = |shading: Shading, shadows: bool| {
         let mut layer = layer.clone();
         if let ObjectLighting::Classic(c) | ObjectLighting::Sky(c) = &mut layer.lighting {
             c.shading = shading;
+        }
+        if !shadows {
+            layer.shadows = Default::default();
         }
         pass.prepare(&ctx.device, &ctx.queue, &layer, &camera);
         median_ms(ctx, frames, &targets.hdr, |e| {
@@ -411,8 +419,9 @@ pub(crate) fn bench_objects(
             pass.record(e, &targets.hdr_view, &targets.depth_view);
         })
     };
-    let gouraud_ms = time(Shading::Gouraud);
-    let phong_ms = time(Shading::Phong);
+    let gouraud_ms = time(Shading::Gouraud, false);
+    let phong_ms = time(Shading::Phong, false);
+    let shadows_ms = layer.shadows.any().then(|| time(Shading::Phong, true));
     let info = ctx.device.adapter_info();
     Ok(ObjectBench {
         adapter: format!("{} ({:?})", info.name, info.backend),
@@ -425,6 +434,7 @@ pub(crate) fn bench_objects(
         timing: timing(ctx),
         gouraud_ms,
         phong_ms,
+        shadows_ms,
     })
 }
 
