@@ -290,7 +290,8 @@ impl Renderer {
         if self.sky == SkyKind::Atmosphere {
             if !self.objects.is_empty() {
                 // Builds the volume too; compute on the own targets (bound in `prepare`).
-                if !own.atmosphere.record_aerial_perspective_on_target(encoder) {
+                let shadows = self.objects.shadow_bind_group();
+                if !own.atmosphere.record_aerial_perspective_with_shafts(encoder, shadows) {
                     own.atmosphere.record_aerial_perspective(encoder, &targets.hdr_view);
                 }
                 timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);

@@ -102,6 +102,16 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/earth-objects.toml"),
     },
     Preset {
+        name: "earth-shafts",
+        summary: "atmosphere: light shafts through a colonnade in ground fog, the Sun low behind it",
+        toml: include_str!("presets/earth-shafts.toml"),
+    },
+    Preset {
+        name: "earth-dusk-shadow",
+        summary: "atmosphere: looking east at dusk, Earth's shadow rising under the pink Belt of Venus",
+        toml: include_str!("presets/earth-dusk-shadow.toml"),
+    },
+    Preset {
         name: "superbible-ads",
         summary: "classic: the SuperBible's blue sphere, ADS lighting per vertex (Gouraud)",
         toml: include_str!("presets/superbible-ads.toml"),

@@ -23,6 +23,7 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
+use super::scene::{ClassicLighting, LightSpace};
 use crate::camera::Camera;
 use crate::error::CoreError;
 
@@ -140,6 +141,37 @@ pub struct ShadowLight {
     pub direction: DVec3,
     /// Its disc's angular radius, radians (0: a point, hard edges).
     pub angular_radius: f64,
+}
+
+impl ShadowLight {
+    /// The casting lights of a classic scene: its directional lights placed in world space
+    /// (`GL_POSITION` with w = 0, [`LightSpace::World`]), brightest first by the luminance of
+    /// their diffuse colour, at most `max_lights`; hard-edged (no disc). Lights that move with the
+    /// eye, positional lights and spots cast nothing.
+    pub fn from_classic(lighting: &ClassicLighting, max_lights: u32) -> Vec<Self> {
+        let mut directional: Vec<(usize, f64, DVec3)> = lighting
+            .lights
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.space == LightSpace::World && l.light.position.w == 0.0)
+            .filter_map(|(i, l)| {
+                let d = l.light.diffuse;
+                let luminance = 0.2126 * d.x + 0.7152 * d.y + 0.0722 * d.z;
+                let direction = l.light.position.truncate().try_normalize()?;
+                (luminance > 0.0).then_some((i, luminance, direction))
+            })
+            .collect();
+        directional.sort_by(|a, b| b.1.total_cmp(&a.1));
+        directional
+            .into_iter()
+            .take(max_lights as usize)
+            .map(|(light, _, direction)| Self {
+                light,
+                direction,
+                angular_radius: 0.0,
+            })
+            .collect()
+    }
 }
 
 /// A frame's shadows: how, and which lights cast.
@@ -396,6 +428,33 @@ mod tests {
         let alpha = 0.267f64.to_radians();
         assert!((penumbra_half_width(alpha, 10.0) - 10.0 * alpha.tan()).abs() < 1e-15);
         assert_eq!(penumbra_half_width(alpha, -1.0), 0.0);
+    }
+
+    #[test]
+    fn a_classic_scene_casts_from_its_world_directional_lights_brightest_first() {
+        use crate::classic::lighting::Light;
+        use crate::classic::scene::SceneLight;
+        let light = |position: DVec4, grey: f64, space| SceneLight {
+            light: Light {
+                position,
+                diffuse: DVec4::new(grey, grey, grey, 1.0),
+                ..Light::gl_default(1)
+            },
+            space,
+        };
+        let lighting = ClassicLighting {
+            lights: vec![
+                light(DVec4::new(0.0, 0.0, 2.0, 0.0), 0.3, LightSpace::World),
+                light(DVec4::new(1.0, 0.0, 1.0, 1.0), 0.9, LightSpace::World), // positional
+                light(DVec4::new(0.0, 1.0, 1.0, 0.0), 0.8, LightSpace::World),
+                light(DVec4::new(0.0, 0.0, 1.0, 0.0), 1.0, LightSpace::Eye), // a headlight
+            ],
+            ..ClassicLighting::default()
+        };
+        let cast = ShadowLight::from_classic(&lighting, 8);
+        assert_eq!(cast.iter().map(|l| l.light).collect::<Vec<_>>(), [2, 0]);
+        assert!(cast[1].direction.distance(DVec3::Z) < 1e-12 && cast[0].angular_radius == 0.0);
+        assert_eq!(ShadowLight::from_classic(&lighting, 1).len(), 1);
     }
 
     #[test]

@@ -27,7 +27,8 @@ const SLOTS: usize = (MAX_SHADOW_LIGHTS * MAX_SHADOW_CASCADES) as usize;
 pub struct ShadowFrameUniforms {
     /// Casting lights, cascades per light, map size (texels), 1 when shadows are on.
     pub counts: [u32; 4],
-    /// Depth bias (texels), normal bias (texels), unused, unused.
+    /// Depth bias (texels), normal bias (texels), the highest caster's top above the camera
+    /// (m, along world up), unused.
     pub bias: [f32; 4],
     /// The casting slot + 1 of light `i` at `[i / 4][i % 4]` (0: none).
     pub slot_of_light: [[u32; 4]; 2],

@@ -93,6 +93,19 @@ impl ComputeKernel {
         entries: &[wgpu::BindGroupLayoutEntry],
         constants: &[(&str, f64)],
     ) -> Self {
+        Self::with_groups(device, owner, (source, "cs_main"), entries, constants, &[])
+    }
+
+    /// [`new`](Self::new) for the entry point `source.1` of `source.0`, with the layouts of
+    /// `later_groups` as bind groups 1, 2, … after its own.
+    pub(crate) fn with_groups(
+        device: &wgpu::Device,
+        owner: &'static str,
+        (source, entry_point): (&str, &str),
+        entries: &[wgpu::BindGroupLayoutEntry],
+        constants: &[(&str, f64)],
+        later_groups: &[&wgpu::BindGroupLayout],
+    ) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(&format!("firmament {owner} shader")),
             source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -103,14 +116,16 @@ impl ComputeKernel {
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(&format!("firmament {owner} pipeline layout")),
-            bind_group_layouts: &[Some(&layout)],
+            bind_group_layouts: &std::iter::once(Some(&layout))
+                .chain(later_groups.iter().map(|&l| Some(l)))
+                .collect::<Vec<_>>(),
             immediate_size: 0,
         });
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&format!("firmament {owner} pipeline")),
             layout: Some(&pipeline_layout),
             module: &module,
-            entry_point: Some("cs_main"),
+            entry_point: Some(entry_point),
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants,
                 ..Default::default()
@@ -136,12 +151,26 @@ impl ComputeKernel {
         bind_group: &wgpu::BindGroup,
         workgroups: (u32, u32, u32),
     ) {
+        self.dispatch_with(encoder, bind_group, &[], workgroups);
+    }
+
+    /// [`dispatch`](Self::dispatch) with `later` bound as groups 1, 2, ….
+    pub(crate) fn dispatch_with(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        bind_group: &wgpu::BindGroup,
+        later: &[&wgpu::BindGroup],
+        workgroups: (u32, u32, u32),
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(&format!("firmament {}", self.owner)),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind_group, &[]);
+        for (i, group) in later.iter().enumerate() {
+            pass.set_bind_group(i as u32 + 1, *group, &[]);
+        }
         pass.dispatch_workgroups(workgroups.0, workgroups.1, workgroups.2);
     }
 }
@@ -163,6 +192,16 @@ impl ComputeStage {
         resources: &[(u32, wgpu::BindingResource<'_>)],
     ) -> Self {
         Self::with_constants(device, owner, source, entries, resources, &[])
+    }
+
+    /// A stage of `kernel` whose bind group holds `resources`.
+    pub(crate) fn of_kernel(
+        device: &wgpu::Device,
+        kernel: ComputeKernel,
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> Self {
+        let bind_group = kernel.bind(device, resources);
+        Self { kernel, bind_group }
     }
 
     /// [`new`](Self::new) with pipeline-overridable `constants` set.
@@ -187,5 +226,15 @@ impl ComputeStage {
     /// Dispatches `workgroups` in a compute pass of its own.
     pub(crate) fn dispatch(&self, encoder: &mut wgpu::CommandEncoder, workgroups: (u32, u32, u32)) {
         self.kernel.dispatch(encoder, &self.bind_group, workgroups);
+    }
+
+    /// [`dispatch`](Self::dispatch) with `later` bound as groups 1, 2, ….
+    pub(crate) fn dispatch_with(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        later: &[&wgpu::BindGroup],
+        workgroups: (u32, u32, u32),
+    ) {
+        self.kernel.dispatch_with(encoder, &self.bind_group, later, workgroups);
     }
 }

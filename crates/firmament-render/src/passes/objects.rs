@@ -12,6 +12,8 @@
 mod gpu_mesh;
 mod shadow_maps;
 
+pub(crate) use self::shadow_maps::sampling_layout as shadow_sampling_layout;
+
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
@@ -290,6 +292,12 @@ impl ObjectPass {
     /// Whether the prepared frame has shadow maps to draw.
     pub fn has_shadows(&self) -> bool {
         !self.shadows.is_empty()
+    }
+
+    /// The bind group through which the light shafts sample the prepared frame's shadow maps
+    /// (`shadow/sampling.wgsl`), when it has any.
+    pub(crate) fn shadow_bind_group(&self) -> Option<&wgpu::BindGroup> {
+        self.has_shadows().then(|| self.shadows.sample_bind_group())
     }
 
     /// Draws the sun shadow maps of the prepared frame (nothing when it has no shadows): before

@@ -174,12 +174,14 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool, shadowed: bool) -> 
             let cos_angle = dot(-to_light, normalize(light.spot_direction.xyz));
             spot = select(0.0, pow(max(cos_angle, 0.0), light.spot_attenuation.x), cos_angle >= light.spot_direction.w);
         }
-        var factor = attenuation * spot;
+        let factor = attenuation * spot;
+        // A shadow hides the light's direct part (diffuse and specular), not its ambient term.
+        var direct = factor;
         if shadowed {
-            factor *= shadow_visibility(i, position, n, to_light);
+            direct *= shadow_visibility(i, position, n, to_light);
         }
         let n_dot_l = max(dot(n, to_light), 0.0);
-        color = color + factor * (m.ambient * light.ambient + n_dot_l * m.diffuse * light.diffuse);
+        color = color + factor * m.ambient * light.ambient + direct * n_dot_l * m.diffuse * light.diffuse;
         if n_dot_l != 0.0 {
             var s: f32;
             if frame.mode.y == SPECULAR_BLINN {
@@ -188,7 +190,7 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool, shadowed: bool) -> 
                 s = max(dot(reflect(-to_light, n), eye), 0.0);
             }
             let power = select(pow(s, m.shininess.x), 1.0, m.shininess.x == 0.0);
-            specular_sum = specular_sum + factor * power * m.specular * light.specular;
+            specular_sum = specular_sum + direct * power * m.specular * light.specular;
         }
     }
     let spec = vec4<f32>(specular_sum.rgb, 0.0);

@@ -286,3 +286,185 @@ fn undersides_get_the_ground_s_bounce_not_the_sky_s_blue() {
         }
     }
 }
+
+#[test]
+fn light_shafts_take_away_the_single_scattering_the_reference_s_occluders_do() {
+    // A black wall 10 m high and 20 m wide with a 4 m gap in the middle, running north-south
+    // 30 m west of the origin, the Sun 10° up in the west behind it, hazy air (Mie 25 times the
+    // clear day's) over black ground. The camera stands 12 m east of the wall, just north of its
+    // shadow, and looks south along it and down at the ground: each ray crosses the shadow of
+    // the northern half, the beam through the gap, the shadow of the southern half, and sunlit
+    // air again — its edges across the ray, not along it. What the shafts take from a pixel (the
+    // frame without shadows less the frame with them) against what the reference loses to the
+    // same walls as occluders: single scattering along the ray, without less with. Black
+    // surfaces leave nothing else to differ.
+    let mut sky = support::street_sky(270.0, 10.0);
+    sky.atmosphere.medium.mie.scattering *= 25.0;
+    sky.atmosphere.medium.mie.extinction *= 25.0;
+    sky.atmosphere.medium.ground_albedo = DVec3::ZERO;
+    let camera = Camera {
+        aspect: f64::from(SIZE.0) / f64::from(SIZE.1),
+        ..Camera::from_heading_pitch(DVec3::new(-18.0, 14.0, 1.7), 180f64.to_radians(), (-9f64).to_radians())
+            .with_fov_y(16f64.to_radians())
+    };
+    let halves = [
+        (DVec3::new(-30.0, -6.0, 5.0), DVec3::new(0.25, 4.0, 5.0)),
+        (DVec3::new(-30.0, 6.0, 5.0), DVec3::new(0.25, 4.0, 5.0)),
+    ];
+    let cube = Arc::new(Mesh::cube(1.0).expect("a cube"));
+    let walls = halves
+        .iter()
+        .map(|&(centre, half)| {
+            SceneObject::new(
+                cube.clone(),
+                DMat4::from_translation(centre) * DMat4::from_scale(half * 2.0),
+                grey(0.0),
+            )
+        })
+        .collect();
+    let shafts = ShadowSettings {
+        distance_m: 80.0,
+        ..settings()
+    };
+    let lit = frame(&sky, camera, walls, shafts);
+    let mut unshadowed = lit.clone();
+    unshadowed.objects.shadows = Shadows::default();
+    let (with, without) = (hdr(&lit), hdr(&unshadowed));
+
+    let conversion = sky.atmosphere.spectral_conversion();
+    let occluders: Vec<_> = halves
+        .iter()
+        .map(|&(center, half_extents)| firmament_core::occluder::Occluder::Box {
+            center,
+            half_extents,
+            orientation: DQuat::IDENTITY,
+        })
+        .collect();
+    // Single scattering only (no paths), 64 Simpson panels: the reference splits them at every
+    // shadow edge, and the air between edges is smooth.
+    let settings = firmament_core::atmosphere::reference::ReferenceSettings {
+        view_steps: 64,
+        paths: 1,
+        ..Default::default()
+    };
+    let plain = firmament_core::atmosphere::reference::Reference::new(sky.atmosphere, &sky.suns, settings);
+    let occluded = plain.clone().with_occluders(&occluders);
+    let luminance = |c: DVec3| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    let mut errors = Vec::new();
+    for y in (0..SIZE.1).step_by(4) {
+        for x in (0..SIZE.0).step_by(5) {
+            let ndc = DVec2::new(
+                (f64::from(x) + 0.5) / f64::from(SIZE.0) * 2.0 - 1.0,
+                1.0 - (f64::from(y) + 0.5) / f64::from(SIZE.1) * 2.0,
+            );
+            let ray = firmament_core::geometry::Ray {
+                origin: camera.position,
+                direction: camera.view_direction(ndc),
+            };
+            // Both rays end where the GPU's do: at a wall, or on the ground.
+            let wall = occluders
+                .iter()
+                .filter_map(|o| o.hit(&ray))
+                .filter(|&(_, far)| far > 0.0)
+                .map(|(near, _)| near.max(0.0))
+                .fold(f64::INFINITY, f64::min);
+            let single = |r: &firmament_core::atmosphere::reference::Reference| {
+                let c = conversion.linear_srgb(r.single_scattering_before(&ray, wall).0);
+                DVec3::new(c.r, c.g, c.b)
+            };
+            let want = luminance(single(&plain) - single(&occluded));
+            let got = luminance(rgb(&without, (x, y)) - rgb(&with, (x, y)));
+            // Rays that pass through shadow: at least a tenth of their sunlight lost to it (a
+            // ray grazing an edge loses a sliver, whose ratio says little), and a loss the
+            // half-float target resolves (64 of its steps at the pixel's value).
+            let pixel = luminance(rgb(&without, (x, y)));
+            let half_float_step = 2f64.powi(pixel.max(1e-3).log2().floor() as i32 - 10);
+            if want > 0.1 * luminance(single(&plain)) && want > 64.0 * half_float_step {
+                errors.push((got / want - 1.0).abs());
+            }
+        }
+    }
+    errors.sort_by(f64::total_cmp);
+    assert!(errors.len() > 200, "only {} rays cross a shadow", errors.len());
+    let median = errors[errors.len() / 2];
+    let worst = errors[errors.len() - 1];
+    eprintln!(
+        "shafts: {} rays, lost light vs the reference: median {:.2} %, worst {:.2} %",
+        errors.len(),
+        100.0 * median,
+        100.0 * worst
+    );
+    assert!(median < 0.03 && worst < 0.08, "median {median}, worst {worst}");
+}
+
+#[test]
+fn a_classic_scene_s_shadow_hides_a_light_s_diffuse_term_not_its_ambient_one() {
+    // GL lighting (clamped colours) with one world-space directional light straight down: a
+    // sphere over a grey quad, seen from above. Under the sphere the quad keeps the light's
+    // ambient term and the scene's; beside it, the diffuse term too (the normal faces the light).
+    use firmament_core::classic::lighting::{Light, LightModel};
+    use firmament_core::classic::scene::{ClassicLighting, LightSpace, SceneLight};
+    use firmament_core::classic::shadow::ShadowLight;
+    let light = SceneLight {
+        light: Light {
+            ambient: DVec4::new(0.1, 0.1, 0.1, 1.0),
+            diffuse: DVec4::new(0.6, 0.6, 0.6, 1.0),
+            specular: DVec4::new(0.0, 0.0, 0.0, 1.0),
+            position: DVec4::new(0.0, 0.0, 1.0, 0.0),
+            ..Light::gl_default(0)
+        },
+        space: LightSpace::World,
+    };
+    let lighting = ClassicLighting {
+        lights: vec![light],
+        model: LightModel {
+            ambient: DVec4::new(0.2, 0.2, 0.2, 1.0),
+            ..LightModel::default()
+        },
+        shading: Shading::Phong,
+        specular: SpecularModel::Blinn,
+    };
+    let material = Material {
+        ambient: DVec4::new(0.5, 0.5, 0.5, 1.0),
+        diffuse: DVec4::new(0.5, 0.5, 0.5, 1.0),
+        specular: DVec4::new(0.0, 0.0, 0.0, 1.0),
+        ..Material::default()
+    };
+    let quad = SceneObject::new(
+        Arc::new(Mesh::quad(10.0, 4).expect("a quad")),
+        DMat4::IDENTITY,
+        material,
+    );
+    let sphere = SceneObject::new(
+        Arc::new(Mesh::glt_sphere(1.0, 32, 16).expect("a sphere")),
+        DMat4::from_translation(DVec3::new(0.0, 0.0, 3.0)),
+        material,
+    );
+    let settings = settings();
+    let layer = ObjectLayer {
+        objects: vec![quad, sphere],
+        shadows: Shadows {
+            settings: Some(settings),
+            lights: ShadowLight::from_classic(&lighting, settings.max_lights),
+        },
+        lighting: ObjectLighting::Classic(lighting),
+        fog: SceneFog::None,
+        ground: None,
+    };
+    let camera = looking_down(DVec3::new(0.0, -2.5, 8.0), 50.0);
+    let frame = Frame::new(camera, Sky::Clear(firmament_core::LinearRgb::new(0.0, 0.0, 0.0))).with_objects(layer);
+    let image = hdr(&frame);
+    // GL: emission 0 + 0.5·0.2 (scene) + 0.5·0.1 (light's ambient) [+ 0.5·0.6·(n·l = 1) lit].
+    let (shade, lit) = (0.5 * 0.2 + 0.5 * 0.1, 0.5 * 0.2 + 0.5 * 0.1 + 0.5 * 0.6);
+    let umbra = rgb(
+        &image,
+        pixel_of(&camera, DVec3::new(0.0, -0.9, 0.0)).expect("on screen"),
+    );
+    let open = rgb(
+        &image,
+        pixel_of(&camera, DVec3::new(2.5, -1.0, 0.0)).expect("on screen"),
+    );
+    eprintln!("classic: umbra {umbra}, lit {open}; GL {shade} and {lit}");
+    assert!((umbra - DVec3::splat(shade)).abs().max_element() < 2e-3, "{umbra}");
+    assert!((open - DVec3::splat(lit)).abs().max_element() < 2e-3, "{open}");
+}

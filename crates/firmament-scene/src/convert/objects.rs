@@ -13,7 +13,7 @@ use firmament_core::classic::scene::{
     ClassicLighting, LightSpace, MAX_CLASSIC_LIGHTS, ObjectLayer, ObjectLighting, ObjectTexture, SceneFog, SceneLight,
     SceneObject, Shading, TransformStep, transform_from_steps,
 };
-use firmament_core::classic::shadow::{ShadowSettings, Shadows};
+use firmament_core::classic::shadow::{ShadowLight, ShadowSettings, Shadows};
 use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::frame::Sky;
 use firmament_core::texture::TextureFilter;
@@ -493,7 +493,8 @@ fn fog_sun(scene: &Scene) -> Result<Option<FogSun>, SceneError> {
 
 /// The shadow settings of `[shadows]` when the suns cast (`None` when they do not). The numeric
 /// keys are checked in every scene, shadows on or off, so that a bad value is found before it is
-/// used; `shadows.enabled = true` needs `lighting.model = "sky"` and `lighting.shading = "phong"`.
+/// used; `shadows.enabled = true` needs lit objects (`lighting.model = "sky"` or `"classic"`) and
+/// `lighting.shading = "phong"`.
 fn shadow_settings(scene: &Scene) -> Result<Option<ShadowSettings>, SceneError> {
     let settings = scene.shadows.settings();
     // The core's rules name the scene's keys (`shadows.map_size`, …) already.
@@ -504,12 +505,13 @@ fn shadow_settings(scene: &Scene) -> Result<Option<ShadowSettings>, SceneError> 
     if scene.shadows.enabled == Some(true) {
         let l = &scene.lighting;
         check(
-            l.model == LightingModelName::Sky,
+            l.model != LightingModelName::Unlit,
             "shadows.enabled",
             true,
             &format!(
-                "shadows need lighting.model = \"sky\" (they are cast by the atmosphere's suns), and lighting.model \
-                 is \"{}\": set shadows.enabled = false or leave it out",
+                "shadows need lit objects, lighting.model = \"sky\" (the atmosphere's suns cast) or \"classic\" \
+                 (its directional world-space lights cast), and lighting.model is \"{}\": set shadows.enabled = \
+                 false or leave it out",
                 lighting_model_name(l.model)
             ),
         )?;
@@ -581,6 +583,12 @@ pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay, sky: &Sky) -> Result<
         if scene.ground.enabled {
             ground = light.ground(camera);
         }
+    } else if let (ObjectLighting::Classic(classic), Some(settings)) = (&lighting, shadow_settings) {
+        // Classic scenes cast only when they ask (`shadows.enabled = true`): GL has no shadows.
+        shadows = Shadows {
+            settings: Some(settings),
+            lights: ShadowLight::from_classic(classic, settings.max_lights),
+        };
     }
     Ok(ObjectLayer {
         objects,

@@ -29,7 +29,7 @@ fn the_default_keys_are_the_core_s_defaults() {
     assert_eq!(ShadowsSection::default().settings(), ShadowSettings::default());
     assert_eq!(scene.ground, GroundSection { enabled: true });
     assert_eq!(GroundSection::default(), GroundSection { enabled: true });
-    // Classic lighting: off unless asked (and asking is an error, below).
+    // Classic lighting: off unless asked.
     assert!(!scene.shadows_enabled());
 }
 
@@ -99,6 +99,31 @@ fn classic_scenes_have_no_shadows_and_no_ground() {
         .frame_at(None)
         .expect("frame");
     assert_eq!(frame.objects.shadows, Shadows::default());
+}
+
+#[test]
+fn a_classic_scene_that_asks_gets_shadows_of_its_world_directional_lights() {
+    // superbible-phong's one light is positional and moves with the eye: it casts nothing. A
+    // world-space directional light added to it casts; no ground is drawn (GL has none).
+    let frame = preset_with(
+        "superbible-phong",
+        &[
+            "shadows.enabled=true",
+            "lights.1.space=\"world\"",
+            "lights.1.position=[0.0, 0.0, 1.0, 0.0]",
+            "lights.1.diffuse=[0.5, 0.5, 0.5]",
+        ],
+    )
+    .expect("valid")
+    .frame_at(None)
+    .expect("frame");
+    let shadows = &frame.objects.shadows;
+    assert_eq!(shadows.settings, Some(ShadowSettings::default()));
+    assert_eq!(shadows.lights.len(), 1);
+    assert_eq!(shadows.lights[0].light, 1);
+    assert_eq!(shadows.lights[0].direction, DVec3::Z);
+    assert_eq!(shadows.lights[0].angular_radius, 0.0);
+    assert!(frame.objects.ground.is_none());
 }
 
 #[test]
@@ -207,17 +232,17 @@ fn bad_shadow_values_name_the_key_and_the_rule() {
         (
             "fixed-function-tour",
             &["shadows.enabled=true"][..],
-            "shadows.enabled = true: shadows need lighting.model = \"sky\"",
+            "lighting.shading is \"gouraud\"",
         ),
         (
             "superbible-phong",
-            &["shadows.enabled=true"][..],
-            "lighting.model is \"classic\"",
+            &["shadows.enabled=true", "lighting.model=\"unlit\""][..],
+            "lighting.model is \"unlit\"",
         ),
         (
             "earth-objects",
             &["shadows.enabled=true", "lighting.model=\"unlit\""][..],
-            "shadows.enabled = true: shadows need lighting.model = \"sky\"",
+            "shadows.enabled = true: shadows need lit objects",
         ),
         (
             "earth-objects",

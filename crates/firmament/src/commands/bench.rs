@@ -83,8 +83,12 @@ fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
         b.frames,
         b.timing.describe()
     );
-    baselines.print_rows(&[
-        ("CLI path: Renderer::record into an 8-bit view", b.cli_ms),
+    let mut rows = vec![("CLI path: Renderer::record into an 8-bit view", b.cli_ms)];
+    rows.extend(
+        b.cli_no_shadows_ms
+            .map(|ms| ("CLI path without sun shadows and light shafts", ms)),
+    );
+    rows.extend([
         (
             "embedded: caller's clear + record_into (HDR, no tone mapping)",
             b.embedded_hdr_ms,
@@ -95,11 +99,15 @@ fn run_embedded(args: &BenchArgs, frame: &firmament_core::Frame) -> Result<()> {
             b.embedded_output_no_aerial_ms,
         ),
     ]);
+    baselines.print_rows(&rows);
     println!(
         "  embedded with output / CLI: {:.2}x ({:.2}x without aerial perspective)",
         b.embedded_output_ms / b.cli_ms,
         b.embedded_output_no_aerial_ms / b.cli_ms
     );
+    if let Some(ms) = b.cli_no_shadows_ms {
+        println!("  CLI frame with shadows and shafts / without: {:.2}x", b.cli_ms / ms);
+    }
     Ok(())
 }
 
@@ -114,6 +122,7 @@ fn embedding_json(b: &EmbeddingBench, baselines: &Baselines) -> String {
         "embedded_hdr_ms": b.embedded_hdr_ms,
         "embedded_output_ms": b.embedded_output_ms,
         "embedded_output_no_aerial_ms": b.embedded_output_no_aerial_ms,
+        "cli_no_shadows_ms": b.cli_no_shadows_ms,
     });
     let rows = [
         ("cli_ms", b.cli_ms),

@@ -584,16 +584,18 @@ fn corpus() -> Vec<Case> {
             &["shadows.depth_bias = -1: must be 0 to 16 texels"],
         ),
         case(
-            "render: shadows under classic lighting",
+            "render: shadows of unlit objects",
             1,
             &[
                 "render",
                 "--preset",
-                "fixed-function-tour",
+                "earth-objects",
+                "--set",
+                "lighting.model=\"unlit\"",
                 "--set",
                 "shadows.enabled=true",
             ],
-            &["shadows.enabled = true: shadows need lighting.model = \"sky\""],
+            &["shadows.enabled = true: shadows need lit objects"],
         ),
         case(
             "render: 16385 objects",

@@ -10,7 +10,7 @@
 
 use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
 use super::stages::{
-    ComputeStage, bind_group, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
+    ComputeKernel, ComputeStage, bind_group, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
 use std::num::NonZeroU64;
@@ -143,6 +143,9 @@ pub(super) struct AerialPerspectiveStages {
 #[derive(Debug)]
 struct OnTarget {
     stage: ComputeStage,
+    /// The same with the light shafts (`cs_shafts`), sampling the objects' shadow maps as its
+    /// group 1.
+    shafts: ComputeStage,
     /// The HDR target, copied over from `scratch` after the pass.
     target: wgpu::Texture,
     scratch: wgpu::Texture,
@@ -312,21 +315,44 @@ impl AerialPerspectiveStages {
             texture_entry(binding::HDR_IN, false),
             storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
         ]);
-        let stage = match self.on_target.take() {
-            Some(OnTarget { mut stage, .. }) => {
+        // The shafts also look the sun's transmittance up.
+        let mut shaft_resources = all.clone();
+        shaft_resources.push((
+            binding::TRANSMITTANCE,
+            wgpu::BindingResource::TextureView(&resources.luts.transmittance.view),
+        ));
+        let mut shaft_entries = entries.clone();
+        shaft_entries.push(texture_entry(binding::TRANSMITTANCE, false));
+        let (stage, shafts) = match self.on_target.take() {
+            Some(OnTarget {
+                mut stage, mut shafts, ..
+            }) => {
                 stage.rebind(device, &all);
-                stage
+                shafts.rebind(device, &shaft_resources);
+                (stage, shafts)
             }
-            None => ComputeStage::new(
-                device,
-                "AtmospherePass compute aerial perspective",
-                &shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
-                &entries,
-                &all,
-            ),
+            None => {
+                let stage = ComputeStage::new(
+                    device,
+                    "AtmospherePass compute aerial perspective",
+                    &shaders::ATMOSPHERE_AERIAL_PERSPECTIVE,
+                    &entries,
+                    &all,
+                );
+                let kernel = ComputeKernel::with_groups(
+                    device,
+                    "AtmospherePass aerial perspective with light shafts",
+                    (&shaders::ATMOSPHERE_AERIAL_PERSPECTIVE, "cs_shafts"),
+                    &shaft_entries,
+                    &[],
+                    &[&crate::passes::objects::shadow_sampling_layout(device)],
+                );
+                (stage, ComputeStage::of_kernel(device, kernel, &shaft_resources))
+            }
         };
         self.on_target = Some(OnTarget {
             stage,
+            shafts,
             target: target.clone(),
             scratch,
         });
@@ -337,15 +363,19 @@ impl AerialPerspectiveStages {
         self.on_target.is_some()
     }
 
-    /// Encodes the compute application over the target bound by `bind_target` and the copy back;
-    /// false, encoding nothing, when none is bound.
-    pub(super) fn record_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+    /// Encodes the compute application over the target bound by `bind_target` and the copy back,
+    /// with the light shafts of the objects' shadow maps when `shadows` binds them; false,
+    /// encoding nothing, when no target is bound.
+    pub(super) fn record_on_target(&self, encoder: &mut wgpu::CommandEncoder, shadows: Option<&wgpu::BindGroup>) -> bool {
         let Some(on) = &self.on_target else {
             return false;
         };
         let size = on.target.size();
-        on.stage
-            .dispatch(encoder, (size.width.div_ceil(8), size.height.div_ceil(8), 1));
+        let workgroups = (size.width.div_ceil(8), size.height.div_ceil(8), 1);
+        match shadows {
+            Some(group) => on.shafts.dispatch_with(encoder, &[group], workgroups),
+            None => on.stage.dispatch(encoder, workgroups),
+        }
         encoder.copy_texture_to_texture(on.scratch.as_image_copy(), on.target.as_image_copy(), size);
         true
     }

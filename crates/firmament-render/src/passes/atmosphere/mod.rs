@@ -552,17 +552,28 @@ impl AtmospherePass {
     /// [`record_aerial_perspective`](Self::record_aerial_perspective) draws into a caller's
     /// target). Returns false, encoding nothing, when no target is bound.
     pub fn record_aerial_perspective_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        self.record_aerial_perspective_with_shafts(encoder, None)
+    }
+
+    /// [`record_aerial_perspective_on_target`](Self::record_aerial_perspective_on_target) with
+    /// the light shafts of the shadow maps `shadows` binds (the object pass's, laid out as
+    /// `shaders/shadow/sampling.wgsl`'s group 1); without them when `None`.
+    pub(crate) fn record_aerial_perspective_with_shafts(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        shadows: Option<&wgpu::BindGroup>,
+    ) -> bool {
         if !self.aerial.bound_to_target() {
             return false;
         }
         self.aerial.record_volume(encoder);
-        self.aerial.record_on_target(encoder)
+        self.aerial.record_on_target(encoder, shadows)
     }
 
     /// The application alone over the bound target, from the volume last encoded (for
     /// benchmarks); false when no target is bound.
     pub fn record_aerial_perspective_apply_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
-        self.aerial.record_on_target(encoder)
+        self.aerial.record_on_target(encoder, None)
     }
 
     /// Encodes the sky as a compute pass into the target bound by

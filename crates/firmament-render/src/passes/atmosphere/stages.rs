@@ -4,7 +4,7 @@
 
 use crate::passes::common::PassPipeline;
 pub(super) use crate::passes::compute::{
-    ComputeStage, bind_group, sampler_entry, storage_buffer_entry, storage_entry, texture_entry,
+    ComputeKernel, ComputeStage, bind_group, sampler_entry, storage_buffer_entry, storage_entry, texture_entry,
 };
 
 /// Binding numbers shared by every atmosphere shader: those `shaders/atmosphere/bindings.wgsl`

@@ -120,6 +120,38 @@ fn caster_bind_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buff
     })
 }
 
+/// The layout of the bind group through which shaders sample the maps (`shadow/sampling.wgsl`,
+/// group 1): the object pass's, and the light shafts' in the atmosphere pass. Built alike in both,
+/// so one bind group serves both pipelines.
+pub(crate) fn sampling_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let visible = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("firmament shadow sampling layout"),
+        entries: &[
+            crate::passes::common::uniform_entry_in(0, visible),
+            depth_array_entry(1, visible),
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: visible,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                count: None,
+            },
+            // Depth formats bind as unfilterable floats too (WebGPU's texture format
+            // capabilities), which every backend can load from.
+            wgpu::BindGroupLayoutEntry {
+                binding: 3,
+                visibility: visible,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2Array,
+                    multisampled: false,
+                },
+                count: None,
+            },
+        ],
+    })
+}
+
 /// A layout entry for the map array, seen by `stages`.
 fn depth_array_entry(binding: u32, stages: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -196,32 +228,7 @@ impl ShadowMaps {
             multiview_mask: None,
             cache: None,
         });
-        let visible = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let sample_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("firmament ObjectPass shadow sampling layout"),
-            entries: &[
-                crate::passes::common::uniform_entry(0),
-                depth_array_entry(1, visible),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: visible,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
-                // Depth formats bind as unfilterable floats too (WebGPU's texture format
-                // capabilities), which every backend can load from.
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: visible,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2Array,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-            ],
-        });
+        let sample_layout = sampling_layout(device);
         let compare = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("firmament ObjectPass shadow comparison sampler"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -286,7 +293,7 @@ impl ShadowMaps {
         &self.sample_layout
     }
 
-    /// The object pass's group 1.
+    /// The object pass's group 1 (and the light shafts').
     pub(crate) fn sample_bind_group(&self) -> &wgpu::BindGroup {
         &self.sample_bind_group
     }
@@ -346,7 +353,12 @@ impl ShadowMaps {
                 &self.compare,
             );
         }
-        let uniforms = ShadowFrameUniforms::new(&settings, lights, &cascades);
+        let mut uniforms = ShadowFrameUniforms::new(&settings, lights, &cascades);
+        // Nothing shades the air above the highest caster (for a sun above the horizon): the
+        // light shafts march no higher.
+        let up = layer.ground.as_ref().map_or(DVec3::Z, |g| g.up);
+        let top = spheres.iter().map(|&(c, r)| c.dot(up) + r).fold(f64::NEG_INFINITY, f64::max);
+        uniforms.bias[2] = (top - camera.position.dot(up)) as f32;
         queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
 
         // One matrix per caster and cascade, each at its own aligned offset.

@@ -14,11 +14,26 @@
 // `cs_main` does both in one compute pass instead (data-centre GPUs run fragment work on a few
 // SMs; docs/PERFORMANCE.md).
 
+//
+// Light shafts (`cs_shafts`, the renderer's own targets with sun shadows): the single scattering
+// the objects' shadows take away is marched along each pixel's ray, as far as its geometry or the
+// shadow maps reach, and subtracted from the volume's light (and from the sky's, behind which no
+// geometry stands). Multiple scattering is left as the volume has it: a shadow a few metres
+// across hides the sun, not the sky. The f64 reference with occluders makes the same split
+// (`Reference::with_occluders`).
+
 #import common/fullscreen
 #import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
 #import atmosphere/view
 #import atmosphere/aerial_lookup
+#import shadow/sampling
 #import generated/constants
+
+// Steps of the shafts' march, each offset by the pixel's own fraction of a step (interleaved
+// gradient noise, Jimenez 2014) so the steps of neighbouring pixels interleave.
+const SHAFT_STEPS: u32 = 48u;
 
 // An AERIAL_OUTPUT_*: the transmittance draw or the scattered-light draw.
 override OUTPUT: u32 = AERIAL_OUTPUT_TRANSMITTANCE;
@@ -79,12 +94,99 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let color = textureLoad(hdr_in, id.xy, 0);
-    let pixel = vec2<f32>(id.xy) + 0.5;
-    let aerial = aerial_at(pixel, pixel_ndc(id.xy, size), textureLoad(scene_depth, id.xy, 0).x);
-    var out = color;
+    textureStore(hdr_out, id.xy, applied(id.xy, size));
+}
+
+// The pixel `id` of a `size`-pixel target with the aerial perspective applied.
+fn applied(id: vec2<u32>, size: vec2<u32>) -> vec4<f32> {
+    let color = textureLoad(hdr_in, id, 0);
+    let pixel = vec2<f32>(id) + 0.5;
+    let aerial = aerial_at(pixel, pixel_ndc(id, size), textureLoad(scene_depth, id, 0).x);
     if aerial.applies {
-        out = vec4<f32>(color.rgb * aerial.transmittance + aerial.scattered, color.a);
+        return vec4<f32>(color.rgb * aerial.transmittance + aerial.scattered, color.a);
     }
+    return color;
+}
+
+// `cs_main` with the light shafts: the single scattering in the objects' shadows taken away.
+@compute @workgroup_size(8, 8)
+fn cs_shafts(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(scene_depth);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    var out = applied(id.xy, size);
+    let ndc = pixel_ndc(id.xy, size);
+    let depth = textureLoad(scene_depth, id.xy, 0).x;
+    // Where the pixel's geometry stands along its ray (none at the far plane), as `aerial_at`.
+    var t_end = 3.0e38;
+    if !at_far_plane(depth) {
+        let view_depth = view.aerial.z / (depth + view.aerial.y);
+        t_end = view_depth * length(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
+    }
+    let lost = to_linear_srgb(shadowed_single_scattering(vec2<f32>(id.xy) + 0.5, ndc, t_end));
+    out = vec4<f32>(max(out.rgb - lost, vec3<f32>(0.0)), out.a);
     textureStore(hdr_out, id.xy, out);
+}
+
+// The sunlight scattered once towards the camera from the air the objects shadow, along the ray
+// of pixel `pixel` (at `ndc`) up to `t_end` metres (spectral radiance): for each casting sun,
+// σ_s·p(ν)·E·T_sun·T_view·(1 − visibility), marched in `SHAFT_STEPS` steps as far as its maps
+// reach. Near the camera (a few hundred metres), so the air's height is the camera's plus the
+// ray's rise over a sphere of the bottom radius, and each point sees the sun at the camera's
+// angle.
+fn shadowed_single_scattering(pixel: vec2<f32>, ndc: vec2<f32>, t_end: f32) -> vec3<f32> {
+    if view.center.w > 0.5 {
+        return vec3<f32>(0.0); // far away: no shadow maps reach the air it sees
+    }
+    let eye = normalize(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
+    let d = view_ray(ndc).direction;
+    let up = view.local_up.xyz;
+    let rise = dot(d, up);
+    let radius = atmosphere.lut.x;
+    let jitter = fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
+    var lost = vec3<f32>(0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let slot_plus_one = shadow_slot_plus_one(i);
+        if slot_plus_one == 0u {
+            continue;
+        }
+        let slot = slot_plus_one - 1u;
+        let sun = view.suns[i];
+        let s = sun.direction.xyz;
+        let nu = dot(d, s);
+        let mu_s = dot(up, s);
+        var span = min(t_end, shadow_reach(slot, eye));
+        if rise > 0.0 && mu_s > 0.0 {
+            // Above the highest caster the air sees every sun above the horizon.
+            span = min(span, max(shadows.bias.z, 0.0) / rise);
+        }
+        let dt = span / f32(SHAFT_STEPS);
+        let cascades = min(shadows.counts.y, MAX_SHADOW_CASCADES);
+        var c = 0u;
+        var cascade = air_cascade(slot, 0u, eye);
+        var transmittance = vec3<f32>(1.0);
+        for (var k = 0u; k < SHAFT_STEPS; k++) {
+            let t = (f32(k) + jitter) * dt;
+            // t only grows: step on to the next cascade when this one ends.
+            while c < cascades && t > cascade.end {
+                c++;
+                if c < cascades {
+                    cascade = air_cascade(slot, c, eye);
+                }
+            }
+            if c >= cascades {
+                break;
+            }
+            let h = view.camera.w + t * rise + 0.5 * t * t * (1.0 - rise * rise) / radius;
+            let air = coefficients_at(h);
+            let shade = 1.0 - air_visibility(cascade, t);
+            if shade > 0.0 {
+                let sunlight = sun.irradiance.rgb * transmittance_to_sun(h, mu_s, abs(sun.direction.w));
+                lost += shade * transmittance * scattering_phase(air, nu) * sunlight * dt;
+            }
+            transmittance *= exp(-air.extinction * dt);
+        }
+    }
+    return lost;
 }

@@ -1,5 +1,6 @@
 // shadow/sampling.wgsl — sun shadows for the object pass: which cascade, the receiver's biases,
-// and percentage-closer soft shadows (Fernando 2005) whose penumbra follows each sun's disc.
+// and percentage-closer soft shadows (Fernando 2005) whose penumbra follows each sun's disc;
+// for the light shafts, whether a point of the air sees a sun.
 //
 // Conventions: positions and normals in GL eye space (the object pass's); each cascade maps eye
 // space to its light's clip space (x, y in [−1, 1], +y up the map; depth 0 nearest the light,
@@ -25,7 +26,8 @@ struct ShadowCascade {
 struct ShadowFrame {
     // x = casting lights, y = cascades per light, z = map size (texels), w = 1: shadows on
     counts: vec4<u32>,
-    // x = depth bias (texels), y = normal bias (texels)
+    // x = depth bias (texels), y = normal bias (texels), z = the highest caster's top above the
+    // camera (m, along world up)
     bias: vec4<f32>,
     // The casting slot + 1 of light i at [i / 4][i % 4] (0: it casts nothing).
     slot_of_light: array<vec4<u32>, 2>,
@@ -49,24 +51,74 @@ fn vogel_tap(k: u32, n: u32) -> vec2<f32> {
     return r * vec2<f32>(cos(theta), sin(theta));
 }
 
-// How much of light `light`'s disc the point `p` (normal `n`, unit direction to the light `l`,
-// eye space) sees past the objects: 1 lit, 0 in the umbra; 1 for lights that cast nothing and
-// beyond the last cascade.
-fn shadow_visibility(light: u32, p: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> f32 {
+// The casting slot of light `light` + 1 (0: it casts nothing, or shadows are off).
+fn shadow_slot_plus_one(light: u32) -> u32 {
     if shadows.counts.w == 0u || light >= MAX_SHADOW_LIGHTS {
-        return 1.0;
+        return 0u;
     }
-    let slot_plus_one = shadows.slot_of_light[light / 4u][light % 4u];
-    if slot_plus_one == 0u {
-        return 1.0;
-    }
-    let slot = slot_plus_one - 1u;
-    let view_distance = -p.z;
+    return shadows.slot_of_light[light / 4u][light % 4u];
+}
+
+// The cascade that holds view distance `view_distance` (m), or the cascade count beyond the last.
+fn shadow_cascade(slot: u32, view_distance: f32) -> u32 {
     let cascade_count = min(shadows.counts.y, MAX_SHADOW_CASCADES);
     var c = 0u;
     while c < cascade_count && view_distance > shadows.cascades[slot * MAX_SHADOW_CASCADES + c].params.z {
         c++;
     }
+    return c;
+}
+
+// How far along the unit eye-space direction `d` the last cascade of `slot` reaches (m).
+fn shadow_reach(slot: u32, d: vec3<f32>) -> f32 {
+    let last = min(shadows.counts.y, MAX_SHADOW_CASCADES) - 1u;
+    return shadows.cascades[slot * MAX_SHADOW_CASCADES + last].params.z / max(-d.z, 1e-4);
+}
+
+// A ray from the eye along unit eye-space direction `d` in one cascade `c` of the light in
+// casting slot `slot`: where the cascade ends along it (m), and the ray in the cascade's clip
+// space as `origin + t·step` (the light's projection is orthographic: a straight ray stays
+// straight, linear in t). For the light shafts (atmosphere/aerial_perspective.wgsl), which walk
+// the cascades in order as t grows.
+struct AirCascade {
+    end: f32,
+    layer: i32,
+    origin: vec4<f32>,
+    step: vec4<f32>,
+}
+
+fn air_cascade(slot: u32, c: u32, d: vec3<f32>) -> AirCascade {
+    let cascade = shadows.cascades[slot * MAX_SHADOW_CASCADES + c];
+    var out: AirCascade;
+    out.end = cascade.params.z / max(-d.z, 1e-4);
+    out.layer = i32(slot * min(shadows.counts.y, MAX_SHADOW_CASCADES) + c);
+    out.origin = cascade.eye_to_clip * vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    out.step = cascade.eye_to_clip * vec4<f32>(d, 0.0);
+    return out;
+}
+
+// Whether the air `t` metres along a ray in `cascade` sees its light (one bilinear comparison,
+// no bias: the air is no surface): 1 lit, 0 shadowed, 1 outside the cascade's map.
+fn air_visibility(cascade: AirCascade, t: f32) -> f32 {
+    let q = cascade.origin + cascade.step * t;
+    let uv = vec2<f32>(q.x * 0.5 + 0.5, 0.5 - q.y * 0.5);
+    if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || q.z <= 0.0 || q.z > 1.0 {
+        return 1.0;
+    }
+    return textureSampleCompareLevel(shadow_maps, shadow_compare, uv, cascade.layer, q.z);
+}
+
+// How much of light `light`'s disc the point `p` (normal `n`, unit direction to the light `l`,
+// eye space) sees past the objects: 1 lit, 0 in the umbra; 1 for lights that cast nothing and
+// beyond the last cascade.
+fn shadow_visibility(light: u32, p: vec3<f32>, n: vec3<f32>, l: vec3<f32>) -> f32 {
+    let slot_plus_one = shadow_slot_plus_one(light);
+    if slot_plus_one == 0u {
+        return 1.0;
+    }
+    let slot = slot_plus_one - 1u;
+    let cascade_count = min(shadows.counts.y, MAX_SHADOW_CASCADES);
+    let c = shadow_cascade(slot, -p.z);
     if c == cascade_count {
         return 1.0;
     }

@@ -572,6 +572,8 @@ pub(crate) struct EmbeddingBench {
     /// ([`EmbedTarget::without_aerial_perspective`](firmament_render::EmbedTarget::without_aerial_perspective)):
     /// the work of a CLI frame without objects.
     pub(crate) embedded_output_no_aerial_ms: f64,
+    /// The CLI frame without its sun shadows and light shafts, when it has them.
+    pub(crate) cli_no_shadows_ms: Option<f64>,
 }
 
 /// Times one frame of `frame` at `width` × `height` on the CLI's path and on the embedded path
@@ -597,6 +599,16 @@ pub(crate) fn bench_embedding(
     let mut renderer = Renderer::new(ctx, LDR_FORMAT);
     renderer.prepare(ctx, frame, width, height)?;
     let cli_ms = median_ms(ctx, frames, &output, |e| renderer.record(e, &output_view));
+    let cli_no_shadows_ms = if frame.objects.shadows.any() {
+        let mut unshadowed = frame.clone();
+        unshadowed.objects.shadows = Default::default();
+        renderer.prepare(ctx, &unshadowed, width, height)?;
+        let ms = median_ms(ctx, frames, &output, |e| renderer.record(e, &output_view));
+        renderer.prepare(ctx, frame, width, height)?;
+        Some(ms)
+    } else {
+        None
+    };
 
     // The caller's targets: firmament's own formats, with the usages embedding needs.
     let user = FrameTargets::new(&ctx.device, width, height);
@@ -637,6 +649,7 @@ pub(crate) fn bench_embedding(
         embedded_hdr_ms,
         embedded_output_ms,
         embedded_output_no_aerial_ms,
+        cli_no_shadows_ms,
     })
 }
 
