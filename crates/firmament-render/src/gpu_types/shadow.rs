@@ -48,16 +48,20 @@ impl ShadowFrameUniforms {
     /// (`cascades[slot][c]`), maps of `settings.map_size`.
     pub fn new(settings: &ShadowSettings, lights: &[ShadowLight], cascades: &CascadeSet) -> Self {
         let mut u = Self::zeroed();
-        let casting = lights;
-        let lights = casting.len().min(MAX_SHADOW_LIGHTS as usize);
-        u.counts = [lights as u32, settings.cascades, settings.map_size, u32::from(lights > 0)];
+        let casting = &lights[..lights.len().min(MAX_SHADOW_LIGHTS as usize)];
+        u.counts = [
+            casting.len() as u32,
+            settings.cascades,
+            settings.map_size,
+            u32::from(!casting.is_empty()),
+        ];
         u.bias = [
             settings.depth_bias_texels as f32,
             settings.normal_bias_texels as f32,
             0.0,
             0.0,
         ];
-        for (slot, light) in casting.iter().take(lights).enumerate() {
+        for (slot, light) in casting.iter().enumerate() {
             if light.light < MAX_SHADOW_LIGHTS as usize {
                 u.slot_of_light[light.light / 4][light.light % 4] = slot as u32 + 1;
             }

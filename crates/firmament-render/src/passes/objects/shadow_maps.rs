@@ -330,14 +330,12 @@ impl ShadowMaps {
             .zip(casters)
             .map(|(object, key)| {
                 let (centre, radius) = *self.bounds.entry(*key).or_insert_with(|| mesh_bounds(&object.mesh));
-                let scale = object.model.x_axis.truncate().length().max(
-                    object
-                        .model
-                        .y_axis
-                        .truncate()
-                        .length()
-                        .max(object.model.z_axis.truncate().length()),
-                );
+                // The mesh's sphere, grown by the model's longest axis.
+                let m = &object.model;
+                let scale = [m.x_axis, m.y_axis, m.z_axis]
+                    .map(|axis| axis.truncate().length())
+                    .into_iter()
+                    .fold(0.0, f64::max);
                 (object.model.transform_point3(centre), radius * scale)
             })
             .collect();
