@@ -2,6 +2,7 @@
 
 use glam::{DQuat, DVec3};
 
+use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
 use crate::atmosphere::{Atmosphere, Sun};
 use crate::camera::Camera;
@@ -55,6 +56,9 @@ pub struct AtmosphereSky {
     pub atmosphere: Atmosphere,
     /// The suns, world-frame directions; 0 to [`MAX_SUNS`].
     pub suns: Vec<Sun>,
+    /// Cloud layers inside the air, 0 to
+    /// [`MAX_CLOUD_LAYERS`](crate::atmosphere::clouds::MAX_CLOUD_LAYERS).
+    pub clouds: Vec<CloudLayer>,
 }
 
 impl AtmosphereSky {
@@ -68,7 +72,8 @@ impl AtmosphereSky {
                 rule: "at most 8 suns",
             });
         }
-        self.suns.iter().try_for_each(Sun::validate)
+        self.suns.iter().try_for_each(Sun::validate)?;
+        crate::atmosphere::clouds::validate_layers(&self.clouds)
     }
 }
 

@@ -37,6 +37,9 @@ pub const PHASE_SKY_AND_OBJECTS: &str = "sky & objects";
 /// Aerial perspective: the froxel volume and its application over the geometry. Only in frames
 /// that build it (an atmosphere with objects, or one whose volume users asked for).
 pub const PHASE_AERIAL_PERSPECTIVE: &str = "aerial perspective";
+/// The cloud layers (and the aerial-perspective volume that lights the air in front of them,
+/// when no object needed it). Only in frames whose physical sky has clouds.
+pub const PHASE_CLOUDS: &str = "clouds";
 /// The lens flares (occlusion and drawing), in every frame (near zero without flares).
 pub const PHASE_FLARES: &str = "flares";
 /// Auto-exposure: the luminance histogram and the adaptation. Only in frames metered
@@ -50,11 +53,12 @@ pub const PHASE_TONEMAP: &str = "tonemap";
 
 /// Every phase a frame can have, in the order they run. A frame's [`PassTimes`] holds the ones it
 /// ran, in this order.
-pub const PHASES: [&str; 8] = [
+pub const PHASES: [&str; 9] = [
     PHASE_LUTS,
     PHASE_SHADOWS,
     PHASE_SKY_AND_OBJECTS,
     PHASE_AERIAL_PERSPECTIVE,
+    PHASE_CLOUDS,
     PHASE_FLARES,
     PHASE_EXPOSURE,
     PHASE_BLOOM,

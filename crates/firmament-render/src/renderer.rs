@@ -11,8 +11,8 @@ use firmament_core::frame::Sky;
 use crate::context::GpuContext;
 use crate::error::RenderError;
 use crate::pass_timing::{
-    FrameTiming, PHASE_AERIAL_PERSPECTIVE, PHASE_FLARES, PHASE_LUTS, PHASE_SHADOWS, PHASE_SKY_AND_OBJECTS,
-    PHASE_TONEMAP, PassTimer, PassTimes,
+    FrameTiming, PHASE_AERIAL_PERSPECTIVE, PHASE_CLOUDS, PHASE_FLARES, PHASE_LUTS, PHASE_SHADOWS,
+    PHASE_SKY_AND_OBJECTS, PHASE_TONEMAP, PassTimer, PassTimes,
 };
 use crate::passes::SkyTarget;
 use crate::passes::atmosphere::AerialPerspectiveBindings;
@@ -298,6 +298,14 @@ impl Renderer {
             } else if self.aerial_volume_wanted {
                 own.atmosphere.record_aerial_perspective_volume(encoder);
                 timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
+            }
+            if own.atmosphere.has_clouds() {
+                // The volume lights the air in front of the clouds.
+                if self.objects.is_empty() && !self.aerial_volume_wanted {
+                    own.atmosphere.record_aerial_perspective_volume(encoder);
+                }
+                own.atmosphere.record_clouds_on_target(encoder);
+                timing.mark(encoder, PHASE_CLOUDS);
             }
         }
         // Flares last, over everything, hidden by what the depth buffer holds.

@@ -2,7 +2,7 @@
 //! into. Every setter names its unit (`_deg` degrees, `_m` metres, `_per_m` per metre, `_nm`
 //! nanometres, `_px` pixels, `_k` kelvin); [`SceneBuilder::build`] checks the scene with
 //! [`Scene::validate`], so a bad value gives the message a scene file with it would. Entries of
-//! the scene's lists (suns, lights, objects) have constructors of their own (`entries.rs`), and
+//! the scene's lists (suns, cloud layers, lights, objects) have constructors of their own (`entries.rs`), and
 //! [`SceneBuilder::edit`] reaches any field a setter does not cover.
 
 use firmament_core::auto_exposure::AutoExposure;
@@ -10,7 +10,7 @@ use firmament_core::display::{Encoding, ToneCurve};
 
 use crate::error::SceneError;
 use crate::model::{
-    AtmosphereModelName, Body, EmpiricalSection, ExposureModeName, FlareElementEntry, FlarePresetName,
+    AtmosphereModelName, Body, CloudEntry, EmpiricalSection, ExposureModeName, FlareElementEntry, FlarePresetName,
     FogCoordinateName, FogModeName, GlColor, KeyframeSection, LightEntry, LightingModelName, MiePhaseName, ObjectEntry,
     Scene, ShadingName, SkyModelName, SunEntry,
 };
@@ -322,6 +322,18 @@ impl SceneBuilder {
     /// Removes every sun (a preset's included).
     pub fn no_suns(mut self) -> Self {
         self.scene.suns.clear();
+        self
+    }
+
+    /// Adds a `[[clouds]]` layer (drawn by the physical atmosphere).
+    pub fn cloud(mut self, layer: CloudEntry) -> Self {
+        self.scene.clouds.push(layer);
+        self
+    }
+
+    /// Removes every cloud layer (a preset's included).
+    pub fn no_clouds(mut self) -> Self {
+        self.scene.clouds.clear();
         self
     }
 

@@ -6,6 +6,8 @@
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
+use firmament_core::atmosphere::clouds::CloudLayer;
+
 use crate::error::SceneError;
 use crate::model::Scene;
 use crate::{layers, model, presets, validate};
@@ -225,7 +227,7 @@ impl SceneDocument {
         self.table != self.loaded
     }
 
-    /// The folder relative mesh, texture and flare image paths resolve against, as
+    /// The folder relative mesh, texture, flare image and coverage map paths resolve against, as
     /// [`Scene::base_dir`]: the scene file's folder; empty (the working directory) for presets.
     pub fn base_dir(&self) -> &Path {
         &self.base_dir
@@ -251,7 +253,7 @@ impl SceneDocument {
     /// [`scene`](Self::scene) first) and is unchanged: it keeps its origin and `base_dir`.
     ///
     /// Relative asset paths (`objects.N.mesh.path`, `objects.N.texture.file`,
-    /// `flare.elements.N.file`) are rewritten as absolute paths (joined with
+    /// `flare.elements.N.file`, `clouds.N.coverage_map`) are rewritten as absolute paths (joined with
     /// [`base_dir`](Self::base_dir) and the working directory) when `path`'s folder is not
     /// `base_dir`, so the saved file names the same files; saved into `base_dir` they stay
     /// relative. Absolute paths are kept as they are.
@@ -373,7 +375,7 @@ impl SceneDocument {
         Ok(())
     }
 
-    /// Appends an entry to the list of tables at `path` (`suns`, `lights`, `objects`,
+    /// Appends an entry to the list of tables at `path` (`suns`, `clouds`, `lights`, `objects`,
     /// `flare.elements`, `sky.gradient.keyframes`): a copy of the last, or for an empty list a
     /// table of the keys an entry requires (each as [`add_key`](Self::add_key) fills it).
     ///
@@ -472,6 +474,10 @@ const PROBE_KEY: &str = "\u{1}probe";
 const ENTRY_TEMPLATES: &[(&str, &str)] = &[
     ("suns", "name = \"Sun\"\nazimuth = 180.0\nelevation = 30.0"),
     ("flare.elements", "kind = \"glow\"\nsize = 0.2"),
+    (
+        "clouds",
+        "bottom = 1500.0\ntop = 3000.0\ncoverage = 0.4\ndensity = 0.05\nkind = \"cumulus\"",
+    ),
 ];
 
 /// Required keys [`SceneDocument::add_entry`] fills at most (more would be a loop).
@@ -494,6 +500,26 @@ fn effective_value(scene: &Scene, path: &str) -> Option<toml::Value> {
         return Some(toml::Value::Boolean(scene.shadows_enabled()));
     }
     let float = toml::Value::Float;
+    if let Some(rest) = path.strip_prefix("clouds.") {
+        // A cloud layer's optional keys: the defaults the entry took.
+        let (index, key) = rest.split_once('.')?;
+        let entry = scene.clouds.get(index.parse::<usize>().ok()?)?;
+        let numbers = |values: &[f64]| toml::Value::Array(values.iter().copied().map(float).collect());
+        return Some(match key {
+            "wind" => numbers(&entry.wind_mps),
+            "seed" => toml::Value::Integer(i64::from(entry.seed)),
+            "albedo" => float(entry.albedo),
+            "phase" => {
+                let default = CloudLayer::new(0.0, 1.0, 0.0, 0.0, entry.kind).phase;
+                let [g_forward, g_back, blend] =
+                    entry
+                        .phase
+                        .unwrap_or([default.g_forward, default.g_back, default.blend]);
+                numbers(&[g_forward, g_back, blend])
+            }
+            _ => return None,
+        });
+    }
     let triple = |v: firmament_core::atmosphere::Spectrum| toml::Value::Array(v.to_array().map(float).to_vec());
     let scale_height = |profile: &firmament_core::atmosphere::DensityProfile| {
         let rate = profile.layers[1].exp_scale;
@@ -570,7 +596,7 @@ fn absolute_asset_paths(table: &mut toml::Table, base_dir: &Path) -> Result<(), 
 }
 
 /// The string values that name files, with their key paths: `objects.N.mesh.path`,
-/// `objects.N.texture.file` and `flare.elements.N.file`.
+/// `objects.N.texture.file`, `flare.elements.N.file` and `clouds.N.coverage_map`.
 fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
     let mut paths = Vec::new();
     for (section, value) in table.iter_mut() {
@@ -597,6 +623,15 @@ fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
                         {
                             paths.push((format!("flare.elements.{i}.file"), path));
                         }
+                    }
+                }
+            }
+            ("clouds", toml::Value::Array(layers)) => {
+                for (i, layer) in layers.iter_mut().enumerate() {
+                    if let Some(toml::Value::String(path)) =
+                        layer.as_table_mut().and_then(|t| t.get_mut("coverage_map"))
+                    {
+                        paths.push((format!("clouds.{i}.coverage_map"), path));
                     }
                 }
             }

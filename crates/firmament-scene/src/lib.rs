@@ -19,10 +19,11 @@
 //!
 //! Two sky models: `sky.model = "gradient"` (the keyframed gradient, with `[time]` and `[sun]`)
 //! and `"atmosphere"` (a planet from `[planet]` with the medium of `[atmosphere]`, lit by
-//! `[[suns]]`; the world frame is East-North-Up at `planet.latitude`, `planet.longitude` on the
-//! surface). `[planet]`, `[atmosphere]` and `[[suns]]` are checked in every scene but used only by
-//! the atmosphere. `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of the
-//! physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
+//! `[[suns]]`, with the cloud layers of `[[clouds]]`; the world frame is East-North-Up at
+//! `planet.latitude`, `planet.longitude` on the surface). `[planet]`, `[atmosphere]`, `[[suns]]`
+//! and `[[clouds]]` are checked in every scene but used only by the atmosphere (the clouds only by
+//! the physical one). `atmosphere.model = "seed"` draws the seed's own atmosphere model instead of
+//! the physical one, with `[atmosphere.seed]` (checked when chosen) and the suns as its stars.
 //!
 //! A [`SceneDocument`] keeps the layered table for editing key by key and saves it as a complete
 //! scene file; [`load`] and [`load_file`] build their scene through one.
@@ -85,9 +86,9 @@ pub use convert::{
 pub use document::{SceneDocument, SceneOrigin, SceneSource, load, load_file};
 pub use error::SceneError;
 pub use model::{
-    AtmosphereModelName, AtmosphereSection, Body, CameraSection, DisplaySection, EmpiricalSection, ExposureModeName,
-    GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection, RenderSection, Scene,
-    SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
+    AtmosphereModelName, AtmosphereSection, Body, CameraSection, CloudEntry, DisplaySection, EmpiricalSection,
+    ExposureModeName, GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection,
+    RenderSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

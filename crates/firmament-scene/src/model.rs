@@ -5,6 +5,7 @@
 //! in the file stays as it is (`fov_y`, by `#[serde(rename)]`): messages name the file's keys.
 
 mod atmosphere;
+mod clouds;
 mod flare;
 mod objects;
 mod shadows;
@@ -14,6 +15,7 @@ use serde::Deserialize;
 pub use self::atmosphere::{
     AtmosphereModelName, AtmosphereSection, Body, EmpiricalSection, MiePhaseName, PlanetSection, SunEntry,
 };
+pub use self::clouds::CloudEntry;
 pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
 pub use self::objects::{
     CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
@@ -52,6 +54,10 @@ pub struct Scene {
     /// array, a layer's list replaces the one below it as a whole.
     #[serde(default)]
     pub suns: Vec<SunEntry>,
+    /// Cloud layers inside the air, 0 to 8 (drawn by the physical atmosphere; checked in every
+    /// scene). Like every array, a layer's list replaces the one below it as a whole.
+    #[serde(default)]
+    pub clouds: Vec<CloudEntry>,
     /// How objects are lit.
     pub lighting: LightingSection,
     /// The lights of classic lighting, 0 to 8, `glLight` style. A layer's list replaces the one
@@ -88,7 +94,8 @@ impl Scene {
     }
 
     /// Every file the scene reads — mesh files (`objects[i].mesh.path`), texture files
-    /// (`objects[i].texture.file`) and flare images (`flare.elements[i].file`) — as its key and
+    /// (`objects[i].texture.file`), flare images (`flare.elements[i].file`) and cloud coverage
+    /// maps (`clouds[i].coverage_map`) — as its key and
     /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),
     /// absolute ones as written.
     pub fn asset_paths(&self) -> Vec<(String, std::path::PathBuf)> {
@@ -104,6 +111,11 @@ impl Scene {
         for (i, element) in self.flare.elements.iter().flatten().enumerate() {
             if let Some(file) = &element.file {
                 paths.push((format!("flare.elements[{i}].file"), self.base_dir.join(file)));
+            }
+        }
+        for (i, layer) in self.clouds.iter().enumerate() {
+            if let Some(file) = &layer.coverage_map {
+                paths.push((format!("clouds[{i}].coverage_map"), self.base_dir.join(file)));
             }
         }
         paths

@@ -62,13 +62,23 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/earth-sunset.toml"),
     },
     Preset {
+        name: "earth-clouds",
+        summary: "atmosphere: fair-weather cumulus at mid-morning, the Sun 35° up, looking away from it",
+        toml: include_str!("presets/earth-clouds.toml"),
+    },
+    Preset {
+        name: "earth-clouds-sunset",
+        summary: "atmosphere: cumulus and cirrus lit red from below by the Sun 2° above the horizon",
+        toml: include_str!("presets/earth-clouds-sunset.toml"),
+    },
+    Preset {
         name: "earth-night",
         summary: "atmosphere: a moonlit night at a real date, 45° N, the Moon and the stars looking south",
         toml: include_str!("presets/earth-night.toml"),
     },
     Preset {
         name: "earth-orbit",
-        summary: "atmosphere: Earth from 400 km up, looking at the limb",
+        summary: "atmosphere: Earth from 400 km up under a global layer of clouds, looking at the limb",
         toml: include_str!("presets/earth-orbit.toml"),
     },
     Preset {
@@ -78,7 +88,7 @@ pub const PRESETS: &[Preset] = &[
     },
     Preset {
         name: "binary-sunset",
-        summary: "atmosphere: two suns, 5800 K and 3600 K, setting together on an Earth-like world",
+        summary: "atmosphere: two suns, 5800 K and 3600 K, setting on an Earth-like world, clouds lit by both",
         toml: include_str!("presets/binary-sunset.toml"),
     },
     Preset {

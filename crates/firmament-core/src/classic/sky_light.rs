@@ -204,6 +204,7 @@ mod tests {
         let high = AtmosphereSky {
             atmosphere: earth,
             suns: vec![presets::earth_sun(DVec3::new(0.0, 0.5, 1.0).normalize())],
+            clouds: Vec::new(),
         };
         let lit = sky_lighting(&high, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         let sun = lit.lights[0].light.diffuse;
@@ -223,6 +224,7 @@ mod tests {
         let set = AtmosphereSky {
             atmosphere: earth,
             suns: vec![presets::earth_sun(DVec3::new(0.0, 1.0, -0.2).normalize())],
+            clouds: Vec::new(),
         };
         let dark = sky_lighting(&set, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         assert_eq!(dark.lights[0].light.diffuse.truncate(), DVec3::ZERO);
@@ -239,6 +241,7 @@ mod tests {
             suns: vec![presets::earth_sun(
                 DVec3::new(0.0, 1.0, -(1f64.to_radians().tan())).normalize(),
             )],
+            clouds: Vec::new(),
         };
         let light = SkyLight::new(&sky);
         let street = light.sun_colors(DVec3::new(0.0, 0.0, 2.0))[0];

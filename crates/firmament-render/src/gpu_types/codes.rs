@@ -96,6 +96,19 @@ codes! {
     AERIAL_OUTPUT_TRANSMITTANCE = 0;
     /// Aerial-perspective draw: the scattered light, blended `dst + src`.
     AERIAL_OUTPUT_SCATTERING = 1;
+
+    /// Cloud kind (`CloudLayerGpu::codes.x`; `firmament_core`'s `CloudKind::code`): cumulus.
+    CLOUD_KIND_CUMULUS = 0;
+    /// Cloud kind: stratocumulus.
+    CLOUD_KIND_STRATOCUMULUS = 1;
+    /// Cloud kind: stratus.
+    CLOUD_KIND_STRATUS = 2;
+    /// Cloud kind: altostratus.
+    CLOUD_KIND_ALTOSTRATUS = 3;
+    /// Cloud kind: cirrus.
+    CLOUD_KIND_CIRRUS = 4;
+    /// Cloud kind: a uniform slab, no noise.
+    CLOUD_KIND_UNIFORM = 5;
 }
 
 /// The WGSL of the shader module `generated/constants`: every code as a `const` of its Rust name,
@@ -118,6 +131,23 @@ pub fn wgsl() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cloud_kinds_are_the_cores() {
+        use firmament_core::atmosphere::clouds::CloudKind;
+        let codes = [
+            (CloudKind::Cumulus, CLOUD_KIND_CUMULUS),
+            (CloudKind::Stratocumulus, CLOUD_KIND_STRATOCUMULUS),
+            (CloudKind::Stratus, CLOUD_KIND_STRATUS),
+            (CloudKind::Altostratus, CLOUD_KIND_ALTOSTRATUS),
+            (CloudKind::Cirrus, CLOUD_KIND_CIRRUS),
+            (CloudKind::Uniform, CLOUD_KIND_UNIFORM),
+        ];
+        assert_eq!(codes.len(), CloudKind::ALL.len());
+        for (kind, code) in codes {
+            assert_eq!(kind.code(), code, "{kind:?}");
+        }
+    }
 
     #[test]
     fn the_wgsl_declares_every_code_once() {

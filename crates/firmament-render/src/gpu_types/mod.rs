@@ -18,6 +18,7 @@ use pack::rgbw;
 pub mod atmosphere;
 pub mod camera;
 pub mod classic;
+pub mod clouds;
 pub mod codes;
 pub mod empirical_sky;
 pub mod flare;
@@ -31,6 +32,7 @@ pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereV
 pub(crate) use atmosphere::OrderSumsGpu;
 pub use camera::{ExposureStateGpu, MeteringUniforms};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
+pub use clouds::{CloudLayerGpu, CloudsGpu};
 pub use empirical_sky::{EmpiricalSkyUniforms, EmpiricalStarUniform};
 pub use flare::{FlareFrameUniforms, FlareInstance, FlareSourceGpu};
 pub use night_sky::{MoonDraw, NightSkyUniforms, StarInstance};

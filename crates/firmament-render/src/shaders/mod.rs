@@ -74,6 +74,8 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/aerial_perspective",
         include_str!("atmosphere/aerial_perspective.wgsl"),
     ),
+    ("clouds/density", include_str!("clouds/density.wgsl")),
+    ("clouds/march", include_str!("clouds/march.wgsl")),
     ("camera/bindings", include_str!("camera/bindings.wgsl")),
     ("camera/exposure_meter", include_str!("camera/exposure_meter.wgsl")),
     ("camera/exposure_adapt", include_str!("camera/exposure_adapt.wgsl")),
@@ -239,11 +241,17 @@ pub static BLOOM_FROM_IMAGE: Shader = entry!("camera/bloom_from_image");
 pub static BLOOM_DOWN: Shader = entry!("camera/bloom_down");
 /// Bloom's way up (compute).
 pub static BLOOM_UP: Shader = entry!("camera/bloom_up");
+/// The cloud layers' density field, `cloud_density(layer, p, h)` and its `CloudsGpu` uniforms
+/// (binding-free: `atmosphere/bindings` imports it, and the tests compose it with kernels of their
+/// own to hold it against the core's `f64` field).
+pub static CLOUD_DENSITY: Shader = entry!("clouds/density");
+/// The cloud layers over the renderer's own HDR target (compute).
+pub static CLOUDS_MARCH: Shader = entry!("clouds/march");
 
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 22] = [
+pub static ENTRIES: [&Shader; 23] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -265,6 +273,7 @@ pub static ENTRIES: [&Shader; 22] = [
     &BLOOM_FROM_IMAGE,
     &BLOOM_DOWN,
     &BLOOM_UP,
+    &CLOUDS_MARCH,
     &FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
 ];
 
@@ -838,6 +847,45 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
         assert_eq!(constant("METERING_CELL"), cell);
         assert_eq!(constant("METERING_TILE"), 16 * cell);
         assert_eq!(constant("METERING_BINS"), METERING_BINS);
+    }
+
+    #[test]
+    fn cloud_layouts_and_constants_match() {
+        use crate::gpu_types::{CloudLayerGpu, CloudsGpu};
+        use firmament_core::atmosphere::clouds::{MAX_CLOUD_LAYERS, QUANTILES};
+        let clouds = validate("clouds/density", &CLOUD_DENSITY);
+        assert_layout!(
+            clouds,
+            "CloudLayerGpu",
+            CloudLayerGpu,
+            [
+                shell,
+                coverage,
+                phase,
+                codes,
+                drift,
+                drift_rest,
+                column,
+                column_scale,
+                profile,
+                edges,
+                detail,
+                quantiles
+            ]
+        );
+        assert_layout!(clouds, "CloudsGpu", CloudsGpu, [count, layers]);
+        let literal = |name: &str| {
+            let (_, c) = clouds.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).expect(name);
+            clouds.global_expressions[c.init].clone()
+        };
+        assert_eq!(
+            literal("MAX_CLOUD_LAYERS"),
+            naga::Expression::Literal(naga::Literal::U32(MAX_CLOUD_LAYERS as u32))
+        );
+        assert_eq!(
+            literal("CLOUD_QUANTILE_STEPS"),
+            naga::Expression::Literal(naga::Literal::U32(QUANTILES as u32 - 1))
+        );
     }
 
     #[test]

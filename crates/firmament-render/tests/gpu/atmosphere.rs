@@ -74,6 +74,7 @@ fn transmittance_lut_texels_match_the_reference() {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![],
+        clouds: Vec::new(),
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());
@@ -171,6 +172,7 @@ fn sky_comparisons_with(
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![sun],
+        clouds: Vec::new(),
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
     let conversion = atmosphere.spectral_conversion();
@@ -427,7 +429,19 @@ fn several_suns_add_up() {
         ..presets::earth_sun(direction(200.0, 5.0))
     };
     let view = camera(DVec3::new(0.0, 0.0, 100.0), direction(120.0, 5.0), 100f64.to_radians());
-    let image = |gpu: &mut Gpu, suns: Vec<Sun>| render(gpu, &AtmosphereSky { atmosphere, suns }, view, 16, 12);
+    let image = |gpu: &mut Gpu, suns: Vec<Sun>| {
+        render(
+            gpu,
+            &AtmosphereSky {
+                atmosphere,
+                suns,
+                clouds: Vec::new(),
+            },
+            view,
+            16,
+            12,
+        )
+    };
     let both = image(&mut gpu, vec![a, b]);
     let only_a = image(&mut gpu, vec![a]);
     let only_b = image(&mut gpu, vec![b]);
@@ -463,6 +477,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
     let sky = |s: Sun| AtmosphereSky {
         atmosphere,
         suns: vec![s],
+        clouds: Vec::new(),
     };
     let bright = render(&mut gpu, &sky(sun), view, 16, 12);
     let dim = render(&mut gpu, &sky(moon), view, 16, 12);
@@ -498,6 +513,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![presets::earth_sun(direction(90.0, 20.0))],
+        clouds: Vec::new(),
     };
     let au = presets::ASTRONOMICAL_UNIT;
     let center = atmosphere.planet.center;
@@ -536,6 +552,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![presets::earth_sun(direction(90.0, 10.0))],
+        clouds: Vec::new(),
     };
     let mean = |image: &Image<f32>| {
         let mut sum = DVec3::ZERO;
@@ -586,6 +603,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![sun],
+        clouds: Vec::new(),
     };
     // Looking at the planet's equator from 3 radii, pole up, so the flattening shows.
     let position = DVec3::new(0.0, -20_000_000.0, 0.0);

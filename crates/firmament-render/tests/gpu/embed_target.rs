@@ -45,6 +45,7 @@ fn frame(view: DVec3, far: Option<f64>) -> Frame {
         sky: Sky::Atmosphere(AtmosphereSky {
             atmosphere,
             suns: vec![presets::earth_sun(direction(90.0, 25.0))],
+            clouds: Vec::new(),
         }),
         display: DisplaySettings::default(),
         objects: Default::default(),

@@ -7,6 +7,8 @@
 mod aerial_perspective;
 mod atmosphere;
 mod camera;
+mod cloud_density;
+mod clouds;
 mod embed_target;
 mod embedding;
 mod empirical_sky;

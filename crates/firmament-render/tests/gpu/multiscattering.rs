@@ -47,6 +47,7 @@ fn tail_errors(atmosphere: Atmosphere) -> [(f64, f64); 2] {
     let sky = AtmosphereSky {
         atmosphere,
         suns: vec![],
+        clouds: Vec::new(),
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());

@@ -1,10 +1,12 @@
 //! Constructors of the scene's list entries, for [`SceneBuilder`](super::SceneBuilder): suns,
-//! lights and objects, every value in the unit its name says.
+//! cloud layers, lights and objects, every value in the unit its name says.
+
+use firmament_core::atmosphere::clouds::CloudKind;
 
 use crate::color::SceneColor;
 use crate::model::{
-    GlColor, LightEntry, LightSpaceName, MaterialEntry, MeshEntry, ObjectEntry, SpinEntry, SunEntry, TextureEntry,
-    TransformEntry,
+    CloudEntry, GlColor, LightEntry, LightSpaceName, MaterialEntry, MeshEntry, ObjectEntry, SpinEntry, SunEntry,
+    TextureEntry, TransformEntry,
 };
 
 impl SunEntry {
@@ -245,5 +247,40 @@ impl ObjectEntry {
             }),
             ..self
         }
+    }
+}
+
+impl CloudEntry {
+    /// A layer of `kind` from `bottom` to `top` (metres above the surface) covering `coverage`
+    /// (0–1) of the sky, of extinction `density` (per metre) at full density; no wind, seed 0,
+    /// albedo 1, the droplets' phase function, no coverage map.
+    pub fn new_m(kind: CloudKind, bottom: f64, top: f64, coverage: f64, density_per_m: f64) -> Self {
+        Self {
+            bottom_m: bottom,
+            top_m: top,
+            coverage,
+            density_per_m,
+            kind,
+            wind_mps: [0.0, 0.0],
+            seed: 0,
+            coverage_map: None,
+            albedo: 1.0,
+            phase: None,
+        }
+    }
+
+    /// The same layer carried by a wind of `east`, `north` metres per second.
+    #[must_use]
+    pub fn wind_mps(self, east: f64, north: f64) -> Self {
+        Self {
+            wind_mps: [east, north],
+            ..self
+        }
+    }
+
+    /// The same layer with the noise seed `seed`.
+    #[must_use]
+    pub fn seed(self, seed: u32) -> Self {
+        Self { seed, ..self }
     }
 }

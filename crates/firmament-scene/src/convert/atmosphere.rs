@@ -1,10 +1,11 @@
-//! From `[planet]`, `[atmosphere]` and `[[suns]]` to the core's [`AtmosphereSky`], checking every
-//! value on the way (each error names the scene key), and the rule that keeps the camera above
-//! the planet's surface.
+//! From `[planet]`, `[atmosphere]`, `[[suns]]` and `[[clouds]]` to the core's [`AtmosphereSky`],
+//! checking every value on the way (each error names the scene key), and the rule that keeps the
+//! camera above the planet's surface.
 //!
 //! The body (`planet.body`) gives every value; each key a scene sets replaces the body's. The
 //! core's own checks run last, as a backstop, with their field names turned into scene keys.
 
+pub(crate) mod clouds;
 mod empirical;
 mod medium;
 mod planet;
@@ -25,7 +26,8 @@ use crate::model::Scene;
 /// posing the planet is far smaller).
 const SURFACE_TOLERANCE: f64 = 1e-3;
 
-/// The scene's planet, atmosphere and suns, checked.
+/// The scene's planet, atmosphere, suns and cloud layers (coverage maps loaded, no drift),
+/// checked.
 pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
     let body = scene.planet.body;
     let planet = planet::planet(&scene.planet)?;
@@ -39,7 +41,12 @@ pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
         .validate()
         .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;
     let suns = suns::suns(&scene.suns, body, &atmosphere)?;
-    let sky = AtmosphereSky { atmosphere, suns };
+    let clouds = clouds::clouds(scene, &atmosphere)?;
+    let sky = AtmosphereSky {
+        atmosphere,
+        suns,
+        clouds,
+    };
     sky.validate()
         .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;
     Ok(sky)
@@ -79,12 +86,16 @@ fn metres(value: f64) -> f64 {
 fn from_core(error: CoreError, key_of: impl Fn(&str) -> String) -> SceneError {
     match error {
         CoreError::Invalid { field, value, rule } => SceneError::invalid(key_of(field), value, rule),
+        CoreError::InvalidItem { field, value, rule } => SceneError::invalid(key_of(&field), value, rule),
         other => SceneError::invalid("atmosphere", "(the whole atmosphere)", other.to_string()),
     }
 }
 
 /// The scene key behind one of the core's field names.
 fn scene_key(field: &str, scene: &Scene) -> String {
+    if let Some(key) = clouds::scene_key(field) {
+        return key;
+    }
     let p = &scene.planet;
     let sphere = p.radius.is_some();
     let key = match field {

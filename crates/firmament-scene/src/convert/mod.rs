@@ -2,8 +2,9 @@
 //!
 //! The scene model (`crate::model`) holds the file's keys in the file's units; this module and its
 //! steps turn them into the core's types, checking each value on the way (each error names the
-//! scene key): `atmosphere` (`[planet]`, `[atmosphere]`, `[[suns]]` → [`AtmosphereSky`], or the
-//! seed's [`EmpiricalSky`]), `time` (`[time]` → the frame's moment and the real sun), `objects`
+//! scene key): `atmosphere` (`[planet]`, `[atmosphere]`, `[[suns]]`, `[[clouds]]` →
+//! [`AtmosphereSky`], or the seed's [`EmpiricalSky`]; the clouds' wind drift in
+//! `atmosphere::clouds`), `time` (`[time]` → the frame's moment and the real sun), `objects`
 //! (`[lighting]`, `[[lights]]`, `[[objects]]`, `[fog]`, `[shadows]`, `[ground]` → the object
 //! layer), `flare` (`[flare]` → the flare layer) and `night` (the stars and the Moon at a real
 //! instant).
@@ -132,9 +133,11 @@ impl Scene {
     }
 
     /// The planet (posed so that the world frame is East-North-Up at `planet.latitude`,
-    /// `planet.longitude`), its atmosphere and the suns of `[[suns]]`: the body's values with the
-    /// scene's overrides; with `time.date_time`, the first sun (or the body's own when there is
-    /// none) stands where the real sun stood.
+    /// `planet.longitude`), its atmosphere, the suns of `[[suns]]` and the cloud layers of
+    /// `[[clouds]]` (their coverage maps loaded): the body's values with the scene's overrides;
+    /// with `time.date_time`, the first sun (or the body's own when there is none) stands where
+    /// the real sun stood. At the scene's own moment the clouds have not drifted (see
+    /// [`frame_at`](Self::frame_at)).
     pub fn atmosphere_sky(&self) -> Result<AtmosphereSky, SceneError> {
         let real_sun = match self.date_time()? {
             Some(civil) => Some(self.real_sun(&self.instant(&civil)?)?),
@@ -231,16 +234,29 @@ impl Scene {
     /// `time.date_time`, that clock time on the same date), with the lens flares of `[flare]`
     /// and its sources (the suns, the lights marked `flare`). Without a date the atmosphere's suns
     /// do not move with the time, objects' spins and the gradient sky's sun do; with one, the
-    /// real sun moves too. Builds the built-in meshes and loads mesh and texture files, so a bad
-    /// or missing file is reported here.
+    /// real sun moves too, and the wind carries the clouds by `wind × (the frame's instant − the
+    /// scene's own)`. Builds the built-in meshes and loads mesh, texture and coverage-map files,
+    /// so a bad or missing file is reported here.
     pub fn frame_at(&self, time: Option<TimeOfDay>) -> Result<Frame, SceneError> {
         self.frame_for(self.moment(time)?)
     }
 
     /// Everything needed to draw the scene at a real date and time (whether or not the scene has
-    /// `time.date_time`): the real sun, moon and stars over `[planet]`'s latitude and longitude.
+    /// `time.date_time`): the real sun, moon and stars over `[planet]`'s latitude and longitude,
+    /// the clouds carried by their wind since the scene's own `time.date_time` (J2000.0 for a
+    /// scene without one).
     pub fn frame_at_date_time(&self, date_time: &CivilDateTime) -> Result<Frame, SceneError> {
         self.frame_for(self.moment_at(date_time)?)
+    }
+
+    /// Seconds of wind at `moment`: since the scene's own `time.date_time` (J2000.0 without
+    /// one) when the moment has an instant, else 0 (see `atmosphere::clouds`).
+    fn wind_seconds(&self, moment: &Moment) -> Result<f64, SceneError> {
+        let origin = match (moment.instant, self.date_time()?) {
+            (Some(_), Some(civil)) => Some(self.instant(&civil)?.jd),
+            _ => None,
+        };
+        Ok(atmosphere::clouds::wind_seconds(moment.instant.map(|i| i.jd), origin))
     }
 
     fn frame_for(&self, moment: Moment) -> Result<Frame, SceneError> {
@@ -252,6 +268,7 @@ impl Scene {
                 let mut sky = self.atmosphere_sky_with(real_sun.as_ref())?;
                 match self.atmosphere.model {
                     AtmosphereModelName::Physical => {
+                        atmosphere::clouds::drift(&mut sky, self.wind_seconds(&moment)?);
                         if let Some(instant) = &moment.instant {
                             night::add_moonlight(self, instant, &camera, &mut sky);
                         }

@@ -226,6 +226,7 @@ mod tests {
         let mut earth = AtmosphereSky {
             atmosphere: firmament_core::atmosphere::presets::earth(),
             suns: vec![],
+            clouds: Vec::new(),
         };
         // The world is east-north-up at (0°, 0°) on the ground.
         earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);

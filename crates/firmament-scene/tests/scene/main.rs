@@ -5,6 +5,7 @@
 mod assets;
 mod atmosphere_scenes;
 mod builder;
+mod cloud_scenes;
 mod document;
 mod empirical_scenes;
 mod flare_scenes;

@@ -143,7 +143,7 @@ fn print_table(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines)
         b.frames,
         b.timing.describe()
     );
-    baselines.print_rows(&[
+    let mut rows = vec![
         (
             "medium LUTs (transmittance, multiple scattering, irradiance)",
             b.medium_luts_ms,
@@ -165,10 +165,18 @@ fn print_table(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines)
             b.aerial_apply_fragment_ms,
         ),
         ("LUT-path frame (sky-view LUT + sky)", b.lut_frame_ms),
+        (
+            "whole frame, every LUT rebuilt (+ sky-view LUT, sky, aerial vol.)",
+            b.rebuild_frame_ms,
+        ),
         ("brute-force frame (per-pixel march)", b.march_frame_ms),
         ("auto-exposure (histogram and adaptation)", camera.exposure_ms),
         ("bloom (the dual-filter pyramid, down and up)", camera.bloom_ms),
-    ]);
+    ];
+    if let Some(ms) = b.clouds_ms {
+        rows.push(("clouds (march and composite over the image)", ms));
+    }
+    baselines.print_rows(&rows);
     let steps: Vec<String> = b.medium_lut_steps_ms.iter().map(|ms| format!("{ms:.3}")).collect();
     println!(
         "  medium LUT build steps (transmittance, each order of multiple scattering; the last with the sums): {} ms",
@@ -201,12 +209,14 @@ fn json(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines) -> Str
         "aerial_apply_fragment_ms": b.aerial_apply_fragment_ms,
         "lut_frame_ms": b.lut_frame_ms,
         "march_frame_ms": b.march_frame_ms,
+        "rebuild_frame_ms": b.rebuild_frame_ms,
+        "clouds_ms": b.clouds_ms,
         "difference_median": b.difference.0,
         "difference_worst": b.difference.1,
         "exposure_ms": camera.exposure_ms,
         "bloom_ms": camera.bloom_ms,
     });
-    let rows = [
+    let mut rows = vec![
         ("medium_luts_ms", b.medium_luts_ms),
         ("medium_lut_step_max_ms", b.medium_lut_step_max_ms),
         ("sky_view_lut_ms", b.sky_view_lut_ms),
@@ -217,9 +227,13 @@ fn json(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines) -> Str
         ("aerial_apply_fragment_ms", b.aerial_apply_fragment_ms),
         ("lut_frame_ms", b.lut_frame_ms),
         ("march_frame_ms", b.march_frame_ms),
+        ("rebuild_frame_ms", b.rebuild_frame_ms),
         ("exposure_ms", camera.exposure_ms),
         ("bloom_ms", camera.bloom_ms),
     ];
+    if let Some(ms) = b.clouds_ms {
+        rows.push(("clouds_ms", ms));
+    }
     with_baselines(object, baselines, &rows)
 }
 

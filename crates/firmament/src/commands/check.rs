@@ -30,7 +30,8 @@ pub(crate) fn run(args: &CheckArgs) -> Result<()> {
     Ok(())
 }
 
-/// `gradient sky at 17:45`, or `atmosphere of earth, 1 sun, camera at altitude 1.7 m`.
+/// `gradient sky at 17:45`, or `atmosphere of earth, 1 sun, 2 cloud layers, camera at altitude
+/// 1.7 m`.
 fn sky_summary(scene: &Scene) -> String {
     match scene.sky.model {
         SkyModelName::Gradient => format!("gradient sky at {}", scene.time.time_of_day),
@@ -48,7 +49,13 @@ fn sky_summary(scene: &Scene) -> String {
                 AtmosphereModelName::Physical => "atmosphere",
                 AtmosphereModelName::Empirical => "seed atmosphere",
             };
-            format!("{model} of {}, {suns}{altitude}", scene.planet.body.name())
+            // The physical atmosphere draws the cloud layers; the seed's model has none.
+            let clouds = match (scene.atmosphere.model, scene.clouds.len()) {
+                (AtmosphereModelName::Empirical, _) | (_, 0) => String::new(),
+                (_, 1) => ", 1 cloud layer".to_owned(),
+                (_, n) => format!(", {n} cloud layers"),
+            };
+            format!("{model} of {}, {suns}{clouds}{altitude}", scene.planet.body.name())
         }
     }
 }

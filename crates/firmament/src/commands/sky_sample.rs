@@ -81,7 +81,14 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
     let sky = AtmosphereSky {
         atmosphere: scene_sky.atmosphere,
         suns: vec![sun],
+        clouds: scene_sky.clouds,
     };
+    if !sky.clouds.is_empty() && !args.reference {
+        bail!(
+            "the scene has {} cloud layers ([[clouds]]): sky-sample's GPU probe reads the atmosphere's LUTs, which hold no clouds; add --reference for the reference alone",
+            sky.clouds.len()
+        );
+    }
     let eye = DVec3::new(0.0, 0.0, args.altitude);
     let view = enu(args.view_zenith, args.view_azimuth);
 
@@ -224,7 +231,7 @@ fn reference_sample(
     settings: ReferenceSettings,
     second_order: bool,
 ) -> Sample {
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
+    let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_clouds(&sky.clouds);
     let planet = &sky.atmosphere.planet;
     let ray = Ray {
         origin: eye,

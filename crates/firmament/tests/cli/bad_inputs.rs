@@ -201,6 +201,20 @@ fn texture_scene(file: &str) -> String {
     format!("[[objects]]\nmesh = {{ kind = \"cube\", size = 1.0 }}\ntexture = {{ file = \"{file}\" }}\n")
 }
 
+/// A scene file over `earth-clouds` whose one cloud layer has `extra` added (a key it already
+/// has replaces the preset's).
+fn cloud_scene(extra: &str) -> String {
+    format!(
+        "preset = \"earth-clouds\"\n[[clouds]]\nkind = \"cumulus\"\nbottom = 1500.0\ntop = 3000.0\n\
+         coverage = 0.4\ndensity = 0.05\n{extra}\n"
+    )
+}
+
+/// A scene file whose cloud layer reads its coverage from `file`.
+fn coverage_map_scene(file: &str) -> String {
+    cloud_scene(&format!("coverage_map = \"{file}\""))
+}
+
 /// An 8×8 red PNG, whole.
 fn png_bytes() -> Vec<u8> {
     let image = image::RgbImage::from_pixel(8, 8, image::Rgb([255, 0, 0]));
@@ -287,6 +301,13 @@ fn corpus() -> Vec<Case> {
         toml_array("{ elevation = 10.0 }", 9)
     );
     let nine_lights = format!("lights = {}\n", toml_array("{ diffuse = [1.0, 1.0, 1.0] }", 9));
+    let nine_clouds = format!(
+        "preset = \"earth-clouds\"\nclouds = {}\n",
+        toml_array(
+            "{ kind = \"stratus\", bottom = 500.0, top = 900.0, coverage = 1.0, density = 0.02 }",
+            9
+        )
+    );
     let many_flare_elements = format!(
         "[flare]\nenabled = true\nelements = {}\n",
         toml_array("{ kind = \"glow\", size = 0.1 }", 65)
@@ -656,6 +677,161 @@ fn corpus() -> Vec<Case> {
                 "[possible values: none, rle, zip, zips, piz]",
             ],
         ),
+        // ---- render: clouds --------------------------------------------------------------------
+        case(
+            "render: a cloud layer's bottom above its top",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.bottom=4000"],
+            &["clouds[0].top = 3000: must be a finite number of metres above clouds[0].bottom (4000 m): bottom < top"],
+        ),
+        case(
+            "render: a negative cloud base",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.bottom=-100"],
+            &["clouds[0].bottom = -100: must be a finite number of metres >= 0"],
+        ),
+        case(
+            "render: a cloud top above the atmosphere",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.top=1e6"],
+            &["clouds[0].top = 1000000: must be at most the top of the atmosphere"],
+        ),
+        case(
+            "render: a cloud coverage of 1.5",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.coverage=1.5"],
+            &["clouds[0].coverage = 1.5: must be in [0, 1]"],
+        ),
+        case(
+            "render: a NaN cloud coverage in a file",
+            1,
+            &["render", "s.toml"],
+            &["clouds[0].coverage = NaN: must be in [0, 1]"],
+        )
+        .file("s.toml", cloud_scene("coverage = nan").replace("coverage = 0.4\n", "")),
+        case(
+            "render: a negative cloud density",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.density=-0.05"],
+            &["clouds[0].density = -0.05: must be in [0, 10] per metre"],
+        ),
+        case(
+            "render: an infinite cloud density",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.density=inf"],
+            &["clouds[0].density = inf: must be in [0, 10] per metre"],
+        ),
+        case(
+            "render: an unknown cloud kind",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.kind=cumulous"],
+            &[
+                "clouds[0].kind: unknown variant `cumulous`",
+                "(did you mean `cumulus`?)",
+            ],
+        ),
+        case(
+            "render: an unknown key in a cloud layer",
+            1,
+            &["render", "s.toml"],
+            &["clouds[0].covrage: unknown key (did you mean `coverage`?)"],
+        )
+        .file("s.toml", cloud_scene("covrage = 0.5")),
+        case(
+            "render: 9 cloud layers",
+            1,
+            &["render", "s.toml"],
+            &[
+                "clouds = 9 layers: at most 8 cloud layers",
+                "a fixed limit of the renderer",
+            ],
+        )
+        .file("s.toml", nine_clouds.clone()),
+        case(
+            "render: a wind of 3 numbers",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.wind=[1, 2, 3]"],
+            &["clouds[0].wind: must be 2 numbers, [east, north] in m/s; found 3 numbers"],
+        ),
+        case(
+            "render: a NaN wind",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.wind=[nan, 0]"],
+            &["clouds[0].wind = [NaN, 0]: [east, north] must each be a finite speed within ±1000 m/s"],
+        ),
+        case(
+            "render: a cloud phase of 2 numbers",
+            1,
+            &[
+                "render",
+                "--preset",
+                "earth-clouds",
+                "--set",
+                "clouds.0.phase=[0.8, -0.3]",
+            ],
+            &["clouds[0].phase: must be 3 numbers, [g_forward, g_back, blend]; found 2 numbers"],
+        ),
+        case(
+            "render: a cloud phase g of 1",
+            1,
+            &[
+                "render",
+                "--preset",
+                "earth-clouds",
+                "--set",
+                "clouds.0.phase=[1.0, -0.3, 0.8]",
+            ],
+            &["clouds[0].phase = [1, -0.3, 0.8]: g_forward (the first number) must be in (-1, 1)"],
+        ),
+        case(
+            "render: a cloud albedo of 1.2",
+            1,
+            &["render", "--preset", "earth-clouds", "--set", "clouds.0.albedo=1.2"],
+            &["clouds[0].albedo = 1.2: must be in [0, 1]"],
+        ),
+        case(
+            "render: a missing coverage map",
+            1,
+            &["render", "s.toml"],
+            &["clouds[0].coverage_map: cannot load", "nope.png", "does not exist"],
+        )
+        .file("s.toml", coverage_map_scene("nope.png")),
+        case(
+            "render: a folder for a coverage map",
+            1,
+            &["render", "s.toml"],
+            &[
+                "clouds[0].coverage_map: cannot load",
+                "folder.png",
+                "is not a regular file",
+            ],
+        )
+        .file("s.toml", coverage_map_scene("folder.png"))
+        .dir("folder.png"),
+        case(
+            "render: text for a PNG coverage map",
+            1,
+            &["render", "s.toml"],
+            &[
+                "clouds[0].coverage_map: cannot load",
+                "text.png",
+                "cannot decode the Png image",
+            ],
+        )
+        .file("s.toml", coverage_map_scene("text.png"))
+        .file("text.png", "hello"),
+        case(
+            "render: a coverage map that is no image",
+            1,
+            &["render", "s.toml"],
+            &[
+                "clouds[0].coverage_map: cannot load",
+                "notes.txt",
+                "not an image file of a known format",
+            ],
+        )
+        .file("s.toml", coverage_map_scene("notes.txt"))
+        .file("notes.txt", "hello"),
         // ---- render: broken meshes and textures ------------------------------------------------
         case(
             "render: a missing texture file",
@@ -851,6 +1027,17 @@ fn corpus() -> Vec<Case> {
         .file("s.toml", mesh_scene("oob.gltf"))
         .file("oob.gltf", gltf.clone())
         .file("tri.bin", gltf_bin),
+        case(
+            "check: a missing coverage map",
+            1,
+            &["check", "s.toml"],
+            &[
+                "s.toml is not a valid scene",
+                "clouds[0].coverage_map: cannot load",
+                "nope.png",
+            ],
+        )
+        .file("s.toml", coverage_map_scene("nope.png")),
         // ---- sky-sample ------------------------------------------------------------------------
         case(
             "sky-sample: 9 suns",
@@ -1008,6 +1195,25 @@ fn corpus() -> Vec<Case> {
         )
         .with_args(timelapse(&["s.toml", "-o", "out"]))
         .file("s.toml", texture_scene("nope.png")),
+        case(
+            "timelapse: a missing coverage map",
+            1,
+            &[],
+            &["clouds[0].coverage_map: cannot load", "nope.png", "does not exist"],
+        )
+        .with_args(timelapse(&["s.toml", "-o", "out"]))
+        .file("s.toml", coverage_map_scene("nope.png")),
+        case(
+            "timelapse: a cloud layer's bottom above its top",
+            1,
+            &[],
+            &["clouds[0].top = 3000: must be a finite number of metres above clouds[0].bottom (3500 m)"],
+        )
+        .with_args(timelapse(&["s.toml", "-o", "out"]))
+        .file(
+            "s.toml",
+            cloud_scene("bottom = 3500.0").replace("bottom = 1500.0\n", ""),
+        ),
         case(
             "timelapse: frames over the pixel limit",
             1,
@@ -1168,7 +1374,7 @@ fn every_bad_input_fails_with_one_clear_message_and_writes_nothing() {
     let scratch = tempfile::tempdir().expect("temp dir");
     let cases = corpus();
     // The count the corpus has (docs/RELIABILITY.md), so that no case can vanish unnoticed.
-    let floor = if cfg!(target_os = "linux") { 102 } else { 96 };
+    let floor = if cfg!(target_os = "linux") { 124 } else { 118 };
     assert!(cases.len() >= floor, "only {} cases", cases.len());
     let mut failures = Vec::new();
     for case in &cases {

@@ -307,6 +307,8 @@ fn check_accepts_the_atmosphere_presets_and_presets_lists_them() {
     for name in [
         "earth-noon",
         "earth-sunset",
+        "earth-clouds",
+        "earth-clouds-sunset",
         "earth-orbit",
         "mars-noon",
         "binary-sunset",
@@ -325,6 +327,15 @@ fn check_accepts_the_atmosphere_presets_and_presets_lists_them() {
             stdout.starts_with(&format!("preset `{name}`: ok (preset {name}, ")) && stdout.contains("atmosphere of "),
             "{stdout}"
         );
+    }
+    // The physical atmosphere's cloud layers are counted.
+    for (name, clouds) in [
+        ("earth-clouds", "1 sun, 1 cloud layer, "),
+        ("earth-clouds-sunset", "1 sun, 2 cloud layers, "),
+    ] {
+        let out = firmament(dir.path(), &["check", "--preset", name]);
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(stdout.contains(clouds), "{stdout}");
     }
     let out = firmament(
         dir.path(),

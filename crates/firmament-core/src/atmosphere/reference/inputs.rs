@@ -3,6 +3,7 @@
 //! ([`segment`]): what the integrator (`mod.rs`) and the path tracer (`path_tracer.rs`) both need.
 //! The integrator's methods are in `mod.rs`.
 
+use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Planet, Sun};
 use crate::geometry::Ray;
@@ -92,7 +93,7 @@ pub(crate) fn segment(planet: &Planet, ray: &Ray) -> Option<Segment> {
 }
 
 /// The reference integrator for one atmosphere lit by some suns, with optional opaque occluders
-/// ([`Reference::with_occluders`]).
+/// ([`Reference::with_occluders`]) and cloud layers ([`Reference::with_clouds`]).
 #[derive(Debug, Clone)]
 pub struct Reference {
     pub(super) atmosphere: Atmosphere,
@@ -102,4 +103,6 @@ pub struct Reference {
     /// Occluders in the planet frame, converted once: 6.4e6 m from the centre f64 still resolves
     /// about a nanometre, far below any shadow the tests look at.
     pub(super) occluders: Vec<Occluder>,
+    /// Cloud layers, planet frame ([`Reference::with_clouds`]).
+    pub(super) clouds: Vec<CloudLayer>,
 }

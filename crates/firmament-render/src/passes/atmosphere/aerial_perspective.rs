@@ -199,6 +199,21 @@ fn apply_entries() -> [wgpu::BindGroupLayoutEntry; 6] {
     ]
 }
 
+/// A texture of `target`'s size and HDR format that a compute pass writes and that is then copied
+/// over `target` (`Rgba16Float` cannot be read and written as storage in one pass everywhere).
+pub(super) fn scratch_for(device: &wgpu::Device, target: &wgpu::Texture, label: &str) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: target.size(),
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: crate::targets::HDR_FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
 /// The depth buffer, read as an unfilterable float texture: GLSL cannot `textureLoad` a depth
 /// texture, and a depth view may be bound as unfilterable float anywhere.
 fn depth_entry() -> wgpu::BindGroupLayoutEntry {
@@ -293,16 +308,7 @@ impl AerialPerspectiveStages {
         target: &wgpu::Texture,
         depth: &wgpu::TextureView,
     ) {
-        let scratch = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("firmament AtmospherePass aerial-perspective scratch"),
-            size: target.size(),
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: crate::targets::HDR_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let scratch = scratch_for(device, target, "firmament AtmospherePass aerial-perspective scratch");
         let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
         let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
         let mut all = resources.apply(depth);
@@ -382,8 +388,9 @@ impl AerialPerspectiveStages {
 
     /// Encodes the volume's compute pass (after the transmittance and multiple-scattering LUTs).
     pub(super) fn record_volume(&self, encoder: &mut wgpu::CommandEncoder) {
+        // One workgroup per froxel column (aerial_perspective_volume.wgsl).
         let (x, y, _) = AERIAL_PERSPECTIVE_SIZE;
-        self.volume.dispatch(encoder, (x.div_ceil(8), y.div_ceil(8), 1));
+        self.volume.dispatch(encoder, (x, y, 1));
     }
 
     /// Binds `depth` (a depth view of the colour target's size) for the next applications.
@@ -443,6 +450,10 @@ mod tests {
         assert!(
             shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME
                 .contains(&format!("const AERIAL_PERSPECTIVE_SIZE: vec3<u32> = {declared};"))
+        );
+        // One invocation per sample of a column: two per slice.
+        assert!(
+            shaders::ATMOSPHERE_AERIAL_PERSPECTIVE_VOLUME.contains(&format!("const SAMPLES: u32 = {}u;", 2 * z))
         );
     }
 }

@@ -30,6 +30,7 @@
 //! the low sun's air mass slightly.
 
 mod aerial_perspective;
+mod clouds;
 pub mod luts;
 mod multiscattering;
 mod rebuild;
@@ -46,6 +47,7 @@ use crate::shaders;
 
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
+use clouds::CloudStages;
 pub use luts::AtmosphereLuts;
 use luts::{SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
 pub use multiscattering::MULTISCATTERING_ORDERS;
@@ -119,6 +121,7 @@ pub struct AtmospherePass {
     multiscattering: MultiscatteringStages,
     sky_view: ComputeStage,
     aerial: AerialPerspectiveStages,
+    clouds: CloudStages,
     lighting: SkyLightingStage,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
@@ -250,6 +253,7 @@ impl AtmospherePass {
         );
         Self {
             aerial,
+            clouds: CloudStages::new(device),
             lighting,
             sampler,
             luts,
@@ -274,6 +278,7 @@ impl AtmospherePass {
     /// of `sky` by `camera` — of the last complete medium's while an incremental build is under
     /// way (with `sky`'s suns and the planet's pose), so the sky stays whole.
     pub fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky, camera: &Camera) {
+        self.clouds.prepare(queue, sky);
         let params = AtmosphereParamsUniforms::new(&sky.atmosphere);
         if self.uploaded != Some(params) {
             queue.write_buffer(&self.build.params, 0, bytemuck::bytes_of(&params));
@@ -286,9 +291,11 @@ impl AtmospherePass {
                 let mut atmosphere = *live;
                 atmosphere.planet.center = sky.atmosphere.planet.center;
                 atmosphere.planet.orientation = sky.atmosphere.planet.orientation;
+                // For the view's uniforms only: the clouds were uploaded above.
                 live_sky = AtmosphereSky {
                     atmosphere,
                     suns: sky.suns.clone(),
+                    clouds: Vec::new(),
                 };
                 &live_sky
             }
@@ -517,6 +524,7 @@ impl AtmospherePass {
             sampler: &self.sampler,
         };
         self.aerial.bind_target(device, &aerial_resources, color, depth);
+        self.clouds.bind_target(device, &aerial_resources, color, depth);
         let color = &color.create_view(&wgpu::TextureViewDescriptor::default());
         let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler);
         resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
@@ -586,6 +594,20 @@ impl AtmospherePass {
         };
         stages[self.sky_mode as usize].dispatch(encoder, (width.div_ceil(8), height.div_ceil(8), 1));
         true
+    }
+
+    /// Whether the sky last prepared has cloud layers.
+    pub fn has_clouds(&self) -> bool {
+        self.clouds.any()
+    }
+
+    /// Encodes the cloud layers over the target bound by
+    /// [`bind_sky_target`](Self::bind_sky_target), after everything else the image holds in the
+    /// air (the sky, the objects, their aerial perspective) and after the aerial-perspective
+    /// volume, which lights the air in front of them. Returns false, encoding nothing, without
+    /// clouds or a bound target.
+    pub fn record_clouds_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        self.clouds.record_on_target(encoder)
     }
 
     /// The LUTs (for tests and tools).

@@ -25,6 +25,9 @@ pub(super) mod binding {
     pub(crate) const SCENE_DEPTH: u32 = 12;
     pub(crate) const MULTISCATTERING_OUT: u32 = 13;
     pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
+    pub(crate) const CLOUDS: u32 = 15;
+    pub(crate) const CLOUD_COVERAGE_MAPS: u32 = 16;
+    pub(crate) const CLOUD_MAP_SAMPLER: u32 = 17;
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_OUT: u32 = 20;
     pub(crate) const HDR_IN: u32 = 23;
@@ -95,6 +98,9 @@ mod tests {
             ("aerial_transmittance", binding::AERIAL_TRANSMITTANCE),
             ("scene_depth", binding::SCENE_DEPTH),
             ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
+            ("clouds", binding::CLOUDS),
+            ("cloud_coverage_maps", binding::CLOUD_COVERAGE_MAPS),
+            ("cloud_map_sampler", binding::CLOUD_MAP_SAMPLER),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),
             ("multiscattering_orders", binding::MULTISCATTERING_ORDERS),
             ("sky_view_out", binding::SKY_VIEW_OUT),

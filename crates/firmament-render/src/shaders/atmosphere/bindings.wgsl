@@ -5,7 +5,9 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (15 to 18, 21, 22, 27 or from 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (18, 21, 22, 27 or from 29) here and in `stages.rs`.
+
+#import clouds/density
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
@@ -83,6 +85,13 @@ struct SkyLighting {
 @group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;
 @group(0) @binding(1) var<uniform> view: AtmosphereView;
 @group(0) @binding(25) var<uniform> lighting: SkyLightingParams;
+// The cloud layers (clouds/density.wgsl declares their struct).
+@group(0) @binding(15) var<uniform> clouds: CloudsGpu;
+// Their coverage maps, one array layer per layer that has one (`codes.w`), R16Float, resampled to
+// passes/atmosphere/clouds.rs COVERAGE_MAP_SIZE; read at cloud_coverage_map_uv with
+// `cloud_map_sampler` (linear, repeating in longitude, clamped at the poles).
+@group(0) @binding(16) var cloud_coverage_maps: texture_2d_array<f32>;
+@group(0) @binding(17) var cloud_map_sampler: sampler;
 
 // One texel's multiple-scattering orders (and sky irradiance) while the LUTs are built, as the seven sums over
 // directions that multiscattering_lut.wgsl reduces (`ORDER_SUMS` there: Ψ, zz, xx, xz, x, z in

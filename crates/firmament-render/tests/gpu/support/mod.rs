@@ -85,6 +85,7 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
     firmament_core::frame::AtmosphereSky {
         atmosphere,
         suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
+        clouds: Vec::new(),
     }
 }
 

@@ -89,6 +89,12 @@ pub(crate) struct AtmosphereBench {
     pub(crate) lut_frame_ms: f64,
     /// A brute-force frame: every pixel marches its ray.
     pub(crate) march_frame_ms: f64,
+    /// The cloud layers over the whole image (`None` for a sky without clouds): the compute
+    /// march and its copy back, after the aerial-perspective volume.
+    pub(crate) clouds_ms: Option<f64>,
+    /// A whole frame with every LUT rebuilt, in one span: the medium LUTs, the sky-view LUT, the
+    /// sky (compute) and the aerial-perspective volume (issue 23's goal).
+    pub(crate) rebuild_frame_ms: f64,
     /// Median and largest relative difference between the two images (largest channel
     /// difference over the march's largest channel, pixels above 1 cd/m²).
     pub(crate) difference: (f64, f64),
@@ -229,6 +235,12 @@ pub(crate) fn bench_atmosphere(
         pass.record_sky(e);
     });
     let lut_image = hdr_pixels(ctx, &targets)?;
+    let rebuild_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
+        pass.record_medium_luts(e);
+        pass.record_sky_view_lut(e);
+        pass.record_sky(e);
+        pass.record_aerial_perspective_volume(e);
+    });
     pass.set_method(SkyMethod::March);
     pass.prepare(&ctx.queue, sky, &camera);
     let march_frame_ms = median_ms(ctx, frames, &targets.hdr, |e| {
@@ -237,6 +249,12 @@ pub(crate) fn bench_atmosphere(
     let march_image = hdr_pixels(ctx, &targets)?;
     let aerial_volume_ms = median_ms(ctx, frames, &pass.luts().aerial_transmittance.texture, |e| {
         pass.record_aerial_perspective_volume(e)
+    });
+    // The clouds over the sky (the depth buffer still holds the far plane everywhere).
+    let clouds_ms = pass.has_clouds().then(|| {
+        median_ms(ctx, frames, &targets.hdr, |e| {
+            pass.record_clouds_on_target(e);
+        })
     });
     pass.bind_depth(&ctx.device, &targets.depth_view);
     // Last, since it covers the depth buffer: geometry 1 km away (at the centre) in every pixel.
@@ -284,6 +302,8 @@ pub(crate) fn bench_atmosphere(
         aerial_apply_fragment_ms,
         lut_frame_ms,
         march_frame_ms,
+        rebuild_frame_ms,
+        clouds_ms,
         difference,
     })
 }

@@ -1,0 +1,254 @@
+//! The cloud layers (`shaders/clouds/march.wgsl`): a compute pass over the renderer's own HDR
+//! target, after the sky, the objects and their aerial perspective, that marches each pixel's
+//! ray through the layers in front of its geometry and lays the clouds over the image. Like the
+//! compute aerial perspective it reads the target and writes a scratch copy that is copied back.
+
+use firmament_core::atmosphere::clouds::{CloudLayer, CoverageMap};
+use firmament_core::frame::AtmosphereSky;
+
+use super::aerial_perspective::{AerialPerspectiveResources, scratch_for};
+use super::stages::{ComputeStage, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
+use crate::gpu_types::clouds::CloudsGpu;
+use crate::passes::common::uniform_buffer;
+use crate::shaders;
+
+/// Texels of the GPU's copy of each coverage map (longitude, latitude): maps of any size are
+/// resampled to it (about 39 km per texel on Earth's equator), so all fit one array texture.
+pub(super) const COVERAGE_MAP_SIZE: (u32, u32) = (1024, 512);
+
+/// The layers' uniforms and the compute stage bound to the renderer's target.
+#[derive(Debug)]
+pub(super) struct CloudStages {
+    uniforms: wgpu::Buffer,
+    /// One layer per layer slot with a map (`CloudLayerGpu::codes.w`), `R16Float`.
+    maps: wgpu::Texture,
+    maps_view: wgpu::TextureView,
+    /// Linear, repeating in longitude, clamped at the poles.
+    map_sampler: wgpu::Sampler,
+    /// The maps last uploaded, in slot order.
+    uploaded_maps: Vec<CoverageMap>,
+    /// Layers in the frame last prepared.
+    layers: usize,
+    on_target: Option<OnTarget>,
+}
+
+/// The stage bound to one HDR target.
+#[derive(Debug)]
+struct OnTarget {
+    stage: ComputeStage,
+    /// The HDR target, copied over from `scratch` after the pass.
+    target: wgpu::Texture,
+    scratch: wgpu::Texture,
+}
+
+/// The stage's layout entries.
+fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    vec![
+        uniform_entry(binding::PARAMS),
+        uniform_entry(binding::VIEW),
+        uniform_entry(binding::CLOUDS),
+        texture_array_entry(binding::CLOUD_COVERAGE_MAPS),
+        sampler_entry(binding::CLOUD_MAP_SAMPLER),
+        texture_entry(binding::TRANSMITTANCE, false),
+        texture_entry(binding::IRRADIANCE, true),
+        sampler_entry(binding::SAMPLER),
+        texture_entry(binding::AERIAL_SCATTERING, true),
+        texture_entry(binding::AERIAL_TRANSMITTANCE, true),
+        texture_entry(binding::SCENE_DEPTH, false),
+        texture_entry(binding::HDR_IN, false),
+        storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
+    ]
+}
+
+/// A filterable 2D-array texture.
+fn texture_array_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    let mut entry = texture_entry(binding, true);
+    if let wgpu::BindingType::Texture { view_dimension, .. } = &mut entry.ty {
+        *view_dimension = wgpu::TextureViewDimension::D2Array;
+    }
+    entry
+}
+
+/// `map` resampled to [`COVERAGE_MAP_SIZE`] (bilinear at the new texel centres), as half floats'
+/// bits.
+fn resampled(map: &CoverageMap) -> Vec<u16> {
+    let (width, height) = COVERAGE_MAP_SIZE;
+    let mut texels = Vec::with_capacity((width * height) as usize);
+    for row in 0..height {
+        let latitude = std::f64::consts::FRAC_PI_2 - (f64::from(row) + 0.5) * std::f64::consts::PI / f64::from(height);
+        for column in 0..width {
+            let longitude = -std::f64::consts::PI + (f64::from(column) + 0.5) * std::f64::consts::TAU / f64::from(width);
+            texels.push(half::f16::from_f64(map.sample(latitude, longitude)).to_bits());
+        }
+    }
+    texels
+}
+
+impl CloudStages {
+    pub(super) fn new(device: &wgpu::Device) -> Self {
+        let (width, height) = COVERAGE_MAP_SIZE;
+        let maps = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("firmament AtmospherePass cloud coverage maps"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: firmament_core::atmosphere::clouds::MAX_CLOUD_LAYERS as u32,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        });
+        let maps_view = maps.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        let map_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("firmament AtmospherePass cloud coverage map sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Self {
+            uniforms: uniform_buffer::<CloudsGpu>(device, "firmament AtmospherePass clouds"),
+            maps,
+            maps_view,
+            map_sampler,
+            uploaded_maps: Vec::new(),
+            layers: 0,
+            on_target: None,
+        }
+    }
+
+    /// Uploads `sky`'s cloud layers.
+    pub(super) fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky) {
+        self.layers = sky.clouds.len();
+        if self.layers > 0 {
+            let uniforms = CloudsGpu::new(&sky.clouds, &sky.atmosphere.planet);
+            queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
+            self.upload_maps(queue, &sky.clouds);
+        }
+    }
+
+    /// Uploads the layers' coverage maps, in slot order, when they changed.
+    fn upload_maps(&mut self, queue: &wgpu::Queue, layers: &[CloudLayer]) {
+        let maps: Vec<&CoverageMap> = layers.iter().filter_map(|l| l.coverage_map.as_ref()).collect();
+        if maps.iter().copied().eq(self.uploaded_maps.iter()) {
+            return;
+        }
+        let (width, height) = COVERAGE_MAP_SIZE;
+        for (slot, map) in maps.iter().enumerate() {
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &self.maps,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: slot as u32,
+                    },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                bytemuck::cast_slice(&resampled(map)),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(width * 2),
+                    rows_per_image: Some(height),
+                },
+                wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+            );
+        }
+        self.uploaded_maps = maps.into_iter().cloned().collect();
+    }
+
+    /// Whether the frame last prepared has clouds.
+    pub(super) fn any(&self) -> bool {
+        self.layers > 0
+    }
+
+    /// Binds `target` (an HDR texture with `TEXTURE_BINDING | COPY_DST`) and its depth buffer.
+    pub(super) fn bind_target(
+        &mut self,
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        target: &wgpu::Texture,
+        depth: &wgpu::TextureView,
+    ) {
+        let scratch = scratch_for(device, target, "firmament AtmospherePass clouds scratch");
+        let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
+        let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
+        let luts = resources.luts;
+        let all = [
+            (binding::PARAMS, resources.params.as_entire_binding()),
+            (binding::VIEW, resources.view.as_entire_binding()),
+            (binding::CLOUDS, self.uniforms.as_entire_binding()),
+            (
+                binding::CLOUD_COVERAGE_MAPS,
+                wgpu::BindingResource::TextureView(&self.maps_view),
+            ),
+            (
+                binding::CLOUD_MAP_SAMPLER,
+                wgpu::BindingResource::Sampler(&self.map_sampler),
+            ),
+            (
+                binding::TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.transmittance.view),
+            ),
+            (
+                binding::IRRADIANCE,
+                wgpu::BindingResource::TextureView(&luts.irradiance.view),
+            ),
+            (binding::SAMPLER, wgpu::BindingResource::Sampler(resources.sampler)),
+            (
+                binding::AERIAL_SCATTERING,
+                wgpu::BindingResource::TextureView(&luts.aerial_scattering.view),
+            ),
+            (
+                binding::AERIAL_TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
+            ),
+            (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
+            (binding::HDR_IN, wgpu::BindingResource::TextureView(&target_view)),
+            (binding::HDR_OUT, wgpu::BindingResource::TextureView(&scratch_view)),
+        ];
+        let stage = match self.on_target.take() {
+            Some(OnTarget { mut stage, .. }) => {
+                stage.rebind(device, &all);
+                stage
+            }
+            None => ComputeStage::new(
+                device,
+                "AtmospherePass clouds",
+                &shaders::CLOUDS_MARCH,
+                &entries(),
+                &all,
+            ),
+        };
+        self.on_target = Some(OnTarget {
+            stage,
+            target: target.clone(),
+            scratch,
+        });
+    }
+
+    /// Encodes the clouds over the bound target and the copy back (after the aerial-perspective
+    /// volume); false, encoding nothing, without layers or a bound target.
+    pub(super) fn record_on_target(&self, encoder: &mut wgpu::CommandEncoder) -> bool {
+        let Some(on) = self.on_target.as_ref().filter(|_| self.any()) else {
+            return false;
+        };
+        let size = on.target.size();
+        on.stage
+            .dispatch(encoder, (size.width.div_ceil(8), size.height.div_ceil(8), 1));
+        encoder.copy_texture_to_texture(on.scratch.as_image_copy(), on.target.as_image_copy(), size);
+        true
+    }
+}

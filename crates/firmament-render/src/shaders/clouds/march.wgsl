@@ -1,0 +1,320 @@
+// clouds/march.wgsl — the cloud layers laid over the finished HDR image (sky, objects and their
+// aerial perspective): each pixel's ray is marched through the shells of every layer in front of
+// its geometry, and the cloud's light and transmittance are composited with the air in front.
+//
+// Conventions: as atmosphere/view.wgsl (planet frame, metres, spectra per model wavelength, HDR
+// colour linear sRGB with Y in cd/m²); the density field is clouds/density.wgsl's, the mirror of
+// firmament_core::atmosphere::clouds. Cloud extinction is grey: one transmittance for every
+// channel. Shells are the ellipsoid's semi-axes plus the altitude (within metres of the true
+// offset surface below 20 km on Earth; the density itself takes the sample's own altitude).
+//
+// Lighting of a sample (docs/CLOUDS.md, "How clouds are drawn"):
+// - each sun: E · T_air (transmittance LUT) times, with τ the cloud's optical depth towards the
+//   sun (a short march, LIGHT_STEPS), the unscattered light p(ν)·e^(−τ) and the light scattered
+//   on the way, isotropic, by the diffuse transmission of a slab of that depth
+//   (`diffuse_fraction`);
+// - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below, each
+//   dimmed by the cloud between the sample and the layer's top or bottom.
+// Compositing (Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in
+// Frostbite"): the air in front of the cloud is the aerial-perspective volume's at the cloud's
+// transmittance-weighted depth; the image behind keeps its own air:
+// out = A + T_air · L_cloud + T_cloud · (in − A).
+
+#import common/ellipsoid
+#import common/view_ray
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/luts
+#import atmosphere/view
+#import atmosphere/aerial_lookup
+#import clouds/density
+
+// Most coarse and fine samples along one layer's stretch of a ray (march_stretch).
+const COARSE_STEPS: u32 = 64u;
+const FINE_STEPS: u32 = 128u;
+// Fine samples in a row without cloud that send the march back to coarse steps.
+const FINE_TO_COARSE: u32 = 8u;
+// Samples along the way towards each sun, each twice as long as the one before.
+const LIGHT_STEPS: u32 = 6u;
+// Below this the cloud hides everything behind it: the march stops.
+const OPAQUE: f32 = 1e-3;
+
+// One stretch of a ray inside one layer.
+struct Stretch {
+    t0: f32,
+    t1: f32,
+    layer: u32,
+}
+
+// What the march gathers: the cloud's light reaching the camera's side of it (spectral radiance,
+// before the air in front), its transmittance, and its transmittance-weighted distance.
+struct CloudSample {
+    radiance: vec3<f32>,
+    transmittance: f32,
+    depth_sum: f32,
+    weight_sum: f32,
+}
+
+// The two lobes' Henyey–Greenstein mixture with both asymmetries scaled by `scale` (sr⁻¹).
+fn dual_henyey_greenstein(phase: vec4<f32>, nu: f32, scale: f32) -> f32 {
+    return phase.z * henyey_greenstein_phase(phase.x * scale, nu)
+        + (1.0 - phase.z) * henyey_greenstein_phase(phase.y * scale, nu);
+}
+
+fn henyey_greenstein_phase(g: f32, nu: f32) -> f32 {
+    let g2 = g * g;
+    let denominator = max(1.0 + g2 - 2.0 * g * nu, 1e-6);
+    return (1.0 - g2) / (4.0 * PI * denominator * sqrt(denominator));
+}
+
+// The layer's extinction at p (altitude h, geodetic up `up`), m⁻¹, with its coverage map if it has
+// one.
+fn cloud_extinction(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>) -> f32 {
+    if layer.codes.z == 0u {
+        return cloud_density(layer, p, h);
+    }
+    let map = textureSampleLevel(cloud_coverage_maps, cloud_map_sampler, cloud_coverage_map_uv(up), i32(layer.codes.w), 0.0).r;
+    return cloud_density_with_coverage(layer, p, h, layer.coverage.x * map);
+}
+
+fn cloud_extinction_at(layer: CloudLayerGpu, p: vec3<f32>) -> f32 {
+    let here = altitude_up(p);
+    return cloud_extinction(layer, p, here.h, here.up);
+}
+
+// The semi-axes of the shell at altitude h.
+fn shell_radii(h: f32) -> vec3<f32> {
+    return atmosphere.radii.xyz + vec3<f32>(h);
+}
+
+// Where the ray meets the layer: up to two stretches, [t0, t1] inside the top shell and outside
+// the bottom one, cut to [near, far]. Empty stretches have t1 <= t0.
+fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> array<vec2<f32>, 2> {
+    var out = array<vec2<f32>, 2>(vec2<f32>(0.0), vec2<f32>(0.0));
+    let outer = ellipsoid_hits(ray.origin, ray.direction, shell_radii(top), ellipsoid_c(ray.origin, shell_radii(top)));
+    if outer.x > outer.y {
+        return out;
+    }
+    let inner = ellipsoid_hits(ray.origin, ray.direction, shell_radii(bottom), ellipsoid_c(ray.origin, shell_radii(bottom)));
+    if inner.x > inner.y {
+        out[0] = vec2<f32>(max(outer.x, near), min(outer.y, far));
+    } else {
+        out[0] = vec2<f32>(max(outer.x, near), min(inner.x, far));
+        out[1] = vec2<f32>(max(inner.y, near), min(outer.y, far));
+    }
+    return out;
+}
+
+// Optical depth from p towards the sun along s through layer `index`: LIGHT_STEPS samples over
+// stretches doubling in length, out to where the ray leaves the layer's top.
+fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32 {
+    let top = layer.shell.y;
+    let exit = ellipsoid_hits(p, s, shell_radii(top), ellipsoid_c(p, shell_radii(top))).y;
+    let length_out = max(exit, 0.0);
+    // Steps of 1, 2, 4, … units, summing to the way out.
+    let unit = length_out / f32((1u << LIGHT_STEPS) - 1u);
+    var depth = 0.0;
+    var t = 0.0;
+    var dt = unit;
+    for (var k = 0u; k < LIGHT_STEPS; k++) {
+        let q = p + s * (t + 0.5 * dt);
+        let here = altitude_up(q);
+        depth += cloud_extinction(layer, q, here.h, here.up) * dt;
+        t += dt;
+        dt *= 2.0;
+    }
+    return depth;
+}
+
+// The light a unit of cloud extinction at p (altitude h, up `up`) scatters towards −d (spectral,
+// per metre per unit extinction: multiply by the extinction), from every sun, the sky and the
+// ground.
+fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: vec3<f32>, extinction: f32) -> vec3<f32> {
+    let albedo = layer.coverage.w;
+    var source = vec3<f32>(0.0);
+    var ground_irradiance = vec3<f32>(0.0);
+    var sky_light = vec3<f32>(0.0);
+    // The cloud's optical depth below the sample, guessed from the local extinction.
+    let tau_below = extinction * max(h - layer.shell.x, 0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let sun = view.suns[i];
+        let s = sun.direction.xyz;
+        let mu_s = dot(up, s);
+        let air = transmittance_to_sun(h, mu_s, abs(sun.direction.w));
+        sky_light += sun.irradiance.rgb * sky_irradiance(h, mu_s);
+        ground_irradiance += sun.irradiance.rgb
+            * (transmittance_to_sun(0.0, mu_s, abs(sun.direction.w)) * max(mu_s, 0.0) + sky_irradiance(0.0, mu_s));
+        if all(air <= vec3<f32>(0.0)) {
+            continue;
+        }
+        let tau = optical_depth_to_sun(layer, p, s);
+        // δ-scaling (Joseph, Wiscombe & Weinman 1976): the forward peak f = g² of the droplets'
+        // light goes on with the sun's, so the sun's beam fades over (1 − f)·τ.
+        let g = mean_cosine(layer.phase);
+        let beam = exp(-(1.0 - g * g) * tau);
+        let single = dual_henyey_greenstein(layer.phase, dot(d, s), 1.0) * beam;
+        // Diffuse light, isotropic, as in a slab (Eddington): going down, what has reached this
+        // depth less the beam; going up, that light reflected by the cloud below.
+        let reached = 1.0 / (1.0 + 0.75 * (1.0 - g) * tau);
+        let below = 0.75 * (1.0 - g) * tau_below;
+        let multiple = max(mu_s, 0.0) * (max(reached - beam, 0.0) + reached * below / (1.0 + below)) / PI;
+        source += sun.irradiance.rgb * air * (single + multiple);
+    }
+    // Ambient light, isotropic: the sky's radiance from above (its irradiance over π) through the
+    // cloud above, the ground's from below through the cloud below, half a sphere each; the
+    // cloud between is guessed from the local extinction (no march).
+    let x_top = max(layer.shell.y - h, 0.0);
+    let x_bottom = max(h - layer.shell.x, 0.0);
+    let above = sky_light / PI * exp(-0.5 * extinction * x_top);
+    let below = atmosphere.ground_albedo.rgb * ground_irradiance / PI * exp(-0.5 * extinction * x_bottom);
+    // ∫ p L dω with p = 1/4π over two hemispheres of constant radiance.
+    source += (above + below) * 0.5;
+    return albedo * source;
+}
+
+// The phase function's mean cosine g.
+fn mean_cosine(phase: vec4<f32>) -> f32 {
+    return phase.z * phase.x + (1.0 - phase.z) * phase.y;
+}
+
+// Interleaved gradient noise (Jimenez 2014): a fixed fraction per pixel, so neighbours' samples
+// interleave and reruns are identical.
+fn pixel_jitter(pixel: vec2<f32>) -> f32 {
+    return fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
+}
+
+// Marches one stretch of a layer from t0 to t1, adding to `acc`. Empty air is crossed in coarse
+// steps (a sixteenth of the layer's thickness, or of the stretch over COARSE_STEPS when that is
+// longer); the first coarse sample that finds cloud steps back and the cloud is marched in fine
+// steps, an eighth of a coarse one (or the stretch over FINE_STEPS), until FINE_TO_COARSE fine
+// samples in a row find none (Schneider & Vos 2015). Both counts are bounded by construction.
+fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, acc: ptr<function, CloudSample>) {
+    let length_in = t1 - t0;
+    let thickness = max(layer.shell.y - layer.shell.x, 1.0);
+    let coarse = max(thickness / 16.0, length_in / f32(COARSE_STEPS));
+    let fine = max(coarse / 8.0, length_in / f32(FINE_STEPS));
+    var t = t0 + jitter * coarse;
+    var fine_mode = false;
+    var empty = 0u;
+    for (var guard = 0u; guard < COARSE_STEPS + 2u * FINE_STEPS && t < t1; guard++) {
+        if (*acc).transmittance < OPAQUE {
+            return;
+        }
+        if !fine_mode {
+            let p = ray.origin + ray.direction * t;
+            if cloud_extinction_at(layer, p) > 0.0 {
+                fine_mode = true;
+                empty = 0u;
+                t = max(t - coarse, t0);
+            } else {
+                t += coarse;
+            }
+            continue;
+        }
+        let dt = min(fine, t1 - t);
+        let tm = t + 0.5 * dt;
+        let p = ray.origin + ray.direction * tm;
+        let here = altitude_up(p);
+        let extinction = cloud_extinction(layer, p, here.h, here.up);
+        t += dt;
+        if extinction <= 0.0 {
+            empty += 1u;
+            fine_mode = empty < FINE_TO_COARSE;
+            continue;
+        }
+        empty = 0u;
+        let source = cloud_source(layer, p, here.h, here.up, ray.direction, extinction) * extinction;
+        let step = exp(-extinction * dt);
+        let scattered = select((source - source * step) / extinction, source * dt, extinction * dt < 1e-4);
+        (*acc).radiance += (*acc).transmittance * scattered;
+        let lost = (*acc).transmittance * (1.0 - step);
+        (*acc).depth_sum += lost * tm;
+        (*acc).weight_sum += lost;
+        (*acc).transmittance *= step;
+    }
+}
+
+// The clouds along the ray of pixel `id` up to `far` (metres along the ray).
+fn march_clouds(ray: ViewRay, far: f32, jitter: f32) -> CloudSample {
+    var acc: CloudSample;
+    acc.radiance = vec3<f32>(0.0);
+    acc.transmittance = 1.0;
+    acc.depth_sum = 0.0;
+    acc.weight_sum = 0.0;
+    // The ground ends every ray that meets it.
+    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+    var end = far;
+    if ground.x <= ground.y && ground.y > ray.near {
+        end = min(end, max(ground.x, ray.near));
+    }
+    // Every layer's stretches, marched nearest first.
+    var stretches: array<Stretch, 16>;
+    var count = 0u;
+    for (var i = 0u; i < clouds.count.x; i++) {
+        let layer = clouds.layers[i];
+        let found = layer_stretches(ray, layer.shell.x, layer.shell.y, ray.near, end);
+        for (var j = 0u; j < 2u; j++) {
+            if found[j].y > found[j].x {
+                stretches[count] = Stretch(found[j].x, found[j].y, i);
+                count += 1u;
+            }
+        }
+    }
+    var done = 0u;
+    var marched = 0u; // one bit per stretch already marched
+    while done < count {
+        var next = 0u;
+        var nearest = 3.0e38;
+        for (var k = 0u; k < count; k++) {
+            if (marched & (1u << k)) == 0u && stretches[k].t0 < nearest {
+                nearest = stretches[k].t0;
+                next = k;
+            }
+        }
+        marched |= 1u << next;
+        done += 1u;
+        let stretch = stretches[next];
+        march_stretch(ray, clouds.layers[stretch.layer], stretch.t0, stretch.t1, jitter, &acc);
+    }
+    return acc;
+}
+
+// The image at pixel `id` with the clouds laid over it.
+@compute @workgroup_size(8, 8)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(scene_depth);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let color = textureLoad(hdr_in, id.xy, 0);
+    let ndc = pixel_ndc(id.xy, size);
+    let ray = view_ray(ndc);
+    let depth = textureLoad(scene_depth, id.xy, 0).x;
+    var far = 3.0e38;
+    if !at_far_plane(depth) {
+        let view_depth = view.aerial.z / (depth + view.aerial.y);
+        far = ray.near + view_depth * length(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
+    }
+    let pixel = vec2<f32>(id.xy) + 0.5;
+    let cloud = march_clouds(ray, far, pixel_jitter(pixel));
+    if cloud.weight_sum <= 0.0 {
+        textureStore(hdr_out, id.xy, color);
+        return;
+    }
+    // The air in front of the cloud, at its transmittance-weighted depth (none from far away,
+    // where the volume is not built: see aerial_perspective.wgsl).
+    var air_transmittance = vec3<f32>(1.0);
+    var air_light = vec3<f32>(0.0);
+    if view.center.w < 0.5 {
+        let t_front = cloud.depth_sum / cloud.weight_sum;
+        let span = aerial_span(ray);
+        let through_air = clamp(t_front, span.x, span.y) - span.x;
+        let coordinates = firmament_aerial_coordinates(pixel / vec2<f32>(size), through_air, view.aerial.x);
+        air_transmittance = firmament_aerial_transmittance_at(aerial_transmittance, lut_sampler, coordinates);
+        air_light = min(to_linear_srgb(firmament_aerial_scattering_at(aerial_scattering, lut_sampler, coordinates)), vec3<f32>(HDR_MAX));
+    }
+    let cloud_light = to_linear_srgb(cloud.radiance) * air_transmittance;
+    let behind = max(color.rgb - air_light, vec3<f32>(0.0));
+    let out = air_light + cloud_light + cloud.transmittance * behind;
+    textureStore(hdr_out, id.xy, vec4<f32>(min(out, vec3<f32>(HDR_MAX)), color.a));
+}

@@ -1,0 +1,207 @@
+//! The cloud layers (`shaders/clouds/march.wgsl`) against closed forms: a uniform slab's
+//! transmittance, the image left alone where no cloud is, objects in front of a cloud, and
+//! reruns identical to the byte.
+
+use firmament_core::atmosphere::clouds::{CloudKind, CloudLayer};
+use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum, Sun, presets};
+use firmament_core::camera::Camera;
+use firmament_core::frame::{AtmosphereSky, Frame, Sky};
+use firmament_render::headless::Image;
+use glam::DVec3;
+
+use crate::support::{Gpu, direction, gpu};
+
+/// Earth's sphere (Bruneton's radii) with no air at all: whatever dims the sun is cloud.
+fn airless() -> Atmosphere {
+    let mut atmosphere = presets::earth();
+    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
+    atmosphere.medium.rayleigh.scattering = Spectrum::ZERO;
+    atmosphere.medium.mie.scattering = Spectrum::ZERO;
+    atmosphere.medium.mie.extinction = Spectrum::ZERO;
+    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere
+}
+
+/// A sun whose disc (3° across) fills a narrow view pointed at its centre.
+fn wide_sun(view_zenith_deg: f64) -> Sun {
+    Sun {
+        angular_radius: 1.5f64.to_radians(),
+        limb_darkening: 0.0,
+        ..presets::earth_sun(direction(0.0, 90.0 - view_zenith_deg))
+    }
+}
+
+fn camera_at(position: DVec3, forward: DVec3, fov_y_degrees: f64) -> Camera {
+    Camera::looking_at(position, position + forward, DVec3::Z)
+        .or_else(|| Camera::looking_at(position, position + forward, DVec3::Y))
+        .expect("a view direction")
+        .with_fov_y(fov_y_degrees.to_radians())
+}
+
+fn render(gpu: &mut Gpu, sky: AtmosphereSky, camera: Camera, width: u32, height: u32) -> Image<f32> {
+    let frame = Frame::new(camera, Sky::Atmosphere(sky));
+    let Gpu { ctx, renderer } = gpu;
+    renderer.render_hdr(ctx, &frame, width, height).expect("render")
+}
+
+/// Length of the straight path from a point `height` metres above a sphere of `radius` through
+/// the shell between `bottom` and `top` metres, at `zenith` radians from the local vertical.
+fn path_through_shell(radius: f64, height: f64, bottom: f64, top: f64, zenith: f64) -> f64 {
+    let r0 = radius + height;
+    let distance_to = |r: f64| {
+        // r0·cos θ terms of |o + t·d| = r, the far (upward) root.
+        let b = r0 * zenith.cos();
+        -b + (b * b - (r0 * r0 - r * r)).sqrt()
+    };
+    distance_to(radius + top) - distance_to(radius + bottom)
+}
+
+#[test]
+fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
+    let mut gpu = gpu();
+    let (bottom, top, density) = (1_000.0, 2_000.0, 1.0e-3);
+    let absorber = CloudLayer {
+        albedo: 0.0,
+        ..CloudLayer::new(bottom, top, 1.0, density, CloudKind::Uniform)
+    };
+    let eye = DVec3::new(0.0, 0.0, 2.0);
+    for zenith_deg in [0.0, 30.0, 60.0, 75.0] {
+        let sun = wide_sun(zenith_deg);
+        let camera = camera_at(eye, sun.direction, 0.5);
+        let clear = AtmosphereSky {
+            atmosphere: airless(),
+            suns: vec![sun],
+            clouds: Vec::new(),
+        };
+        let cloudy = AtmosphereSky {
+            clouds: vec![absorber.clone()],
+            ..clear.clone()
+        };
+        // An odd image: its centre pixel looks exactly along the camera, at the sun.
+        let without = render(&mut gpu, clear, camera, 5, 5).pixel(2, 2).expect("inside");
+        let with = render(&mut gpu, cloudy, camera, 5, 5).pixel(2, 2).expect("inside");
+        let length = path_through_shell(6_360_000.0, eye.z, bottom, top, zenith_deg.to_radians());
+        let expected = (-density * length).exp();
+        for channel in 0..3 {
+            let got = f64::from(with[channel]) / f64::from(without[channel]);
+            assert!(
+                (got / expected - 1.0).abs() < 0.005,
+                "view zenith {zenith_deg}°, channel {channel}: transmittance {got:.5}, closed form {expected:.5} \
+                 (path {length:.1} m)"
+            );
+        }
+    }
+}
+
+#[test]
+fn pixels_whose_rays_miss_every_layer_are_left_alone() {
+    let mut gpu = gpu();
+    // A layer far above a camera looking down from 500 m below it: half the image sees only
+    // the ground and air below the layer, the other half the layer.
+    let sky = crate::support::street_sky(90.0, 30.0);
+    let cloudy = AtmosphereSky {
+        clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
+        ..sky.clone()
+    };
+    let camera = camera_at(DVec3::new(0.0, 0.0, 100.0), direction(0.0, -30.0), 20.0);
+    let clear = render(&mut gpu, sky, camera, 8, 8);
+    let with = render(&mut gpu, cloudy, camera, 8, 8);
+    assert_eq!(clear.pixels, with.pixels, "every ray meets the ground before the layer");
+}
+
+#[test]
+fn reruns_are_identical_to_the_byte() {
+    let mut gpu = gpu();
+    let sky = AtmosphereSky {
+        clouds: vec![CloudLayer {
+            seed: 7,
+            ..CloudLayer::new(1_500.0, 3_000.0, 0.5, 0.05, CloudKind::Cumulus)
+        }],
+        ..crate::support::street_sky(90.0, 35.0)
+    };
+    let camera = camera_at(DVec3::new(0.0, 0.0, 2.0), direction(0.0, 30.0), 70.0);
+    let first = render(&mut gpu, sky.clone(), camera, 24, 16);
+    let second = render(&mut gpu, sky, camera, 24, 16);
+    assert_eq!(first.pixels, second.pixels);
+    let clear = render(&mut gpu, crate::support::street_sky(90.0, 35.0), camera, 24, 16);
+    assert_ne!(first.pixels, clear.pixels, "the clouds show");
+}
+
+/// The GPU's linear sRGB along `view` from `eye` (the centre of a 1 × 1 image, 1° across).
+fn gpu_radiance(gpu: &mut Gpu, sky: &AtmosphereSky, eye: DVec3, view: DVec3) -> DVec3 {
+    let image = render(gpu, sky.clone(), camera_at(eye, view, 1.0), 1, 1);
+    let p = image.pixel(0, 0).expect("inside");
+    DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+}
+
+/// The reference's linear sRGB along `view` from `eye` and the standard error of its luminance
+/// (cd/m², from the Monte Carlo multiple scattering).
+fn reference_radiance(sky: &AtmosphereSky, paths: usize, eye: DVec3, view: DVec3) -> (DVec3, f64) {
+    use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+    use firmament_core::geometry::Ray;
+    let planet = sky.atmosphere.planet;
+    let clouds: Vec<CloudLayer> = sky.clouds.clone();
+    let reference = Reference::new(
+        sky.atmosphere,
+        &sky.suns,
+        ReferenceSettings {
+            paths,
+            ..Default::default()
+        },
+    )
+    .with_clouds(&clouds);
+    let _ = planet;
+    let parts = reference.radiance(&Ray {
+        origin: eye,
+        direction: view,
+    });
+    let conversion = sky.atmosphere.spectral_conversion();
+    let rgb = conversion.linear_srgb(parts.total());
+    let error = conversion.luminance(parts.multiple.standard_error);
+    (DVec3::new(rgb.r, rgb.g, rgb.b), error)
+}
+
+/// Prints the GPU against the reference through a uniform slab and a cumulus layer at three sun
+/// elevations (`cargo test --release -p firmament-render --test gpu -- --ignored --nocapture
+/// cloud_radiance_survey`).
+#[test]
+#[ignore = "a survey for calibration, minutes in release"]
+fn cloud_radiance_survey() {
+    let mut gpu = gpu();
+    let paths = 16_384;
+    let slab = CloudLayer::new(1_000.0, 1_500.0, 1.0, 0.02, CloudKind::Uniform);
+    let thin = CloudLayer::new(1_000.0, 1_100.0, 1.0, 0.01, CloudKind::Uniform);
+    for (name, layer) in [("thin slab tau 1", thin), ("uniform slab tau 10", slab)] {
+        for elevation in [60.0, 30.0, 10.0] {
+            let sky = AtmosphereSky {
+                clouds: vec![layer.clone()],
+                ..crate::support::street_sky(0.0, elevation)
+            };
+            for (eye, view, what) in [
+                (DVec3::new(0.0, 0.0, 2.0), direction(0.0, 89.0), "below, zenith"),
+                (DVec3::new(0.0, 0.0, 2.0), direction(180.0, 45.0), "below, 45° away"),
+                (
+                    DVec3::new(0.0, 0.0, 4_000.0),
+                    direction(180.0, -60.0),
+                    "above, down away",
+                ),
+                (
+                    DVec3::new(0.0, 0.0, 4_000.0),
+                    direction(0.0, -60.0),
+                    "above, down towards",
+                ),
+            ] {
+                let got = gpu_radiance(&mut gpu, &sky, eye, view);
+                let (want, error) = reference_radiance(&sky, paths, eye, view);
+                let y = |c: DVec3| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+                println!(
+                    "{name:<22} sun {elevation:>4}° {what:<22} gpu {:>9.1} ref {:>9.1} ± {:>6.1} cd/m²  ratio {:.3}",
+                    y(got),
+                    y(want),
+                    error,
+                    y(got) / y(want)
+                );
+            }
+        }
+    }
+}
