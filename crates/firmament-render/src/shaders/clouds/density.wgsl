@@ -261,6 +261,12 @@ fn cloud_smooth(t: f32) -> f32 {
 
 // The field with the coverage there and its two thresholds given.
 fn cloud_density_at(layer: CloudLayerGpu, p: vec3<f32>, h: f32, coverage: f32, t: f32, t_core: f32) -> f32 {
+    return cloud_density_detailed(layer, p, h, coverage, t, t_core, true);
+}
+
+// The same, with the detail D evaluated (`detailed`) or taken as ½, its mean: for light marches
+// and samples farther than a pixel's footprint resolves (not the core's field, a filtered one).
+fn cloud_density_detailed(layer: CloudLayerGpu, p: vec3<f32>, h: f32, coverage: f32, t: f32, t_core: f32, detailed: bool) -> f32 {
     if !(h >= layer.shell.x && h <= layer.shell.y) {
         return 0.0;
     }
@@ -290,7 +296,10 @@ fn cloud_density_at(layer: CloudLayerGpu, p: vec3<f32>, h: f32, coverage: f32, t
     if x <= anchor - below * full || x >= anchor + (1.0 - below) * full {
         return 0.0;
     }
-    let d = cloud_detail(layer, q, x);
+    var d = 0.5;
+    if detailed {
+        d = cloud_detail(layer, q, x);
+    }
     let thickness = full * (1.0 - layer.detail.z * (1.0 - d));
     let bottom = anchor - below * thickness;
     let top = anchor + (1.0 - below) * thickness;

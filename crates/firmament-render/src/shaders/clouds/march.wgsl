@@ -10,9 +10,8 @@
 //
 // Lighting of a sample (docs/CLOUDS.md, "How clouds are drawn"):
 // - each sun: E · T_air (transmittance LUT) times, with τ the cloud's optical depth towards the
-//   sun (a short march, LIGHT_STEPS), the unscattered light p(ν)·e^(−τ) and the light scattered
-//   on the way, isotropic, by the diffuse transmission of a slab of that depth
-//   (`diffuse_fraction`);
+//   sun (a short march, LIGHT_STEPS), the δ-scaled beam p(ν)·e^(−(1 − g²)·τ) and diffuse light,
+//   isotropic, as in a plane-parallel slab in the Eddington approximation (`cloud_source`);
 // - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below, each
 //   dimmed by the cloud between the sample and the layer's top or bottom.
 // Compositing (Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in
@@ -68,18 +67,23 @@ fn henyey_greenstein_phase(g: f32, nu: f32) -> f32 {
 }
 
 // The layer's extinction at p (altitude h, geodetic up `up`), m⁻¹, with its coverage map if it has
-// one.
-fn cloud_extinction(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>) -> f32 {
-    if layer.codes.z == 0u {
-        return cloud_density(layer, p, h);
+// one; with its detail noise when `detailed`, else the detail's mean (cloud_density_detailed).
+fn cloud_extinction(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, detailed: bool) -> f32 {
+    var coverage = layer.coverage.x;
+    var t = layer.coverage.y;
+    var t_core = layer.coverage.z;
+    if layer.codes.z != 0u {
+        let map = textureSampleLevel(cloud_coverage_maps, cloud_map_sampler, cloud_coverage_map_uv(up), i32(layer.codes.w), 0.0).r;
+        coverage *= map;
+        t = cloud_coverage_threshold(layer, coverage);
+        t_core = cloud_coverage_threshold(layer, coverage * layer.column.w);
     }
-    let map = textureSampleLevel(cloud_coverage_maps, cloud_map_sampler, cloud_coverage_map_uv(up), i32(layer.codes.w), 0.0).r;
-    return cloud_density_with_coverage(layer, p, h, layer.coverage.x * map);
+    return cloud_density_detailed(layer, p, h, coverage, t, t_core, detailed);
 }
 
-fn cloud_extinction_at(layer: CloudLayerGpu, p: vec3<f32>) -> f32 {
+fn cloud_extinction_at(layer: CloudLayerGpu, p: vec3<f32>, detailed: bool) -> f32 {
     let here = altitude_up(p);
-    return cloud_extinction(layer, p, here.h, here.up);
+    return cloud_extinction(layer, p, here.h, here.up, detailed);
 }
 
 // The semi-axes of the shell at altitude h.
@@ -105,7 +109,7 @@ fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> 
     return out;
 }
 
-// Optical depth from p towards the sun along s through layer `index`: LIGHT_STEPS samples over
+// Optical depth from p towards the sun along s through `layer`: LIGHT_STEPS samples over
 // stretches doubling in length, out to where the ray leaves the layer's top.
 fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32 {
     let top = layer.shell.y;
@@ -119,7 +123,7 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32
     for (var k = 0u; k < LIGHT_STEPS; k++) {
         let q = p + s * (t + 0.5 * dt);
         let here = altitude_up(q);
-        depth += cloud_extinction(layer, q, here.h, here.up) * dt;
+        depth += cloud_extinction(layer, q, here.h, here.up, false) * dt;
         t += dt;
         dt *= 2.0;
     }
@@ -153,11 +157,14 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         let g = mean_cosine(layer.phase);
         let beam = exp(-(1.0 - g * g) * tau);
         let single = dual_henyey_greenstein(layer.phase, dot(d, s), 1.0) * beam;
-        // Diffuse light, isotropic, as in a slab (Eddington): going down, what has reached this
-        // depth less the beam; going up, that light reflected by the cloud below.
-        let reached = 1.0 / (1.0 + 0.75 * (1.0 - g) * tau);
+        // Diffuse light, isotropic, as in a conservative slab (δ-Eddington) of vertical depth μ·τ:
+        // going down, the share that has reached this depth less the beam, times the chance it
+        // scattered again (its first scattering is the beam's term above); going up, what has
+        // reached it reflected by the cloud below. Radiance μ·E/π each (docs/CLOUDS.md).
+        let mu = max(mu_s, 0.0);
+        let reached = (1.0 - (0.5 - 0.75 * mu) * (1.0 - beam)) / (1.0 + 0.75 * (1.0 - g) * tau * mu);
         let below = 0.75 * (1.0 - g) * tau_below;
-        let multiple = max(mu_s, 0.0) * (max(reached - beam, 0.0) + reached * below / (1.0 + below)) / PI;
+        let multiple = mu * (max(reached - beam, 0.0) * (1.0 - beam) + reached * below / (1.0 + below)) / PI;
         source += sun.irradiance.rgb * air * (single + multiple);
     }
     // Ambient light, isotropic: the sky's radiance from above (its irradiance over π) through the
@@ -188,7 +195,10 @@ fn pixel_jitter(pixel: vec2<f32>) -> f32 {
 // longer); the first coarse sample that finds cloud steps back and the cloud is marched in fine
 // steps, an eighth of a coarse one (or the stretch over FINE_STEPS), until FINE_TO_COARSE fine
 // samples in a row find none (Schneider & Vos 2015). Both counts are bounded by construction.
-fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, acc: ptr<function, CloudSample>) {
+fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, footprint: f32, acc: ptr<function, CloudSample>) {
+    // Where a pixel spans more than a detail cell the detail is taken as its mean (a filter, and
+    // cheaper): the light march always does.
+    let detail_cell = 1.0 / layer.detail.x;
     let length_in = t1 - t0;
     let thickness = max(layer.shell.y - layer.shell.x, 1.0);
     let coarse = max(thickness / 16.0, length_in / f32(COARSE_STEPS));
@@ -202,7 +212,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         }
         if !fine_mode {
             let p = ray.origin + ray.direction * t;
-            if cloud_extinction_at(layer, p) > 0.0 {
+            if cloud_extinction_at(layer, p, t * footprint < detail_cell) > 0.0 {
                 fine_mode = true;
                 empty = 0u;
                 t = max(t - coarse, t0);
@@ -215,7 +225,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         let tm = t + 0.5 * dt;
         let p = ray.origin + ray.direction * tm;
         let here = altitude_up(p);
-        let extinction = cloud_extinction(layer, p, here.h, here.up);
+        let extinction = cloud_extinction(layer, p, here.h, here.up, tm * footprint < detail_cell);
         t += dt;
         if extinction <= 0.0 {
             empty += 1u;
@@ -235,7 +245,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
 }
 
 // The clouds along the ray of pixel `id` up to `far` (metres along the ray).
-fn march_clouds(ray: ViewRay, far: f32, jitter: f32) -> CloudSample {
+fn march_clouds(ray: ViewRay, far: f32, jitter: f32, footprint: f32) -> CloudSample {
     var acc: CloudSample;
     acc.radiance = vec3<f32>(0.0);
     acc.transmittance = 1.0;
@@ -274,7 +284,7 @@ fn march_clouds(ray: ViewRay, far: f32, jitter: f32) -> CloudSample {
         marched |= 1u << next;
         done += 1u;
         let stretch = stretches[next];
-        march_stretch(ray, clouds.layers[stretch.layer], stretch.t0, stretch.t1, jitter, &acc);
+        march_stretch(ray, clouds.layers[stretch.layer], stretch.t0, stretch.t1, jitter, footprint, &acc);
     }
     return acc;
 }
@@ -296,7 +306,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         far = ray.near + view_depth * length(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
     }
     let pixel = vec2<f32>(id.xy) + 0.5;
-    let cloud = march_clouds(ray, far, pixel_jitter(pixel));
+    // A pixel's width per metre along its ray (the vertical field of view over the rows).
+    let footprint = 2.0 * view.camera_shape.w / f32(size.y);
+    let cloud = march_clouds(ray, far, pixel_jitter(pixel), footprint);
     if cloud.weight_sum <= 0.0 {
         textureStore(hdr_out, id.xy, color);
         return;
