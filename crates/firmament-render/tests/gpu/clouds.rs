@@ -139,8 +139,6 @@ fn gpu_radiance(gpu: &mut Gpu, sky: &AtmosphereSky, eye: DVec3, view: DVec3) -> 
 fn reference_radiance(sky: &AtmosphereSky, paths: usize, eye: DVec3, view: DVec3) -> (DVec3, f64) {
     use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
     use firmament_core::geometry::Ray;
-    let planet = sky.atmosphere.planet;
-    let clouds: Vec<CloudLayer> = sky.clouds.clone();
     let reference = Reference::new(
         sky.atmosphere,
         &sky.suns,
@@ -149,8 +147,7 @@ fn reference_radiance(sky: &AtmosphereSky, paths: usize, eye: DVec3, view: DVec3
             ..Default::default()
         },
     )
-    .with_clouds(&clouds);
-    let _ = planet;
+    .with_clouds(&sky.clouds);
     let parts = reference.radiance(&Ray {
         origin: eye,
         direction: view,

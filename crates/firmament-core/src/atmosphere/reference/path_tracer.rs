@@ -622,20 +622,7 @@ fn sample_distance(
         Spectrum::ONE
     };
 
-    let total_weight = path_weight.element_sum();
-    let choice = if total_weight > 0.0 {
-        path_weight / total_weight
-    } else {
-        Spectrum::splat(1.0 / 3.0)
-    };
-    let u = rng.random::<f64>();
-    let channel = if u < choice.x {
-        0
-    } else if u < choice.x + choice.y {
-        1
-    } else {
-        2
-    };
+    let (choice, channel) = pick_channel(path_weight, rng);
     if forced && collision_probability[channel] <= 0.0 {
         return Flight::Nothing;
     }
