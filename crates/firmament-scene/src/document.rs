@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use firmament_core::atmosphere::clouds::CloudLayer;
 
+use crate::assets::Confinement;
 use crate::error::SceneError;
 use crate::model::Scene;
 use crate::{layers, model, presets, validate};
@@ -90,6 +91,8 @@ pub struct SceneDocument {
     origin: SceneOrigin,
     /// The folder relative asset paths resolve against; empty: the working directory.
     base_dir: PathBuf,
+    /// The folder and limits the scene is held to, when it is a stranger's.
+    confinement: Option<Confinement>,
 }
 
 impl SceneDocument {
@@ -148,11 +151,20 @@ impl SceneDocument {
             table,
             origin,
             base_dir,
+            confinement: None,
         })
     }
 
+    /// Holds the scenes this document gives to `confinement` (untrusted mode): every file they
+    /// name must resolve inside its folder, and files keep within its limits. Set it before
+    /// [`scene`](Self::scene), which then checks the paths before anything is read.
+    pub fn confine(&mut self, confinement: Confinement) {
+        self.confinement = Some(confinement);
+    }
+
     /// Parses and validates the table as it stands into a [`Scene`] (its `base_dir` is
-    /// [`base_dir`](Self::base_dir)); the document is unchanged.
+    /// [`base_dir`](Self::base_dir), its confinement the one given to
+    /// [`confine`](Self::confine)); the document is unchanged.
     ///
     /// # Errors
     /// Unknown keys (with a "did you mean"), wrong types and broken rules, each naming the key
@@ -160,6 +172,7 @@ impl SceneDocument {
     pub fn scene(&self) -> Result<Scene, SceneError> {
         let mut scene = model::from_table(self.table.clone())?;
         scene.base_dir.clone_from(&self.base_dir);
+        scene.confinement.clone_from(&self.confinement);
         validate::validate(&scene)?;
         Ok(scene)
     }

@@ -82,6 +82,12 @@ pub struct Scene {
     /// working directory for presets and text without a file).
     #[serde(skip)]
     pub base_dir: std::path::PathBuf,
+    /// The folder and limits a stranger's scene is held to (untrusted mode), or `None` for files
+    /// from anywhere the process can read. With one, every file the scene names must resolve
+    /// inside its folder — [`validate`](Self::validate) checks that before anything is read —
+    /// and the loaders hold files to its [`AssetLimits`](crate::assets::AssetLimits).
+    #[serde(skip)]
+    pub confinement: Option<crate::assets::Confinement>,
 }
 
 impl Scene {
@@ -99,26 +105,47 @@ impl Scene {
     /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),
     /// absolute ones as written.
     pub fn asset_paths(&self) -> Vec<(String, std::path::PathBuf)> {
+        self.written_asset_paths()
+            .into_iter()
+            .map(|(key, written)| (key, self.base_dir.join(written)))
+            .collect()
+    }
+
+    /// Every file the scene reads, as its key and the path as written.
+    pub(crate) fn written_asset_paths(&self) -> Vec<(String, &str)> {
         let mut paths = Vec::new();
         for (i, object) in self.objects.iter().enumerate() {
             if let MeshEntry::File { path } = &object.mesh {
-                paths.push((format!("objects[{i}].mesh.path"), self.base_dir.join(path)));
+                paths.push((format!("objects[{i}].mesh.path"), path.as_str()));
             }
             if let Some(file) = object.texture.as_ref().and_then(|t| t.file.as_ref()) {
-                paths.push((format!("objects[{i}].texture.file"), self.base_dir.join(file)));
+                paths.push((format!("objects[{i}].texture.file"), file.as_str()));
             }
         }
         for (i, element) in self.flare.elements.iter().flatten().enumerate() {
             if let Some(file) = &element.file {
-                paths.push((format!("flare.elements[{i}].file"), self.base_dir.join(file)));
+                paths.push((format!("flare.elements[{i}].file"), file.as_str()));
             }
         }
         for (i, layer) in self.clouds.iter().enumerate() {
             if let Some(file) = &layer.coverage_map {
-                paths.push((format!("clouds[{i}].coverage_map"), self.base_dir.join(file)));
+                paths.push((format!("clouds[{i}].coverage_map"), file.as_str()));
             }
         }
         paths
+    }
+
+    /// The path to open for the file that `key` names as `written`: joined to
+    /// [`base_dir`](Self::base_dir), or resolved inside the [`confinement`](Self::confinement)'s
+    /// folder when there is one.
+    ///
+    /// # Errors
+    /// Under a confinement, a path it refuses ([`Confinement::resolve`](crate::assets::Confinement::resolve)).
+    pub(crate) fn asset_file(&self, key: &str, written: &str) -> Result<std::path::PathBuf, SceneError> {
+        match &self.confinement {
+            None => Ok(self.base_dir.join(written)),
+            Some(confinement) => confinement.resolve(key, &self.base_dir, std::path::Path::new(written)),
+        }
     }
 }
 

@@ -1,12 +1,13 @@
 //! Every rule a scene's values must follow, each error naming the key path, value and rule.
 
 use std::collections::HashSet;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::{Mutex, OnceLock};
 
 use firmament_core::TimeOfDay;
 use firmament_core::classic::mesh::{GLU_CACHE_SIZE, MAX_GLT_SPHERE_DIVISIONS, MAX_QUAD_SUBDIVISIONS};
 
+use crate::assets::Confinement;
 use crate::checks::{check, in_range, non_negative, positive, time_of_day};
 use crate::convert::{atmosphere, flare, objects};
 use crate::error::SceneError;
@@ -240,6 +241,9 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
              each object is drawn on its own: merge objects into one mesh file)"
         ),
     )?;
+    if let Some(confinement) = &scene.confinement {
+        check_confined(scene, confinement)?;
+    }
     let mut triangles = 0_u64;
     for (i, object) in scene.objects.iter().enumerate() {
         let own = shape_triangles(&object.mesh);
@@ -260,6 +264,35 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
     flare::validate(scene)?;
     log_paths_outside(scene);
     Ok(())
+}
+
+/// Under a confinement (untrusted mode): every file the scene names resolves inside its folder
+/// — checked on the paths and the links in the folder, before any file is read — and the
+/// built-in shapes stay within its triangles (mesh files are counted as they load).
+fn check_confined(scene: &Scene, confinement: &Confinement) -> Result<(), SceneError> {
+    for (key, written) in scene.written_asset_paths() {
+        confinement.resolve(&key, &scene.base_dir, Path::new(written))?;
+    }
+    let triangles = scene
+        .objects
+        .iter()
+        .map(|o| shape_triangles(&o.mesh))
+        .fold(0, u64::saturating_add);
+    let max = confinement.limits().max_triangles;
+    check(
+        triangles <= max,
+        "objects",
+        format!("{triangles} triangles of built-in shapes"),
+        &untrusted_triangles_rule(max),
+    )
+}
+
+/// The rule of untrusted mode's triangle limit `max`, for messages.
+pub(crate) fn untrusted_triangles_rule(max: u64) -> String {
+    format!(
+        "untrusted mode allows at most {max} triangles in a scene's objects together (AssetLimits::max_triangles; \
+         the command line raises it with --max-triangles)"
+    )
 }
 
 /// Triangles a built-in shape will have, before it is built: the counts the core's builders give.

@@ -1,5 +1,6 @@
 //! The command line, declared with clap's derive API.
 
+pub(crate) mod untrusted;
 pub(crate) mod values;
 
 use std::path::PathBuf;
@@ -28,6 +29,7 @@ Examples:
   firmament render scene.toml --time 06:30 -o morning.exr
   firmament render --set camera.fov_y=90 --set display.tone_curve=aces_fitted
   firmament check scene.toml
+  firmament render upload/scene.toml --untrusted -o out.png   # a stranger's scene: docs/RELIABILITY.md
   firmament check --preset earth-noon --set planet.radius=6360000
   firmament presets
   firmament sky-sample --altitude 0 --sun-zenith 60 --view-zenith 80 --view-azimuth 90
@@ -38,7 +40,8 @@ Examples:
   firmament completions bash > ~/.local/share/bash-completion/completions/firmament
   firmament manpages --dir ~/.local/share/man/man1
 
-Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments.
+Exit status: 0 on success, 1 when the scene, the output or the GPU fails, 2 for bad arguments,
+124 at --time-limit, 130 when interrupted.
 Set FIRMAMENT_LOG (e.g. FIRMAMENT_LOG=debug) for more logging.";
 
 #[derive(Debug, Subcommand)]
@@ -67,6 +70,24 @@ pub(crate) enum Command {
     Completions(CompletionsArgs),
     /// Write the man pages, `firmament.1` and one per command, into a folder.
     Manpages(ManpagesArgs),
+}
+
+impl Command {
+    /// The untrusted-mode flags of a command that reads a scene a stranger may have written.
+    pub(crate) fn untrusted(&self) -> Option<&untrusted::UntrustedArgs> {
+        match self {
+            Self::Render(args) => Some(&args.untrusted),
+            Self::Check(args) => Some(&args.untrusted),
+            Self::SkySample(args) => Some(&args.untrusted),
+            Self::Timelapse(args) => Some(&args.untrusted),
+            Self::Presets
+            | Self::Bench(_)
+            | Self::Sun(_)
+            | Self::View(_)
+            | Self::Completions(_)
+            | Self::Manpages(_) => None,
+        }
+    }
 }
 
 #[derive(Debug, Args)]
@@ -133,6 +154,8 @@ pub(crate) struct RenderArgs {
     /// How an `.exr` output is compressed, always lossless (default: zip).
     #[arg(long, value_enum, value_name = "KIND")]
     pub(crate) exr_compression: Option<ExrCompression>,
+    #[command(flatten)]
+    pub(crate) untrusted: untrusted::UntrustedArgs,
 }
 
 #[derive(Debug, Args)]
@@ -142,6 +165,8 @@ pub(crate) struct CheckArgs {
     pub(crate) scene: Option<PathBuf>,
     #[command(flatten)]
     pub(crate) scene_args: SceneArgs,
+    #[command(flatten)]
+    pub(crate) untrusted: untrusted::UntrustedArgs,
 }
 
 #[derive(Debug, Args)]
@@ -225,6 +250,8 @@ pub(crate) struct SkySampleArgs {
     /// Graphics API for the GPU path.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+    #[command(flatten)]
+    pub(crate) untrusted: untrusted::UntrustedArgs,
 }
 
 #[derive(Debug, Args)]
@@ -296,6 +323,8 @@ pub(crate) struct TimelapseArgs {
     /// Graphics API to render with.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,
+    #[command(flatten)]
+    pub(crate) untrusted: untrusted::UntrustedArgs,
 }
 
 #[derive(Debug, Args)]

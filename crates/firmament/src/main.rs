@@ -4,6 +4,8 @@ mod cli;
 mod commands;
 mod limits;
 mod output;
+mod time_limit;
+mod untrusted;
 
 use std::process::ExitCode;
 

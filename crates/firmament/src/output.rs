@@ -1,6 +1,7 @@
 //! Image files: chosen by extension, written to a temporary file (`.firmament-*.tmp`), synced to
 //! disk and renamed into place, so a failure, a kill or an OS crash never leaves a half-written
-//! image. Only a kill (SIGKILL, a second Ctrl-C) can leave the temporary file itself behind:
+//! image. A stop at `--time-limit` or a second Ctrl-C removes the temporary files being written
+//! ([`abandon_and_exit`]); only a kill (SIGKILL) or a crash can leave one behind:
 //! [`remove_stale_temp_files`] clears those when a time-lapse resumes.
 //!
 //! Encoding is lossless and uses every core: pixels are converted in parallel, PNGs are deflated
@@ -8,7 +9,8 @@
 //! of threads). Figures: docs/PERFORMANCE.md, "Pipelined output".
 
 use std::io::{Seek, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use anyhow::{Context, Result, bail};
 use firmament_render::headless::Image;
@@ -60,12 +62,74 @@ pub(crate) fn check_parent_dir(path: &Path) -> Result<()> {
 const TEMP_PREFIX: &str = ".firmament-";
 const TEMP_SUFFIX: &str = ".tmp";
 
+/// The temporary files being written now. A stop at the time limit ([`abandon_and_exit`])
+/// takes the lock, removes them and exits holding it: no file is created or renamed into place
+/// after that, so nothing partial is left.
+static LIVE_TEMP_FILES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// The list of live temporary files, whatever a panicking holder left it as.
+fn live_temp_files() -> MutexGuard<'static, Vec<PathBuf>> {
+    LIVE_TEMP_FILES.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// A temporary output file, `.firmament-*.tmp`, listed while it lives; removed when dropped.
+pub(crate) struct TempFile(Option<tempfile::NamedTempFile>);
+
+impl TempFile {
+    /// The open file.
+    pub(crate) fn as_file(&self) -> &std::fs::File {
+        self.named().as_file()
+    }
+
+    /// The open file, to write.
+    pub(crate) fn as_file_mut(&mut self) -> &mut std::fs::File {
+        self.0.as_mut().expect("a live temporary file").as_file_mut()
+    }
+
+    /// Renames the file to `path`; a stop at the time limit waits for the rename, or prevents it.
+    pub(crate) fn persist(mut self, path: &Path) -> std::io::Result<()> {
+        let named = self.0.take().expect("a live temporary file");
+        let mut live = live_temp_files();
+        live.retain(|p| p != named.path());
+        named.persist(path).map(|_| ()).map_err(|e| e.error)
+    }
+
+    fn named(&self) -> &tempfile::NamedTempFile {
+        self.0.as_ref().expect("a live temporary file")
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if let Some(named) = self.0.take() {
+            let mut live = live_temp_files();
+            live.retain(|p| p != named.path());
+            drop(named);
+        }
+    }
+}
+
 /// A new temporary file in `dir`, named `.firmament-*.tmp` (removed when dropped).
-pub(crate) fn temp_file_in(dir: &Path) -> std::io::Result<tempfile::NamedTempFile> {
-    tempfile::Builder::new()
+pub(crate) fn temp_file_in(dir: &Path) -> std::io::Result<TempFile> {
+    let mut live = live_temp_files();
+    let named = tempfile::Builder::new()
         .prefix(TEMP_PREFIX)
         .suffix(TEMP_SUFFIX)
-        .tempfile_in(dir)
+        .tempfile_in(dir)?;
+    live.push(named.path().to_path_buf());
+    Ok(TempFile(Some(named)))
+}
+
+/// Stops the process with `code` after removing every temporary file being written, printing
+/// `message` on stderr: a time limit's stop. Files already renamed into place are whole.
+pub(crate) fn abandon_and_exit(message: &str, code: i32) -> ! {
+    let live = live_temp_files();
+    for path in live.iter() {
+        let _ = std::fs::remove_file(path);
+    }
+    eprintln!("{message}");
+    // Exits with the lock held: no writer creates or renames a file after this point.
+    std::process::exit(code);
 }
 
 /// Removes the temporary files (`.firmament-*.tmp`) a killed run left in `dir`; returns how many.

@@ -2,7 +2,9 @@
 //! counts them down: see the [assets documentation](super).
 
 use std::io::Read as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use super::confine::{AssetLimits, Confinement};
 
 /// The most bytes firmament reads for one mesh or texture file named by a scene: the file itself
 /// and, for a model, every buffer, image and material library it names (decoded `data:` URIs
@@ -34,15 +36,25 @@ pub(super) fn over_limit(what: &str, limit: impl std::fmt::Display, name: &str, 
     )
 }
 
+/// The message of a file over a [`Confinement`]'s tighter limit `field` ("max_file_bytes").
+pub(super) fn over_untrusted_limit(what: &str, limit: impl std::fmt::Display, field: &str) -> String {
+    format!(
+        "{what}, more than untrusted mode's limit of {limit} (AssetLimits::{field}; the command line raises it with \
+         --{})",
+        field.replace('_', "-")
+    )
+}
+
 /// What one load may still read and allocate: the limits of the [assets documentation](super),
 /// counted down as files are read, meshes built and images decoded.
 #[derive(Debug, Clone)]
 pub(super) struct Budget {
-    /// Bytes left of [`MAX_ASSET_BYTES`].
+    /// Bytes left of [`AssetLimits::max_file_bytes`].
     pub(super) bytes: u64,
     /// Vertices left of [`MAX_MODEL_VERTICES`].
     pub(super) vertices: usize,
-    /// Indices left of [`MAX_MODEL_INDICES`].
+    /// Indices left of [`MAX_MODEL_INDICES`] (or three per triangle of
+    /// [`AssetLimits::max_triangles`]).
     pub(super) indices: usize,
     /// Meshes left of [`MAX_MODEL_MESHES`].
     pub(super) meshes: usize,
@@ -52,10 +64,14 @@ pub(super) struct Budget {
         allow(dead_code, reason = "only the image decoder counts texels")
     )]
     pub(super) texels: u64,
+    /// The limits of this load: [`AssetLimits::HARD`], or a confinement's.
+    pub(super) limits: AssetLimits,
+    /// The folder files must resolve inside, when the scene is a stranger's.
+    confinement: Option<Confinement>,
 }
 
 impl Budget {
-    /// The whole budget of one load.
+    /// The whole budget of one load, at the hard limits, from anywhere.
     pub(super) fn new() -> Self {
         Self {
             bytes: MAX_ASSET_BYTES,
@@ -63,26 +79,96 @@ impl Budget {
             indices: MAX_MODEL_INDICES,
             meshes: MAX_MODEL_MESHES,
             texels: MAX_MODEL_TEXELS,
+            limits: AssetLimits::HARD,
+            confinement: None,
         }
+    }
+
+    /// The budget of one load under `confinement` (or [`new`](Self::new) without one): its
+    /// limits, and files only from its folder.
+    pub(super) fn within(confinement: Option<&Confinement>) -> Self {
+        let Some(confinement) = confinement else {
+            return Self::new();
+        };
+        let limits = confinement.limits();
+        let triangle_indices = usize::try_from(limits.max_triangles.saturating_mul(3)).unwrap_or(usize::MAX);
+        Self {
+            bytes: limits.max_file_bytes,
+            indices: triangle_indices.min(MAX_MODEL_INDICES),
+            limits,
+            confinement: Some(confinement.clone()),
+            ..Self::new()
+        }
+    }
+
+    /// Whether `field` of the limits is a confinement's, tighter than the hard one.
+    fn tighter(&self, hard: u64, own: u64) -> bool {
+        self.confinement.is_some() && own < hard
     }
 
     /// Takes `n` bytes for `what` (read or decoded).
     pub(super) fn take_bytes(&mut self, n: u64, what: &str) -> Result<(), String> {
-        let used = MAX_ASSET_BYTES - self.bytes;
+        let max = self.limits.max_file_bytes;
+        let used = max - self.bytes;
         self.bytes = self.bytes.checked_sub(n).ok_or_else(|| {
             let before = if used > 0 {
                 format!(" (after {used} bytes of the file and the files it names)")
             } else {
                 String::new()
             };
-            over_limit(
-                &format!("{what} is {n} bytes{before}"),
-                format!("{MAX_ASSET_BYTES} bytes"),
-                "MAX_ASSET_BYTES",
-                "split the model, or scale its textures down",
-            )
+            let what = format!("{what} is {n} bytes{before}");
+            if self.tighter(MAX_ASSET_BYTES, max) {
+                over_untrusted_limit(&what, format!("{max} bytes"), "max_file_bytes")
+            } else {
+                over_limit(
+                    &what,
+                    format!("{MAX_ASSET_BYTES} bytes"),
+                    "MAX_ASSET_BYTES",
+                    "split the model, or scale its textures down",
+                )
+            }
         })?;
         Ok(())
+    }
+
+    /// Fails, with the limit's name, when an image's side `name` ("width") is 0 or longer than
+    /// the budget's longest side.
+    #[cfg_attr(
+        not(feature = "image-files"),
+        allow(dead_code, reason = "only the image decoder checks sides")
+    )]
+    pub(super) fn check_texture_side(&self, name: &str, side: u32) -> Result<(), String> {
+        let max = self.limits.max_texture_side;
+        if side == 0 {
+            return Err(format!("the image {name} is 0 pixels"));
+        }
+        if side <= max {
+            return Ok(());
+        }
+        let what = format!("the image {name} is {side} pixels");
+        Err(
+            if self.tighter(u64::from(firmament_core::texture::MAX_TEXTURE_SIDE), u64::from(max)) {
+                over_untrusted_limit(&what, format!("{max} pixels on a side"), "max_texture_side")
+            } else {
+                over_limit(
+                    &what,
+                    format!("{max} pixels on a side"),
+                    "MAX_TEXTURE_SIDE",
+                    "scale the image down",
+                )
+            },
+        )
+    }
+
+    /// Under a confinement, `path` (the file of `what`) resolved inside its folder, or why it is
+    /// refused; `None` without one. Nothing is read.
+    pub(super) fn confined(&self, path: &Path, what: &str) -> Result<Option<PathBuf>, String> {
+        self.confinement
+            .as_ref()
+            .map(|c| c.resolve_path(path))
+            .transpose()
+            // The path is not quoted: it may name a place outside the folder.
+            .map_err(|why| format!("{what}: {}", why.rule()))
     }
 
     /// Takes the vertices and indices of one mesh (`label`), from its declared counts.
@@ -99,16 +185,28 @@ impl Budget {
                 "decimate the model, or split it over several files",
             )
         })?;
+        let max_indices = usize::try_from(self.limits.max_triangles.saturating_mul(3))
+            .unwrap_or(usize::MAX)
+            .min(MAX_MODEL_INDICES);
         self.indices = self.indices.checked_sub(indices).ok_or_else(|| {
-            over_limit(
-                &format!(
-                    "{label}: with its {indices} triangle indices the file's meshes have {}",
-                    total(self.indices, MAX_MODEL_INDICES, indices)
-                ),
-                MAX_MODEL_INDICES,
-                "MAX_MODEL_INDICES",
-                "decimate the model, or split it over several files",
-            )
+            let what = format!(
+                "{label}: with its {indices} triangle indices the file's meshes have {}",
+                total(self.indices, max_indices, indices)
+            );
+            if self.tighter(MAX_MODEL_INDICES as u64, max_indices as u64) {
+                over_untrusted_limit(
+                    &what,
+                    format!("{max_indices} indices ({} triangles)", max_indices / 3),
+                    "max_triangles",
+                )
+            } else {
+                over_limit(
+                    &what,
+                    MAX_MODEL_INDICES,
+                    "MAX_MODEL_INDICES",
+                    "decimate the model, or split it over several files",
+                )
+            }
         })?;
         Ok(())
     }
@@ -152,7 +250,11 @@ impl Budget {
 
     /// Reads a whole regular file for `what`, with the operating system's reason on failure,
     /// after checking its size against the bytes left.
+    /// Under a confinement, the file is read from its resolved path, and only when that lies
+    /// inside the allowed folder.
     pub(super) fn read_file(&mut self, path: &Path, what: &str) -> Result<Vec<u8>, String> {
+        let resolved = self.confined(path, what)?;
+        let path = resolved.as_deref().unwrap_or(path);
         let os_error = |e: std::io::Error| match e.kind() {
             std::io::ErrorKind::NotFound => format!("{what} {} does not exist", path.display()),
             _ => format!("cannot read {what} {}: {e}", path.display()),

@@ -58,6 +58,10 @@
 //! - [`MAX_TEXTURE_SIDE`] for each image, checked from its header, and [`MAX_MODEL_TEXELS`] for
 //!   all the images of one model file together.
 //!
+//! A scene from a stranger is loaded under a [`Confinement`]: every file, those a model names
+//! included, must resolve inside one folder, and the [`AssetLimits`] above are lowered
+//! (docs/RELIABILITY.md).
+//!
 //! A glTF node hierarchy must be a tree (a cycle, or a node with two parents, is an error), and
 //! every index must name an existing vertex.
 //!
@@ -65,6 +69,7 @@
 //! [`Mesh::fog_coords`]: firmament_core::classic::mesh::Mesh::fog_coords
 //! [`Mesh::validate`]: firmament_core::classic::mesh::Mesh::validate
 
+mod confine;
 mod gltf;
 #[cfg(test)]
 mod hostile_tests;
@@ -80,6 +85,7 @@ use std::path::Path;
 pub use firmament_core::texture::MAX_TEXTURE_SIDE;
 use firmament_core::texture::TextureImage;
 
+pub use self::confine::{AssetLimits, Confinement};
 use self::limits::Budget;
 pub use self::limits::{MAX_ASSET_BYTES, MAX_MODEL_INDICES, MAX_MODEL_MESHES, MAX_MODEL_TEXELS, MAX_MODEL_VERTICES};
 pub use self::mesh::LoadedMesh;
@@ -100,9 +106,18 @@ pub const MODEL_EXTENSIONS: [&str; 3] = ["obj", "gltf", "glb"];
 /// # Errors
 /// [`SceneError::Asset`] naming `key`, the path and the reason.
 pub fn load_model(key: &str, path: &Path) -> Result<Vec<LoadedMesh>, SceneError> {
+    load_model_within(key, path, None)
+}
+
+/// [`load_model`] under `confinement`'s folder and limits, when there is one.
+pub(crate) fn load_model_within(
+    key: &str,
+    path: &Path,
+    confinement: Option<&Confinement>,
+) -> Result<Vec<LoadedMesh>, SceneError> {
     let loader = model_loader(key, path)?;
     guarded(|| {
-        let mut budget = Budget::new();
+        let mut budget = Budget::within(confinement);
         let bytes = budget.read_file(path, "model file")?;
         loader(path, &bytes, &mut budget)
     })
@@ -171,8 +186,17 @@ fn asset_error<'a>(key: &'a str, path: &'a Path) -> impl Fn(String) -> SceneErro
 /// decoded, it is larger than [`MAX_ASSET_BYTES`], or a side is 0 or more than
 /// [`MAX_TEXTURE_SIDE`].
 pub fn load_texture(key: &str, path: &Path) -> Result<TextureImage, SceneError> {
+    load_texture_within(key, path, None)
+}
+
+/// [`load_texture`] under `confinement`'s folder and limits, when there is one.
+pub(crate) fn load_texture_within(
+    key: &str,
+    path: &Path,
+    confinement: Option<&Confinement>,
+) -> Result<TextureImage, SceneError> {
     guarded(|| {
-        let mut budget = Budget::new();
+        let mut budget = Budget::within(confinement);
         let bytes = budget.read_file(path, "image file")?;
         texture_file::decode(&bytes, texture_file::FormatHint::from_path(path), &mut budget)
     })
@@ -200,7 +224,16 @@ pub fn load_texture_bytes(key: &str, path: &Path, bytes: &[u8]) -> Result<Textur
 /// # Errors
 /// As [`load_texture`].
 pub fn load_flare_image(key: &str, path: &Path) -> Result<TextureImage, SceneError> {
-    let picture = load_texture(key, path)?;
+    load_flare_image_within(key, path, None)
+}
+
+/// [`load_flare_image`] under `confinement`'s folder and limits, when there is one.
+pub(crate) fn load_flare_image_within(
+    key: &str,
+    path: &Path,
+    confinement: Option<&Confinement>,
+) -> Result<TextureImage, SceneError> {
+    let picture = load_texture_within(key, path, confinement)?;
     Ok(texture_file::resampled(
         &picture,
         firmament_core::flare::FLARE_IMAGE_SIDE,

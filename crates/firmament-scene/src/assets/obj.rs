@@ -43,13 +43,22 @@ pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec
         .take_mesh(positions, indices, "the file's `v` and `f` lines")?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let problems = RefCell::new(Vec::new());
+    // A file out of an untrusted scene's folder is refused, not skipped.
+    let refused = RefCell::new(None);
     let shared = RefCell::new(std::mem::replace(budget, Budget::new()));
     let parsed = tobj::load_obj_buf(&mut Cursor::new(bytes), &OPTIONS, |library| {
         let file = folder.join(library);
+        if let Err(refusal) = shared.borrow().confined(&file, "material library") {
+            refused.borrow_mut().get_or_insert(refusal);
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
         note_outside(path, &file, "material library");
         load_library(&file, &problems, &mut shared.borrow_mut())
     });
     *budget = shared.into_inner();
+    if let Some(refusal) = refused.into_inner() {
+        return Err(refusal);
+    }
     let (models, materials) = parsed.map_err(|e| describe_error(bytes, e))?;
     for problem in problems.into_inner() {
         tracing::warn!("{}: {problem}; going on without its materials", path.display());
@@ -60,6 +69,7 @@ pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec
     // By resolved path: materials that share an image share one decoded texture.
     let mut textures: HashMap<PathBuf, Option<Arc<TextureImage>>> = HashMap::new();
     let mut meshes = Vec::with_capacity(models.len());
+    let mut refused_map = None;
     for (i, model) in models.into_iter().enumerate() {
         let label = if model.name.is_empty() {
             format!("object #{i}")
@@ -114,10 +124,17 @@ pub(super) fn load(path: &Path, bytes: &[u8], budget: &mut Budget) -> Result<Vec
             if let Some(texture) = textures.get(&file) {
                 return texture.clone();
             }
+            if let Err(refusal) = budget.confined(&file, "diffuse map") {
+                refused_map.get_or_insert(refusal);
+                return None;
+            }
             let texture = diffuse_map(path, material, &file, given, budget).map(Arc::new);
             textures.insert(file, texture.clone());
             texture
         });
+        if let Some(refusal) = refused_map.take() {
+            return Err(refusal);
+        }
         meshes.push(LoadedMesh {
             mesh: Arc::new(mesh),
             transform: DMat4::IDENTITY,
@@ -157,7 +174,9 @@ fn diffuse_map_path<'m>(folder: &Path, material: &'m tobj::Material) -> Option<(
         given
     };
     let mut file = folder.join(name);
-    if !file.exists() && name.contains('\\') {
+    // Only a name with a backslash is looked up here (an untrusted scene's names are looked up
+    // by its confinement, inside the folder, before they are read).
+    if name.contains('\\') && !file.exists() {
         file = folder.join(name.replace('\\', "/"));
     }
     Some((file, given))

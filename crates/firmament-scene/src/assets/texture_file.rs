@@ -8,8 +8,6 @@
 use std::io::Cursor;
 use std::path::Path;
 
-#[cfg(feature = "image-files")]
-use firmament_core::texture::MAX_TEXTURE_SIDE;
 use firmament_core::texture::TextureImage;
 #[cfg(feature = "image-files")]
 use image::{ImageFormat, ImageReader, Limits};
@@ -93,7 +91,8 @@ pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
 const FORMATS: &str = "PNG, JPEG and OpenEXR";
 
 /// Decodes an encoded image; `hint` is the format to assume when the contents do not tell. The
-/// size from the header is checked against [`MAX_TEXTURE_SIDE`] and taken from `budget`'s texels
+/// size from the header is checked against the budget's longest side
+/// ([`MAX_TEXTURE_SIDE`](firmament_core::texture::MAX_TEXTURE_SIDE) or a confinement's) and taken from `budget`'s texels
 /// before the pixels are decoded.
 #[cfg(feature = "image-files")]
 pub(super) fn decode(bytes: &[u8], hint: Option<FormatHint>, budget: &mut Budget) -> Result<TextureImage, String> {
@@ -112,21 +111,21 @@ pub(super) fn decode(bytes: &[u8], hint: Option<FormatHint>, budget: &mut Budget
     let (width, height) = ImageReader::with_format(Cursor::new(bytes), format)
         .into_dimensions()
         .map_err(failed)?;
-    check_side("width", width)?;
-    check_side("height", height)?;
+    budget.check_texture_side("width", width)?;
+    budget.check_texture_side("height", height)?;
     budget.take_texels(width, height, "the image")?;
 
     let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
     let mut limits = Limits::default();
-    limits.max_image_width = Some(MAX_TEXTURE_SIDE);
-    limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+    limits.max_image_width = Some(budget.limits.max_texture_side);
+    limits.max_image_height = Some(budget.limits.max_texture_side);
     // An 8192² RGBA image of 32-bit floats is 1 GiB.
     limits.max_alloc = Some(3 << 29);
     reader.limits(limits);
     let rgba = reader.decode().map_err(failed)?.into_rgba8();
     let (width, height) = rgba.dimensions();
-    check_side("width", width)?;
-    check_side("height", height)?;
+    budget.check_texture_side("width", width)?;
+    budget.check_texture_side("height", height)?;
 
     let row_bytes = width as usize * 4;
     let texels: Vec<[u8; 4]> = rgba
@@ -157,25 +156,9 @@ pub(super) fn resampled(texture: &TextureImage, side: u32) -> TextureImage {
     }
 }
 
-/// Checks one side of an image against [`MAX_TEXTURE_SIDE`].
-#[cfg(feature = "image-files")]
-fn check_side(name: &str, side: u32) -> Result<(), String> {
-    if side == 0 {
-        Err(format!("the image {name} is 0 pixels"))
-    } else if side > MAX_TEXTURE_SIDE {
-        Err(super::limits::over_limit(
-            &format!("the image {name} is {side} pixels"),
-            format!("{MAX_TEXTURE_SIDE} pixels on a side"),
-            "MAX_TEXTURE_SIDE",
-            "scale the image down",
-        ))
-    } else {
-        Ok(())
-    }
-}
-
 #[cfg(all(test, feature = "image-files"))]
 mod tests {
+    use firmament_core::texture::MAX_TEXTURE_SIDE;
     use image::{Rgba, RgbaImage};
 
     use super::*;

@@ -23,7 +23,7 @@
 //!     (`z < −sin r`);
 //!   - `"clear"`: none.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use firmament_core::classic::scene::LightSpace;
@@ -57,8 +57,8 @@ fn from_core(error: CoreError) -> SceneError {
 
 /// The image files of a flare's elements, each loaded once.
 struct FlareImages<'a> {
-    /// Relative paths start here (the scene file's folder).
-    base_dir: &'a Path,
+    /// The scene, whose folder (or confinement) relative paths are resolved in.
+    scene: &'a Scene,
     /// The resolved path of each image, in the order first used.
     paths: Vec<PathBuf>,
     /// The images, resampled for the flare's texture array.
@@ -68,7 +68,7 @@ struct FlareImages<'a> {
 impl FlareImages<'_> {
     /// The index of `file` (loaded on first use) for the element whose key is `key`.
     fn index_of(&mut self, key: &str, file: &str) -> Result<u32, SceneError> {
-        let path = self.base_dir.join(file);
+        let path = self.scene.asset_file(key, file)?;
         if let Some(index) = self.paths.iter().position(|p| *p == path) {
             return Ok(index as u32);
         }
@@ -79,7 +79,7 @@ impl FlareImages<'_> {
             "a flare may use at most 16 different image files (MAX_FLARE_IMAGES, a fixed limit of the flare pass \
              that no key raises: let elements share files)",
         )?;
-        let image = crate::assets::load_flare_image(key, &path)?;
+        let image = crate::assets::load_flare_image_within(key, &path, self.scene.confinement.as_ref())?;
         self.paths.push(path);
         self.images.push(Arc::new(image));
         Ok(self.images.len() as u32 - 1)
@@ -203,7 +203,7 @@ pub(crate) fn lens_flare(scene: &Scene) -> Result<LensFlare, SceneError> {
         ),
     )?;
     let mut images = FlareImages {
-        base_dir: &scene.base_dir,
+        scene,
         paths: Vec::new(),
         images: Vec::new(),
     };

@@ -2,7 +2,6 @@
 //! core's [`ObjectLayer`]: the rules each value must follow, GL's initial values for what is left
 //! out, and the meshes and textures built or loaded.
 
-use std::path::Path;
 use std::sync::Arc;
 
 use firmament_core::TimeOfDay;
@@ -176,7 +175,7 @@ struct ObjectMesh {
 }
 
 /// Builds or loads the mesh of object `key`. A file with several meshes gives several.
-fn meshes(key: &str, entry: &MeshEntry, base_dir: &Path) -> Result<Vec<ObjectMesh>, SceneError> {
+fn meshes(key: &str, entry: &MeshEntry, scene: &Scene) -> Result<Vec<ObjectMesh>, SceneError> {
     let core = |r: Result<Mesh, firmament_core::CoreError>| {
         r.map(|mesh| {
             vec![ObjectMesh {
@@ -197,8 +196,9 @@ fn meshes(key: &str, entry: &MeshEntry, base_dir: &Path) -> Result<Vec<ObjectMes
         MeshEntry::Quad { size, subdivisions } => core(Mesh::quad(*size, *subdivisions)),
         MeshEntry::Cube { size } => core(Mesh::cube(*size)),
         MeshEntry::File { path } => {
-            let resolved = base_dir.join(path);
-            let loaded = assets::load_model(&format!("{key}.mesh.path"), &resolved)?;
+            let key = format!("{key}.mesh.path");
+            let resolved = scene.asset_file(&key, path)?;
+            let loaded = assets::load_model_within(&key, &resolved, scene.confinement.as_ref())?;
             Ok(loaded
                 .into_iter()
                 .map(|m| ObjectMesh {
@@ -221,9 +221,13 @@ fn core_error(key: &str, e: firmament_core::CoreError) -> SceneError {
     }
 }
 
-fn texture(key: &str, entry: &TextureEntry, base_dir: &Path) -> Result<ObjectTexture, SceneError> {
+fn texture(key: &str, entry: &TextureEntry, scene: &Scene) -> Result<ObjectTexture, SceneError> {
     let image = match (&entry.file, &entry.checkerboard) {
-        (Some(file), None) => assets::load_texture(&format!("{key}.file"), &base_dir.join(file))?,
+        (Some(file), None) => {
+            let key = format!("{key}.file");
+            let resolved = scene.asset_file(&key, file)?;
+            assets::load_texture_within(&key, &resolved, scene.confinement.as_ref())?
+        }
         (None, Some(c)) => {
             let byte = |j: usize| -> Result<[u8; 4], SceneError> {
                 let rgba = color(&format!("{key}.checkerboard.colors[{j}]"), c.colors[j])?;
@@ -278,6 +282,9 @@ fn spin_step(key: &str, object: &ObjectEntry, time: TimeOfDay) -> Result<Option<
 
 fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject>, SceneError> {
     let mut out = Vec::new();
+    // Untrusted mode bounds the triangles of every object together, mesh files included.
+    let max_triangles = scene.confinement.as_ref().map(|c| c.limits().max_triangles);
+    let mut triangles = 0_u64;
     for (i, entry) in scene.objects.iter().enumerate() {
         let key = format!("objects[{i}]");
         let front = material(&format!("{key}.material"), &entry.material, Material::default())?;
@@ -294,15 +301,24 @@ fn objects(scene: &Scene, time: TimeOfDay, load: bool) -> Result<Vec<SceneObject
         let texture = entry
             .texture
             .as_ref()
-            .map(|t| texture(&format!("{key}.texture"), t, &scene.base_dir))
+            .map(|t| texture(&format!("{key}.texture"), t, scene))
             .transpose()?;
-        for part in meshes(&key, &entry.mesh, &scene.base_dir)? {
+        for part in meshes(&key, &entry.mesh, scene)? {
             let ObjectMesh {
                 mesh,
                 transform: mesh_transform,
                 base_color,
                 texture: file_texture,
             } = part;
+            if let Some(max) = max_triangles {
+                triangles = triangles.saturating_add(mesh.triangle_count() as u64);
+                check(
+                    triangles <= max,
+                    &format!("{key}.mesh"),
+                    format!("{triangles} triangles in objects[0..={i}]"),
+                    &crate::validate::untrusted_triangles_rule(max),
+                )?;
+            }
             // A file's base colour is its diffuse colour unless the scene sets one.
             let with_base = |m: Material| match base_color {
                 Some(c) if entry.material.diffuse.is_none() => Material { diffuse: c, ..m },

@@ -33,8 +33,8 @@ pub(crate) fn run(args: &BenchArgs) -> Result<()> {
         format!("render.width={}", args.width),
         format!("render.height={}", args.height),
     ];
-    let scene =
-        super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra).context("cannot build the scene")?;
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra, None)
+        .context("cannot build the scene")?;
     crate::limits::check_pixels("the image", args.width, args.height)?;
     let frame = scene.frame_at(None)?;
     if args.embedded {
@@ -240,7 +240,7 @@ fn json(b: &AtmosphereBench, camera: &CameraBench, baselines: &Baselines) -> Str
 /// `--objects`: the scene's objects (if a scene is given and has some), else the sphere grid.
 fn run_objects(args: &BenchArgs, count: u32) -> Result<()> {
     let (layer, camera) = if args.scene.is_some() || args.scene_args.preset.is_some() {
-        let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
+        let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new(), None)
             .context("cannot build the scene")?;
         let frame = scene.frame_at(None)?;
         if frame.objects.objects.is_empty() {

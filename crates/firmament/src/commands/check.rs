@@ -9,8 +9,15 @@ use crate::cli::CheckArgs;
 /// what it describes.
 pub(crate) fn run(args: &CheckArgs) -> Result<()> {
     let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, Vec::new())
-        .with_context(|| format!("{what} is not a valid scene"))?;
+    let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;
+    let scene = super::scene_input::load_scene(
+        args.scene.as_deref(),
+        &args.scene_args,
+        Vec::new(),
+        policy.confinement(),
+    )
+    .with_context(|| format!("{what} is not a valid scene"))?;
+    policy.check_pixels("the image", scene.render.width, scene.render.height)?;
     // Builds the meshes and loads the mesh and texture files, so those are checked too.
     let frame = scene
         .frame_at(None)

@@ -17,6 +17,9 @@ use crate::cli::Command;
 
 /// Runs a parsed command.
 pub(crate) fn run(command: Command) -> Result<()> {
+    if let Some(seconds) = command.untrusted().and_then(crate::untrusted::time_limit) {
+        crate::time_limit::start(seconds);
+    }
     match command {
         Command::Render(args) => render::run(&args),
         Command::Check(args) => check::run(&args),

@@ -42,9 +42,18 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     }
     let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), SHOWCASE_PRESET);
     let what = super::scene_input::describe_scene(args.scene.as_deref(), &scene_args);
-    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra)
+    let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, extra, policy.confinement())
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
+    policy.check_pixels("the image", width, height)?;
+    if args.reference && scene.atmosphere.model == firmament_scene::AtmosphereModelName::Physical {
+        let pixels = u64::from(width) * u64::from(height);
+        policy.check_paths(
+            pixels.saturating_mul(args.paths),
+            &format!("{} paths per pixel x {pixels} pixels", args.paths),
+        )?;
+    }
     if args.reference {
         crate::limits::check_reference_pixels("the image", width, height)?;
     } else {

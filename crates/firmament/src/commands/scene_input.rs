@@ -2,6 +2,7 @@
 //! default) with the command's own overrides before the user's `--set`s, and describe it.
 
 use anyhow::Result;
+use firmament_scene::assets::Confinement;
 use firmament_scene::{Scene, SceneDocument, SceneSource};
 
 use crate::cli::SceneArgs;
@@ -11,11 +12,21 @@ use crate::cli::SceneArgs;
 pub(crate) const MAX_SCENE_FILE_BYTES: u64 = 16 << 20;
 
 /// Loads a scene from a file or a preset (the default scene when neither is given), with
-/// `extra` overrides applied before the user's `--set`s.
-pub(crate) fn load_scene(file: Option<&std::path::Path>, args: &SceneArgs, extra: Vec<String>) -> Result<Scene> {
+/// `extra` overrides applied before the user's `--set`s, held to `confinement` when it is a
+/// stranger's (its files checked before any is read).
+pub(crate) fn load_scene(
+    file: Option<&std::path::Path>,
+    args: &SceneArgs,
+    extra: Vec<String>,
+    confinement: Option<&Confinement>,
+) -> Result<Scene> {
     let mut overrides = extra;
     overrides.extend(args.overrides.iter().cloned());
-    Ok(load_document(file, args.preset.as_deref(), &overrides)?.scene()?)
+    let mut document = load_document(file, args.preset.as_deref(), &overrides)?;
+    if let Some(confinement) = confinement {
+        document.confine(confinement.clone());
+    }
+    Ok(document.scene()?)
 }
 
 /// The scene document of a file or a preset (the default scene when neither is given), with

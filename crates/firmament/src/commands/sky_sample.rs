@@ -62,7 +62,15 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
         }
     }
     let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), "earth-noon");
-    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, Vec::new())
+    let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;
+    if !args.gpu {
+        let per_path = args.line_samples + 1;
+        policy.check_paths(
+            args.paths.saturating_mul(per_path),
+            &format!("--paths {} x {per_path}, one more than --line-samples", args.paths),
+        )?;
+    }
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &scene_args, Vec::new(), policy.confinement())
         .context("cannot build the scene")?;
     let frame = scene.frame_at(None)?;
     let Sky::Atmosphere(scene_sky) = frame.sky else {

@@ -190,15 +190,14 @@ fn create_output_dir(dir: &Path) -> Result<()> {
 }
 
 /// The stop flag: set by the first Ctrl-C or SIGTERM, which lets the frames in flight finish; a
-/// second one exits at once (a frame being written then leaves only its temporary file, never a
+/// second one exits at once, removing the temporary files of the frames being written (never a
 /// partial frame).
 fn install_stop_handler() -> Arc<AtomicBool> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = Arc::clone(&stop);
     let installed = ctrlc::set_handler(move || {
         if flag.swap(true, Ordering::SeqCst) {
-            eprintln!("\ninterrupted again: stopping now");
-            std::process::exit(EXIT_INTERRUPTED);
+            crate::output::abandon_and_exit("\ninterrupted again: stopping now", EXIT_INTERRUPTED);
         }
     });
     if let Err(error) = installed {
@@ -329,9 +328,12 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
 
     let extra = super::scene_input::size_overrides(args.width, args.height);
     let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
-    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra)
+    let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;
+    policy.check_frames(args.frames)?;
+    let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra, policy.confinement())
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
+    policy.check_pixels("each frame", width, height)?;
     crate::limits::check_pixels("each frame", width, height)?;
     let n = args.frames;
     let instants: Vec<CivilDateTime> = (0..n).map(|k| frame_instant(&args.from, span, k, n)).collect();

@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use crate::support::fixtures::{cloud_scene, coverage_map_scene, gltf_triangle, mesh_scene, png_bytes, texture_scene};
 use crate::support::{firmament, stderr};
 
 /// An input file (or folder) a case creates in its folder before running.
@@ -191,66 +192,6 @@ fn problems(case: &Case, ran: &Ran, before: &[PathBuf], after: &[PathBuf]) -> Ve
     wrong
 }
 
-/// A scene file with `[[objects]]` of one mesh file.
-fn mesh_scene(path: &str) -> String {
-    format!("[[objects]]\nmesh = {{ kind = \"file\", path = \"{path}\" }}\n")
-}
-
-/// A scene file with one cube textured by an image file.
-fn texture_scene(file: &str) -> String {
-    format!("[[objects]]\nmesh = {{ kind = \"cube\", size = 1.0 }}\ntexture = {{ file = \"{file}\" }}\n")
-}
-
-/// A scene file over `earth-clouds` whose one cloud layer has `extra` added (a key it already
-/// has replaces the preset's).
-fn cloud_scene(extra: &str) -> String {
-    format!(
-        "preset = \"earth-clouds\"\n[[clouds]]\nkind = \"cumulus\"\nbottom = 1500.0\ntop = 3000.0\n\
-         coverage = 0.4\ndensity = 0.05\n{extra}\n"
-    )
-}
-
-/// A scene file whose cloud layer reads its coverage from `file`.
-fn coverage_map_scene(file: &str) -> String {
-    cloud_scene(&format!("coverage_map = \"{file}\""))
-}
-
-/// An 8×8 red PNG, whole.
-fn png_bytes() -> Vec<u8> {
-    let image = image::RgbImage::from_pixel(8, 8, image::Rgb([255, 0, 0]));
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    image
-        .write_to(&mut bytes, image::ImageFormat::Png)
-        .expect("PNG encodes");
-    bytes.into_inner()
-}
-
-/// A glTF triangle whose index buffer (external, `tri.bin`) points at vertex 7 of 3.
-fn gltf_out_of_range() -> (String, Vec<u8>) {
-    let mut bin: Vec<u8> = [0.0_f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
-        .iter()
-        .flat_map(|v| v.to_le_bytes())
-        .collect();
-    bin.extend([0_u16, 1, 7].iter().flat_map(|i| i.to_le_bytes()));
-    bin.extend([0, 0]);
-    let document = r#"{
-        "asset": { "version": "2.0" }, "scene": 0, "scenes": [{ "nodes": [0] }],
-        "nodes": [{ "mesh": 0 }],
-        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0 }, "indices": 1 }] }],
-        "accessors": [
-            { "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-              "min": [0, 0, 0], "max": [1, 1, 0] },
-            { "bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR" }
-        ],
-        "bufferViews": [
-            { "buffer": 0, "byteOffset": 0, "byteLength": 36 },
-            { "buffer": 0, "byteOffset": 36, "byteLength": 6 }
-        ],
-        "buffers": [{ "byteLength": 44, "uri": "tri.bin" }]
-    }"#;
-    (document.to_owned(), bin)
-}
-
 /// `n` copies of `item`, comma-separated, in brackets: a TOML array.
 fn toml_array(item: &str, n: usize) -> String {
     format!("[{}]", vec![item; n].join(", "))
@@ -320,7 +261,7 @@ fn corpus() -> Vec<Case> {
     let long_value = format!("[camera]\nfov_y = \"{}\"\n", "x".repeat(1_000_000));
     let png = png_bytes();
     let truncated_png = png[..png.len() / 2].to_vec();
-    let (gltf, gltf_bin) = gltf_out_of_range();
+    let (gltf, gltf_bin) = gltf_triangle(7);
     let binary: Vec<u8> = (0..=255_u8).cycle().take(4096).collect();
     let garbage_obj = "v 0 0 0\nv 1 0 0\nthis is not an OBJ line\nf 1 2 9\n";
 

@@ -9,4 +9,5 @@ mod png_bits;
 mod sun;
 mod support;
 mod timelapse;
+mod untrusted;
 mod view;

@@ -7,7 +7,7 @@ use std::process::Command;
 use firmament_core::astro::spa::{SpaInput, sun_times};
 use firmament_core::astro::{CivilDateTime, Instant};
 
-use crate::support::{firmament, stderr};
+use crate::support::{firmament, names_in, stderr};
 
 /// Every path under `dir`, recursively, sorted.
 fn files_in(dir: &Path) -> Vec<PathBuf> {
@@ -24,15 +24,6 @@ fn files_in(dir: &Path) -> Vec<PathBuf> {
     }
     files.sort();
     files
-}
-
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("readable")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// A tiny time-lapse of the default scene: `frames` frames from 16:00 to 20:00 UTC.

@@ -56,11 +56,11 @@ pub(super) fn clouds(scene: &Scene, atmosphere: &Atmosphere) -> Result<Vec<Cloud
     entries
         .iter()
         .enumerate()
-        .map(|(i, entry)| layer(i, entry, scene.base_dir.as_path(), atmosphere))
+        .map(|(i, entry)| layer(i, entry, scene, atmosphere))
         .collect()
 }
 
-fn layer(i: usize, entry: &CloudEntry, base_dir: &Path, atmosphere: &Atmosphere) -> Result<CloudLayer, SceneError> {
+fn layer(i: usize, entry: &CloudEntry, scene: &Scene, atmosphere: &Atmosphere) -> Result<CloudLayer, SceneError> {
     let key = |field: &str| format!("clouds[{i}].{field}");
     let (bottom, top) = (entry.bottom_m, entry.top_m);
     check(
@@ -125,7 +125,9 @@ fn layer(i: usize, entry: &CloudEntry, base_dir: &Path, atmosphere: &Atmosphere)
         layer.phase = phase_function(&key("phase"), phase)?;
     }
     if let Some(file) = &entry.coverage_map {
-        layer.coverage_map = Some(coverage_map(&key("coverage_map"), &base_dir.join(file))?);
+        let key = key("coverage_map");
+        let path = scene.asset_file(&key, file)?;
+        layer.coverage_map = Some(coverage_map(&key, &path, scene)?);
     }
     Ok(layer)
 }
@@ -161,8 +163,8 @@ fn phase_function(key: &str, [g_forward, g_back, blend]: [f64; 3]) -> Result<Dua
 
 /// The coverage map in the image file at `path`: each texel's mean of red, green and blue as
 /// 0–1, its top row at latitude +90°, its left column at longitude −180°.
-fn coverage_map(key: &str, path: &Path) -> Result<CoverageMap, SceneError> {
-    let image = crate::assets::load_texture(key, path)?;
+fn coverage_map(key: &str, path: &Path, scene: &Scene) -> Result<CoverageMap, SceneError> {
+    let image = crate::assets::load_texture_within(key, path, scene.confinement.as_ref())?;
     let (width, height) = (image.width, image.height);
     // A texture's row 0 is the bottom of the picture; the map's row 0 is its top.
     let values: Vec<f32> = (0..height)

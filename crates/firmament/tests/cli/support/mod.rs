@@ -1,4 +1,6 @@
-//! What the CLI tests share: running the binary and reading what it said.
+//! What the CLI tests share: running the binary and reading what it said, and fixtures.
+
+pub(crate) mod fixtures;
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -16,4 +18,14 @@ pub(crate) fn firmament(dir: &Path, args: &[&str]) -> Output {
 /// What the process wrote to standard error.
 pub(crate) fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// The names of the entries of `dir`, sorted.
+pub(crate) fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("the folder reads")
+        .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
 }
