@@ -37,6 +37,7 @@ Examples:
   firmament sun --time 2003-10-17T12:30:30-07:00 --lat 39.742476 --lon -105.1786
   firmament view --preset earth-sunset          # fly around; F1 panel, F12 screenshot
   firmament timelapse --from 2024-03-20T16:00Z --to 2024-03-20T20:00Z --frames 120 -o lapse
+  firmament timelapse … --shard 3/8 -o /shared/lapse   # then: firmament timelapse --assemble /shared/lapse
   firmament completions bash > ~/.local/share/bash-completion/completions/firmament
   firmament manpages --dir ~/.local/share/man/man1
 
@@ -291,17 +292,30 @@ pub(crate) struct TimelapseArgs {
     pub(crate) scene_args: SceneArgs,
     /// The first frame's instant, ISO 8601 (`2024-03-20T16:00:00Z`, `...+01:00`, or no offset
     /// for UTC); every frame is on its clock.
-    #[arg(long, value_name = "ISO8601", value_parser = values::date_time)]
-    pub(crate) from: CivilDateTime,
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time, required_unless_present = "assemble")]
+    pub(crate) from: Option<CivilDateTime>,
     /// The last frame's instant, ISO 8601; not before --from.
-    #[arg(long, value_name = "ISO8601", value_parser = values::date_time)]
-    pub(crate) to: CivilDateTime,
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time, required_unless_present = "assemble")]
+    pub(crate) to: Option<CivilDateTime>,
     /// Frames, 1 to 100000, evenly spaced from --from to --to, both included (1: --from only).
-    #[arg(long, value_name = "N", value_parser = values::frame_count)]
-    pub(crate) frames: u32,
-    /// Output folder (created if missing): frame_0001.png …, timelapse.gif, contact_sheet.png.
-    #[arg(short, long, value_name = "DIR")]
-    pub(crate) output: PathBuf,
+    #[arg(long, value_name = "N", value_parser = values::frame_count, required_unless_present = "assemble")]
+    pub(crate) frames: Option<u32>,
+    /// Output folder (created if missing): frame_0001.png …, timelapse.json (what the frames
+    /// are), timelapse.gif, contact_sheet.png.
+    #[arg(short, long, value_name = "DIR", required_unless_present = "assemble")]
+    pub(crate) output: Option<PathBuf>,
+    /// Render only shard I of N: the I-th of N contiguous blocks of the frames, into the same
+    /// folder as the other shards (a Slurm array's or a Kubernetes indexed Job's index); then
+    /// --assemble writes the GIF and the contact sheet.
+    #[arg(long, value_name = "I/N", value_parser = values::shard)]
+    pub(crate) shard: Option<(u32, u32)>,
+    /// Write the GIF and the contact sheet of the sharded time-lapse in DIR, once every shard's
+    /// frames are there (its timelapse.json says what they are).
+    #[arg(long, value_name = "DIR", conflicts_with_all = [
+        "from", "to", "frames", "output", "shard", "scene", "preset", "overrides", "width", "height", "fps",
+        "exr", "overwrite", "untrusted",
+    ])]
+    pub(crate) assemble: Option<PathBuf>,
     /// Image width in pixels (overrides `render.width`).
     #[arg(long, value_name = "W")]
     pub(crate) width: Option<u32>,

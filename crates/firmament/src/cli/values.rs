@@ -83,6 +83,19 @@ pub(crate) fn date_time(text: &str) -> Result<CivilDateTime, String> {
 }
 
 /// `--frames`: 1 to [`MAX_FRAMES`].
+/// `--shard I/N`: shard `I` of `N`, 1 <= I <= N <= [`MAX_FRAMES`].
+pub(crate) fn shard(text: &str) -> Result<(u32, u32), String> {
+    let rule = || format!("must be I/N, shard I of N, with 1 <= I <= N <= {MAX_FRAMES} (e.g. 3/8)");
+    let (i, n) = text.split_once('/').ok_or_else(rule)?;
+    let number = |s: &str| s.trim().parse::<u32>().map_err(|_| rule());
+    let (i, n) = (number(i)?, number(n)?);
+    if i >= 1 && i <= n && n <= MAX_FRAMES {
+        Ok((i, n))
+    } else {
+        Err(rule())
+    }
+}
+
 pub(crate) fn frame_count(text: &str) -> Result<u32, String> {
     let rule = format!(
         "must be a whole number of frames from 1 to {MAX_FRAMES} (a fixed limit: for more, split the span over \
@@ -104,6 +117,10 @@ mod tests {
         assert!(frame_count("100001").is_err());
         assert!(frame_count("-1").is_err());
         assert_eq!(frame_count("100000"), Ok(100_000));
+        assert_eq!(shard("3/8"), Ok((3, 8)));
+        for bad in ["0/4", "5/4", "1/0", "2", "a/b", "1/100001"] {
+            assert!(shard(bad).is_err(), "{bad}");
+        }
         assert!(date_time("2024-13-01T00:00Z").is_err());
         assert!(date_time("7000-01-01T00:00Z").is_err(), "beyond SPA's years");
     }

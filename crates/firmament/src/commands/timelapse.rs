@@ -6,12 +6,14 @@
 //! frames ever exist. The GPU renders the next frame while the last one is read back, and frames
 //! are encoded on every core (`pipeline.rs`). Ctrl-C (or SIGTERM) stops after the frames in
 //! flight; a second run with the same arguments skips the frames already there and renders the
-//! rest (`--overwrite` renders all).
+//! rest (`--overwrite` renders all). `--shard I/N` renders one block of the frames and
+//! `--assemble DIR` finishes a sharded time-lapse (`shards.rs`).
 
 mod animation;
 mod contact_sheet;
 mod frames;
 mod pipeline;
+mod shards;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -45,10 +47,47 @@ enum Outcome {
     Interrupted(String),
 }
 
-/// Renders the time-lapse. Bad arguments exit with status 2 (like clap's own), an interruption
-/// with 130; every other failure is an error (status 1).
+/// What one run renders: the arguments clap requires unless `--assemble` is given.
+struct Plan<'a> {
+    from: CivilDateTime,
+    to: CivilDateTime,
+    frames: u32,
+    output: &'a Path,
+}
+
+impl<'a> Plan<'a> {
+    fn of(args: &'a TimelapseArgs) -> Result<Self> {
+        let missing = |flag: &str| anyhow::anyhow!("timelapse needs {flag} (or --assemble DIR)");
+        Ok(Self {
+            from: args.from.ok_or_else(|| missing("--from"))?,
+            to: args.to.ok_or_else(|| missing("--to"))?,
+            frames: args.frames.ok_or_else(|| missing("--frames"))?,
+            output: args.output.as_deref().ok_or_else(|| missing("--output"))?,
+        })
+    }
+}
+
+/// Renders the time-lapse (or assembles a sharded one). Bad arguments exit with status 2 (like
+/// clap's own), an interruption with 130; every other failure is an error (status 1).
 pub(crate) fn run(args: &TimelapseArgs) -> Result<()> {
-    let span = match time_span(args) {
+    let outcome = match &args.assemble {
+        Some(dir) => assemble(dir)?,
+        None => render(args)?,
+    };
+    match outcome {
+        Outcome::Done => Ok(()),
+        Outcome::Interrupted(message) => {
+            // Everything is dropped (the progress bar cleared, no temporary file open) by now.
+            eprintln!("{message}");
+            std::process::exit(EXIT_INTERRUPTED);
+        }
+    }
+}
+
+/// Renders the frames of `args` (checked first: a bad span exits like clap's own errors).
+fn render(args: &TimelapseArgs) -> Result<Outcome> {
+    let plan = Plan::of(args)?;
+    let span = match time_span(&plan) {
         Ok(span) => span,
         Err(message) => {
             let mut command = crate::cli::Cli::command();
@@ -60,19 +99,60 @@ pub(crate) fn run(args: &TimelapseArgs) -> Result<()> {
             error.exit();
         }
     };
-    match render_all(args, span)? {
-        Outcome::Done => Ok(()),
-        Outcome::Interrupted(message) => {
-            // Everything is dropped (the progress bar cleared, no temporary file open) by now.
-            eprintln!("{message}");
-            std::process::exit(EXIT_INTERRUPTED);
+    render_all(args, &plan, span)
+}
+
+/// `--assemble DIR`: the GIF and the contact sheet of the sharded time-lapse in `dir`, once
+/// its manifest's frames are all there and whole.
+fn assemble(dir: &Path) -> Result<Outcome> {
+    let started = WallClock::now();
+    let manifest = shards::read_manifest(dir)?.with_context(|| {
+        format!(
+            "--assemble {}: no {} there (a time-lapse's runs write it into their output folder)",
+            dir.display(),
+            shards::MANIFEST_NAME
+        )
+    })?;
+    let n = manifest.frames;
+    let pngs = png_paths(dir, n);
+    let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
+    let files = |k: u32| {
+        let png = pngs[k as usize].clone();
+        if manifest.exr {
+            vec![png, exr_path(k)]
+        } else {
+            vec![png]
         }
+    };
+    let present: Vec<u32> = (0..n).filter(|&k| files(k).iter().all(|f| f.is_file())).collect();
+    let mut missing: Vec<u32> = (0..n).filter(|k| present.binary_search(k).is_err()).collect();
+    missing.extend(incomplete_frames(&present, files, manifest.width, manifest.height)?);
+    missing.sort_unstable();
+    if let Some(&first) = missing.first() {
+        bail!(
+            "--assemble {}: {} of {n} frames are missing or incomplete (the first: {}); run the shards that \
+             render them (again) first",
+            dir.display(),
+            missing.len(),
+            frame_name(first, n, "png")
+        );
     }
+    // Every shard is done: temporary files left now are a killed run's.
+    crate::output::remove_stale_temp_files(dir)?;
+    let stop = install_stop_handler();
+    write_summaries(
+        dir,
+        &pngs,
+        manifest.fps,
+        manifest.exr,
+        &|| stop.load(Ordering::SeqCst),
+        started,
+    )
 }
 
 /// Seconds from `--from` to `--to`, checked: `--to` not before `--from`, and after it when more
 /// than one frame is asked for.
-fn time_span(args: &TimelapseArgs) -> Result<f64, String> {
+fn time_span(args: &Plan<'_>) -> Result<f64, String> {
     let span = seconds_between(&args.from, &args.to);
     if span < 0.0 {
         return Err(format!(
@@ -322,21 +402,21 @@ fn incomplete_frames(
 }
 
 /// Renders the missing frames, then the GIF and the contact sheet.
-fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
-    let dir = args.output.as_path();
+fn render_all(args: &TimelapseArgs, plan: &Plan<'_>, span: f64) -> Result<Outcome> {
+    let dir = plan.output;
     check_output_dir(dir)?;
 
     let extra = super::scene_input::size_overrides(args.width, args.height);
     let what = super::scene_input::describe_scene(args.scene.as_deref(), &args.scene_args);
     let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;
-    policy.check_frames(args.frames)?;
+    policy.check_frames(plan.frames)?;
     let scene = super::scene_input::load_scene(args.scene.as_deref(), &args.scene_args, extra, policy.confinement())
         .with_context(|| format!("cannot build {what}"))?;
     let (width, height) = (scene.render.width, scene.render.height);
     policy.check_pixels("each frame", width, height)?;
     crate::limits::check_pixels("each frame", width, height)?;
-    let n = args.frames;
-    let instants: Vec<CivilDateTime> = (0..n).map(|k| frame_instant(&args.from, span, k, n)).collect();
+    let n = plan.frames;
+    let instants: Vec<CivilDateTime> = (0..n).map(|k| frame_instant(&plan.from, span, k, n)).collect();
     let (Some(first), Some(last)) = (instants.first(), instants.last()) else {
         bail!("--frames must be at least 1");
     };
@@ -348,18 +428,38 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
             .with_context(|| format!("cannot build {what} at {}", civil))?;
     }
 
+    // The frames of this run: all, or its shard's block.
+    let mine = match args.shard {
+        Some((shard, shards)) => {
+            shards::check_shard(shard, shards, n)?;
+            shards::shard_frames(shard, shards, n)
+        }
+        None => 0..n,
+    };
+    let manifest = shards::Manifest {
+        frames: n,
+        width,
+        height,
+        exr: args.exr,
+        fps: args.fps,
+        from: plan.from.to_string(),
+        to: plan.to.to_string(),
+    };
+    shards::check_manifest(dir, &manifest, args.overwrite)?;
+
     let pngs = png_paths(dir, n);
     let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
     let is_done = |k: u32| pngs[k as usize].is_file() && (!args.exr || exr_path(k).is_file());
-    let mut todo: Vec<u32> = (0..n).filter(|&k| args.overwrite || !is_done(k)).collect();
-    let done: Vec<u32> = (0..n).filter(|k| todo.binary_search(k).is_err()).collect();
+    let mut todo: Vec<u32> = mine.clone().filter(|&k| args.overwrite || !is_done(k)).collect();
+    let done: Vec<u32> = mine.clone().filter(|k| todo.binary_search(k).is_err()).collect();
     let files = |k: u32| {
         let png = pngs[k as usize].clone();
         if args.exr { vec![png, exr_path(k)] } else { vec![png] }
     };
     todo.extend(incomplete_frames(&done, files, width, height)?);
     todo.sort_unstable();
-    let skipped = n - todo.len() as u32;
+    let mine_count = mine.len() as u32;
+    let skipped = mine_count - todo.len() as u32;
 
     let step = if n > 1 { span / f64::from(n - 1) } else { 0.0 };
     tracing::info!(
@@ -374,15 +474,27 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         },
         dir.display()
     );
+    if let Some((shard, shards)) = args.shard {
+        tracing::info!(
+            "shard {shard}/{shards}: frames {} to {} of {n}",
+            mine.start + 1,
+            mine.end
+        );
+    }
     if skipped > 0 {
         tracing::info!(
-            "{skipped} of {n} frames skipped: already in {} (--overwrite renders them again)",
+            "{skipped} of {mine_count} frames skipped: already in {} (--overwrite renders them again)",
             dir.display()
         );
     }
 
-    // A run killed while it wrote a file (SIGKILL, a second Ctrl-C) left its temporary file.
-    let stale = crate::output::remove_stale_temp_files(dir)?;
+    // A run killed while it wrote a file (SIGKILL) left its temporary file; shards leave the
+    // folder's to --assemble, as another shard may be writing its own.
+    let stale = if args.shard.is_some() {
+        0
+    } else {
+        crate::output::remove_stale_temp_files(dir)?
+    };
     if stale > 0 {
         tracing::info!(
             "removed {stale} temporary file{} that an interrupted run left in {}",
@@ -399,10 +511,11 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         // The GPU before the folder: a machine without an adapter leaves nothing behind.
         let ctx = GpuContext::headless(args.backend.into())?;
         create_output_dir(dir)?;
+        shards::write_manifest(dir, &manifest)?;
         let mut renderer = HeadlessRenderer::new(&ctx);
         setup_seconds = started.elapsed().as_secs_f64();
         let loop_started = WallClock::now();
-        let bar = progress_bar(n, skipped);
+        let bar = progress_bar(mine_count, skipped);
         let depth = pipeline::queue_depth(width, height, args.exr);
         tracing::debug!(
             "encoding on {} threads, at most {depth} frames queued",
@@ -459,14 +572,17 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
         render_seconds = loop_started.elapsed().as_secs_f64();
     }
     let done = skipped + rendered;
-    if done < n {
+    if done < mine_count {
         return Ok(Outcome::Interrupted(format!(
-            "interrupted: {done} of {n} frames are in {} ({rendered} rendered by this run, every one \
+            "interrupted: {done} of {mine_count} frames are in {} ({rendered} rendered by this run, every one \
              complete); to resume, run the same command again — the frames already there are \
              skipped:\n  {}",
             dir.display(),
             command_line()
         )));
+    }
+    if todo.is_empty() {
+        shards::write_manifest(dir, &manifest)?;
     }
     if rendered > 0 {
         tracing::info!(
@@ -476,11 +592,34 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
             f64::from(rendered) / render_seconds.max(1e-9)
         );
     }
+    if let Some((shard, shards)) = args.shard {
+        tracing::info!(
+            "shard {shard}/{shards} done: frames {} to {} of {n} are in {}; once every shard is, write the GIF \
+             and the contact sheet with: firmament timelapse --assemble {}",
+            mine.start + 1,
+            mine.end,
+            dir.display(),
+            dir.display()
+        );
+        return Ok(Outcome::Done);
+    }
+    write_summaries(dir, &pngs, args.fps, args.exr, &|| stop.load(Ordering::SeqCst), started)
+}
 
+/// Writes the GIF and the contact sheet of the finished frames `pngs` in `dir`; `interrupted`
+/// says when to abandon the GIF.
+fn write_summaries(
+    dir: &Path,
+    pngs: &[PathBuf],
+    fps: u32,
+    exr: bool,
+    interrupted: &dyn Fn() -> bool,
+    started: WallClock,
+) -> Result<Outcome> {
+    let n = pngs.len() as u32;
     let gif = dir.join(GIF_NAME);
-    let interrupted = || stop.load(Ordering::SeqCst);
     let gif_started = WallClock::now();
-    if !animation::write_gif(&gif, &pngs, args.fps, &interrupted)? {
+    if !animation::write_gif(&gif, pngs, fps, interrupted)? {
         return Ok(Outcome::Interrupted(format!(
             "interrupted while writing {}: all {n} frames are in {}; run the same command again to \
              build the GIF and the contact sheet:\n  {}",
@@ -492,7 +631,7 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
     let gif_seconds = gif_started.elapsed().as_secs_f64();
     let sheet_started = WallClock::now();
     let sheet = dir.join(SHEET_NAME);
-    contact_sheet::write_contact_sheet(&sheet, &pngs)?;
+    contact_sheet::write_contact_sheet(&sheet, pngs)?;
     let sheet_seconds = sheet_started.elapsed().as_secs_f64();
     tracing::info!(
         "wrote {} in {:.1} s (the GIF {gif_seconds:.2} s, the contact sheet {sheet_seconds:.2} s)",
@@ -503,7 +642,7 @@ fn render_all(args: &TimelapseArgs, span: f64) -> Result<Outcome> {
                 "{} … {}{}, {} and {}",
                 pngs[0].display(),
                 frame_name(n - 1, n, "png"),
-                if args.exr { " (and .exr)" } else { "" },
+                if exr { " (and .exr)" } else { "" },
                 gif.display(),
                 sheet.display()
             )

@@ -99,9 +99,10 @@ fn three_frames_make_pngs_a_gif_and_a_contact_sheet_and_a_second_run_resumes() {
             "frame_0001.png",
             "frame_0002.png",
             "frame_0003.png",
-            "timelapse.gif"
+            "timelapse.gif",
+            "timelapse.json"
         ],
-        "exactly the frames, the GIF and the sheet: no temporary files"
+        "exactly the frames, the GIF, the sheet and the manifest: no temporary files"
     );
     let frames: Vec<image::RgbImage> = (1..=3)
         .map(|k| {
@@ -177,7 +178,7 @@ fn three_frames_make_pngs_a_gif_and_a_contact_sheet_and_a_second_run_resumes() {
         .map(|k| modified(&lapse.join(format!("frame_000{k}.png"))))
         .collect();
     assert_eq!(before, after, "frames were rewritten");
-    assert_eq!(names_in(&lapse).len(), 5);
+    assert_eq!(names_in(&lapse).len(), 6);
 
     // Another size in the same folder is refused rather than mixed.
     let mut other = run.clone();
@@ -185,7 +186,8 @@ fn three_frames_make_pngs_a_gif_and_a_contact_sheet_and_a_second_run_resumes() {
     let out = firmament(d, &args(&other));
     assert_eq!(out.status.code(), Some(1));
     assert!(
-        stderr(&out).contains("frame_0001.png is 48x27 but this run renders 48x40"),
+        stderr(&out).contains("holds another time-lapse (3 frames of 48x27")
+            && stderr(&out).contains("this run renders 3 frames of 48x40"),
         "{}",
         stderr(&out)
     );
@@ -225,7 +227,7 @@ fn one_frame_renders_from_and_may_equal_to() {
     assert!(stderr(&out).is_empty(), "-q printed: {}", stderr(&out));
     assert_eq!(
         names_in(&dir.path().join("one/two")),
-        ["contact_sheet.png", "frame_0001.png", "timelapse.gif"]
+        ["contact_sheet.png", "frame_0001.png", "timelapse.gif", "timelapse.json"]
     );
 }
 
@@ -653,7 +655,8 @@ fn a_signal_stops_cleanly_and_the_same_command_resumes() {
             "{err}"
         );
         assert!(err.contains("to resume, run the same command again"), "{err}");
-        let names = names_in(&d.join("lapse"));
+        let mut names = names_in(&d.join("lapse"));
+        names.retain(|n| n != "timelapse.json");
         assert!(
             names.iter().all(|n| n.starts_with("frame_") && n.ends_with(".png")),
             "only frames: {names:?}"
@@ -676,7 +679,11 @@ fn a_signal_stops_cleanly_and_the_same_command_resumes() {
             format!("{} frames rendered", 60 - done)
         };
         assert!(err.contains(&rendered), "{err}");
-        assert_eq!(names_in(&d.join("lapse")).len(), 62);
+        assert_eq!(
+            names_in(&d.join("lapse")).len(),
+            63,
+            "60 frames, the GIF, the sheet, the manifest"
+        );
     }
 }
 
@@ -698,7 +705,10 @@ fn a_killed_run_resumes_to_the_files_of_an_uninterrupted_one() {
 
     // Only whole frames under their own names; a temporary file at most.
     let names = names_in(&lapse);
-    let kept: Vec<&String> = names.iter().filter(|n| !n.starts_with(".firmament-")).collect();
+    let kept: Vec<&String> = names
+        .iter()
+        .filter(|n| !n.starts_with(".firmament-") && *n != "timelapse.json")
+        .collect();
     assert!(
         kept.iter().all(|n| n.starts_with("frame_") && n.ends_with(".png")),
         "only frames: {names:?}"
@@ -740,10 +750,76 @@ fn a_killed_run_resumes_to_the_files_of_an_uninterrupted_one() {
     assert!(out.status.success(), "{}", stderr(&out));
     let reference = whole.path().join("lapse");
     assert_eq!(names_in(&lapse), names_in(&reference));
-    assert_eq!(names_in(&lapse).len(), 26);
+    assert_eq!(names_in(&lapse).len(), 27);
     for name in names_in(&reference) {
         let a = std::fs::read(lapse.join(&name)).expect("resumed file");
         let b = std::fs::read(reference.join(&name)).expect("uninterrupted file");
         assert!(a == b, "{name} differs between the resumed and the uninterrupted run");
+    }
+}
+
+/// `--shard I/N` renders a contiguous block into a shared folder; `--assemble` then writes the
+/// GIF and the contact sheet; frames, GIF and sheet are byte-identical to one run's (the
+/// showcase preset: auto-exposure adapting between frames, a flare).
+#[test]
+fn shards_and_assembly_give_the_bytes_of_one_run() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let dir = dir.path();
+    let run = |extra: &[&str], out: &str| {
+        let mut all = vec!["-q"];
+        let base = tiny(out, "7");
+        all.extend(args(&base));
+        all.extend(["--preset", "golden-hour"]);
+        all.extend(extra);
+        firmament(dir, &all)
+    };
+    let one = run(&[], "one");
+    assert!(one.status.success(), "{}", stderr(&one));
+    for shard in ["2/3", "1/3", "3/3"] {
+        let out = run(&["--shard", shard], "many");
+        assert!(out.status.success(), "{shard}: {}", stderr(&out));
+        assert!(!dir.join("many/timelapse.gif").exists(), "a shard wrote the GIF");
+    }
+    // Shard 2 of 3 holds frames 3 and 4 (of 7): ⌊7·1/3⌋ = 2 to ⌊7·2/3⌋ = 4.
+    let out = firmament(dir, &["-q", "timelapse", "--assemble", "many"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(names_in(&dir.join("one")), names_in(&dir.join("many")));
+    for name in names_in(&dir.join("one")) {
+        let read = |run: &str| std::fs::read(dir.join(run).join(&name)).expect("a file");
+        assert!(read("one") == read("many"), "{name} differs");
+    }
+
+    // Assembly refuses a folder with a frame missing; a shard refuses another time-lapse's folder.
+    std::fs::remove_file(dir.join("many/frame_0004.png")).expect("removed");
+    let out = firmament(dir, &["-q", "timelapse", "--assemble", "many"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("1 of 7 frames are missing or incomplete (the first: frame_0004.png)"),
+        "{}",
+        stderr(&out)
+    );
+    let mut five = args(&tiny("many", "5"))
+        .iter()
+        .map(|a| (*a).to_owned())
+        .collect::<Vec<_>>();
+    five.extend(["--shard".to_owned(), "1/2".to_owned()]);
+    let mut all = vec!["-q"];
+    all.extend(args(&five));
+    let out = firmament(dir, &all);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("holds another time-lapse (7 frames"),
+        "{}",
+        stderr(&out)
+    );
+    for (shard, expect) in [("4/3", "must be I/N"), ("8/8", "more shards than the 7 frames")] {
+        let mut all = vec!["-q"];
+        let base = tiny("other", "7");
+        all.extend(args(&base));
+        all.extend(["--shard", shard]);
+        let out = firmament(dir, &all);
+        assert_ne!(out.status.code(), Some(0), "{shard}");
+        assert!(stderr(&out).contains(expect), "{shard}: {}", stderr(&out));
+        assert!(!dir.join("other").exists(), "{shard} made the folder");
     }
 }
