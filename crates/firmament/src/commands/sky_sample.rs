@@ -41,8 +41,61 @@ fn enu(zenith: f64, azimuth: f64) -> DVec3 {
     DVec3::new(z.sin() * a.sin(), z.sin() * a.cos(), z.cos())
 }
 
-/// Builds the single-sun sky, samples it by the requested methods and prints the result.
+/// The samples of one run: the sky sampled, and each method's answer.
+struct Samples {
+    sky: AtmosphereSky,
+    reference: Option<Sample>,
+    gpu: Option<Sample>,
+}
+
+/// Builds the single-sun sky and samples it by the requested methods, then prints the result.
 pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
+    if args.json {
+        println!("{}", report_json(args)?);
+        return Ok(());
+    }
+    print_table(args, &samples(args)?);
+    Ok(())
+}
+
+/// What `firmament sky-sample --json` prints.
+pub(crate) fn report_json(args: &SkySampleArgs) -> Result<serde_json::Value> {
+    let Samples { sky, reference, gpu } = samples(args)?;
+    let conversion = sky.atmosphere.spectral_conversion();
+    let describe = |s: &Sample| {
+        let rgb = conversion.linear_srgb(s.radiance);
+        let by_order: serde_json::Map<_, _> = ORDER_BANDS
+            .iter()
+            .zip(s.by_order)
+            .map(|(band, radiance)| ((*band).to_owned(), radiance.to_array().into()))
+            .collect();
+        serde_json::json!({
+            "radiance": s.radiance.to_array(),
+            "radiance_by_order": by_order,
+            "radiance_via_ground": s.via_ground.to_array(),
+            "radiance_order_2_quadrature": s.second_order.map(|o| o.to_array()),
+            "radiance_standard_error": s.radiance_standard_error.to_array(),
+            "luminance": conversion.luminance(s.radiance),
+            "linear_srgb": [rgb.r, rgb.g, rgb.b],
+            "transmittance": s.transmittance.to_array(),
+            "sky_irradiance": s.sky_irradiance.to_array(),
+            "sun_irradiance": s.sun_irradiance.to_array(),
+        })
+    };
+    Ok(serde_json::json!({
+        "wavelengths_nm": sky.atmosphere.wavelengths.0,
+        "units": {"radiance": "W/(m^2 sr nm)", "luminance": "cd/m^2", "irradiance": "W/(m^2 nm)"},
+        "altitude_m": args.altitude,
+        "sun_zenith_deg": args.sun_zenith,
+        "view_zenith_deg": args.view_zenith,
+        "view_azimuth_deg": args.view_azimuth,
+        "reference": reference.as_ref().map(describe),
+        "gpu": gpu.as_ref().map(describe),
+    }))
+}
+
+/// Checks the arguments, builds the single-sun sky and samples it by the requested methods.
+fn samples(args: &SkySampleArgs) -> Result<Samples> {
     if args.altitude < 0.0 {
         bail!(
             "--altitude = {}: must be >= 0 metres (above the surface)",
@@ -122,42 +175,14 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             sun_irradiance: s.sun_irradiance,
         })
     };
+    Ok(Samples { sky, reference, gpu })
+}
+
+/// Prints the samples as a table, the reference beside the GPU.
+fn print_table(args: &SkySampleArgs, samples: &Samples) {
+    let Samples { sky, reference, gpu } = samples;
     let conversion = sky.atmosphere.spectral_conversion();
     let wavelengths = sky.atmosphere.wavelengths.0;
-    if args.json {
-        let describe = |s: &Sample| {
-            let rgb = conversion.linear_srgb(s.radiance);
-            let by_order: serde_json::Map<_, _> = ORDER_BANDS
-                .iter()
-                .zip(s.by_order)
-                .map(|(band, radiance)| ((*band).to_owned(), radiance.to_array().into()))
-                .collect();
-            serde_json::json!({
-                "radiance": s.radiance.to_array(),
-                "radiance_by_order": by_order,
-                "radiance_via_ground": s.via_ground.to_array(),
-                "radiance_order_2_quadrature": s.second_order.map(|o| o.to_array()),
-                "radiance_standard_error": s.radiance_standard_error.to_array(),
-                "luminance": conversion.luminance(s.radiance),
-                "linear_srgb": [rgb.r, rgb.g, rgb.b],
-                "transmittance": s.transmittance.to_array(),
-                "sky_irradiance": s.sky_irradiance.to_array(),
-                "sun_irradiance": s.sun_irradiance.to_array(),
-            })
-        };
-        let out = serde_json::json!({
-            "wavelengths_nm": wavelengths,
-            "units": {"radiance": "W/(m^2 sr nm)", "luminance": "cd/m^2", "irradiance": "W/(m^2 nm)"},
-            "altitude_m": args.altitude,
-            "sun_zenith_deg": args.sun_zenith,
-            "view_zenith_deg": args.view_zenith,
-            "view_azimuth_deg": args.view_azimuth,
-            "reference": reference.as_ref().map(describe),
-            "gpu": gpu.as_ref().map(describe),
-        });
-        println!("{out}");
-        return Ok(());
-    }
     println!(
         "altitude {} m, sun zenith {}°, view zenith {}°, view azimuth {}° from the sun",
         args.altitude, args.sun_zenith, args.view_zenith, args.view_azimuth
@@ -229,7 +254,6 @@ pub(crate) fn run(args: &SkySampleArgs) -> Result<()> {
             row(format!("{label} {nm} nm"), r, g);
         }
     }
-    Ok(())
 }
 
 fn reference_sample(

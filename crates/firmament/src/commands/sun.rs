@@ -15,62 +15,89 @@ fn format_hours(hours: f64) -> String {
     format!("{:02}:{:02}:{:02}", seconds / 3600, seconds / 60 % 60, seconds % 60)
 }
 
-/// Computes and prints the sun's position and the day's events.
-pub(crate) fn run(args: &SunArgs) -> Result<()> {
-    let instant = Instant::from_civil(&args.time, args.delta_t).context("invalid --time or --delta-t")?;
-    let input = SpaInput {
-        elevation_m: args.elevation,
-        pressure_mbar: args.pressure,
-        temperature_c: args.temperature,
-        ..SpaInput::new(instant, args.lat, args.lon)
-    };
-    input.validate().context("invalid input for the sun's position")?;
-    let p = spa::solar_position(&input);
-    let times = spa::sun_times(&input, args.time.offset_hours);
+/// The sun's position and the day's events for `args`.
+struct Report {
+    instant: Instant,
+    position: spa::SolarPosition,
+    times: spa::SunTimes,
+}
+
+impl Report {
+    fn of(args: &SunArgs) -> Result<Self> {
+        let instant = Instant::from_civil(&args.time, args.delta_t).context("invalid --time or --delta-t")?;
+        let input = SpaInput {
+            elevation_m: args.elevation,
+            pressure_mbar: args.pressure,
+            temperature_c: args.temperature,
+            ..SpaInput::new(instant, args.lat, args.lon)
+        };
+        input.validate().context("invalid input for the sun's position")?;
+        Ok(Self {
+            instant,
+            position: spa::solar_position(&input),
+            times: spa::sun_times(&input, args.time.offset_hours),
+        })
+    }
+}
+
+/// What `firmament sun --json` prints.
+pub(crate) fn report_json(args: &SunArgs) -> Result<serde_json::Value> {
+    let Report {
+        instant,
+        position: p,
+        times,
+    } = Report::of(args)?;
     let day = match times.rise_set {
         RiseSet::RiseAndSet { .. } => "rise_and_set",
         RiseSet::PolarDay => "polar_day",
         RiseSet::PolarNight => "polar_night",
     };
+    Ok(serde_json::json!({
+        "time": args.time.to_string(),
+        "julian_date": instant.jd,
+        "delta_t_s": instant.delta_t,
+        "latitude_deg": args.lat,
+        "longitude_deg": args.lon,
+        "elevation_m": args.elevation,
+        "pressure_mbar": args.pressure,
+        "temperature_c": args.temperature,
+        "zenith_deg": p.zenith_deg,
+        "zenith_no_refraction_deg": p.zenith_no_refraction_deg,
+        "azimuth_deg": p.azimuth_deg,
+        "elevation_deg": p.elevation_deg,
+        "elevation_no_refraction_deg": p.elevation_no_refraction_deg,
+        "declination_deg": p.geocentric.declination_deg,
+        "right_ascension_deg": p.geocentric.right_ascension_deg,
+        "hour_angle_deg": p.hour_angle_deg,
+        "equation_of_time_min": p.equation_of_time_min,
+        "utc_offset_hours": args.time.offset_hours,
+        "day": day,
+        "sunrise": times.sunrise_h().map(format_hours),
+        "solar_noon": format_hours(times.transit_h),
+        "sunset": times.sunset_h().map(format_hours),
+        "sunrise_h": times.sunrise_h(),
+        "solar_noon_h": times.transit_h,
+        "sunset_h": times.sunset_h(),
+        "solar_noon_elevation_deg": times.transit_elevation_deg,
+    }))
+}
+
+/// Computes and prints the sun's position and the day's events.
+pub(crate) fn run(args: &SunArgs) -> Result<()> {
+    if args.json {
+        println!("{}", report_json(args)?);
+        return Ok(());
+    }
+    let Report {
+        instant,
+        position: p,
+        times,
+    } = Report::of(args)?;
     let time = args.time.to_string();
     let zone = match format_offset(args.time.offset_hours).as_str() {
         "Z" => "UTC".to_owned(),
         offset => format!("UTC{offset}"),
     };
-
-    if args.json {
-        let out = serde_json::json!({
-            "time": time,
-            "julian_date": instant.jd,
-            "delta_t_s": instant.delta_t,
-            "latitude_deg": args.lat,
-            "longitude_deg": args.lon,
-            "elevation_m": args.elevation,
-            "pressure_mbar": args.pressure,
-            "temperature_c": args.temperature,
-            "zenith_deg": p.zenith_deg,
-            "zenith_no_refraction_deg": p.zenith_no_refraction_deg,
-            "azimuth_deg": p.azimuth_deg,
-            "elevation_deg": p.elevation_deg,
-            "elevation_no_refraction_deg": p.elevation_no_refraction_deg,
-            "declination_deg": p.geocentric.declination_deg,
-            "right_ascension_deg": p.geocentric.right_ascension_deg,
-            "hour_angle_deg": p.hour_angle_deg,
-            "equation_of_time_min": p.equation_of_time_min,
-            "utc_offset_hours": args.time.offset_hours,
-            "day": day,
-            "sunrise": times.sunrise_h().map(format_hours),
-            "solar_noon": format_hours(times.transit_h),
-            "sunset": times.sunset_h().map(format_hours),
-            "sunrise_h": times.sunrise_h(),
-            "solar_noon_h": times.transit_h,
-            "sunset_h": times.sunset_h(),
-            "solar_noon_elevation_deg": times.transit_elevation_deg,
-        });
-        println!("{out}");
-        return Ok(());
-    }
-
     println!(
         "sun at {time}, latitude {}°, longitude {}°, {} m ({} mbar, {} °C, ΔT {:.1} s)",
         args.lat, args.lon, args.elevation, args.pressure, args.temperature, instant.delta_t
