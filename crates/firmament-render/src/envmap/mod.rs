@@ -16,15 +16,18 @@
 //! quarter across, east in the middle, the seam in the west; cube faces: OpenGL's convention in
 //! the Y-up frame `x` east, `y` up, `z` south).
 //!
-//! ```no_run
-//! use firmament_render::{GpuContext, Backend, envmap::SunDiscs, headless::HeadlessRenderer};
+//! ```
+//! use firmament_render::{Backend, GpuContext, envmap::SunDiscs, headless::HeadlessRenderer};
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! # let frame: firmament_core::Frame = unimplemented!();
+//! let scene = firmament_scene::load(firmament_scene::SceneSource::Preset("earth-noon"), None, &[])?;
+//! let frame = scene.frame_at(None)?;
 //! let ctx = GpuContext::headless(Backend::Auto)?;
 //! let mut renderer = HeadlessRenderer::new(&ctx);
-//! let map = renderer.render_equirect(&ctx, &frame, 2048, SunDiscs::Included)?; // 2048 × 1024
-//! let cube = renderer.render_cube_faces(&ctx, &frame, 512, SunDiscs::Omitted)?; // 6 × 512²
+//! let map = renderer.render_equirect(&ctx, &frame, 64, SunDiscs::Included)?; // 64 × 32
+//! assert_eq!((map.width, map.height), (64, 32));
+//! let cube = renderer.render_cube_faces(&ctx, &frame, 16, SunDiscs::Omitted)?; // 6 × 16²
+//! assert_eq!(cube.size(), 16);
 //! # Ok(())
 //! # }
 //! ```

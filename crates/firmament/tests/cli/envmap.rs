@@ -1,0 +1,197 @@
+//! End-to-end tests of `firmament envmap`: real processes, real files, real GPU (software on CI),
+//! tiny maps. Every bad input must give one clear message, a non-zero exit and no files.
+
+use std::path::Path;
+
+use crate::support::{exr_image, firmament, names_in, stderr};
+
+/// Runs `firmament envmap` with `args` in `dir`, expecting success.
+fn envmap(dir: &Path, args: &[&str]) {
+    let out = firmament(dir, &[&["-q", "envmap"][..], args].concat());
+    assert!(out.status.success(), "envmap {args:?}: {}", stderr(&out));
+}
+
+/// The largest green value of an RGBA image and whether every value is finite.
+fn peak_green(floats: &[f32]) -> (f32, bool) {
+    let peak = floats.chunks_exact(4).map(|p| p[1]).fold(0.0, f32::max);
+    (peak, floats.iter().all(|v| v.is_finite()))
+}
+
+/// The default (`earth-noon`) map: 64 × 32 linear floats, the Sun's disc far beyond the
+/// half-float range in the pixel south at 45° up; nothing but the map is written.
+#[test]
+fn writes_an_equirectangular_exr_of_the_right_size() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    envmap(dir.path(), &["--width", "64", "-o", "sky.exr"]);
+    assert_eq!(names_in(dir.path()), ["sky.exr"]);
+    let (width, floats) = exr_image(&dir.path().join("sky.exr"));
+    assert_eq!((width, floats.len() / 4 / width), (64, 32));
+    let (peak, finite) = peak_green(&floats);
+    assert!(finite);
+    assert!(peak > 65_504.0 * 10.0, "the disc's pixel: {peak}");
+    // South (three quarters across), 45° up (a quarter down): the disc sits on the corner of
+    // columns 47-48 and rows 7-8.
+    let at = |x: usize, y: usize| floats[4 * (y * 64 + x) + 1];
+    let corner = [(47, 7), (48, 7), (47, 8), (48, 8)].map(|(x, y)| at(x, y));
+    assert!(corner.contains(&peak), "{corner:?} vs {peak}");
+}
+
+/// `--cubemap` writes the six faces `<stem>_px.exr` … `<stem>_nz.exr`, each `--face-size`
+/// square, and not the map itself; the Sun (south, 45° up) is on `+Z` (south) and `+Y` (up)'s
+/// shared edge, in one of them.
+#[test]
+fn cubemap_writes_six_faces() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    envmap(dir.path(), &["--cubemap", "--face-size", "16", "-o", "sky.exr"]);
+    let faces = ["px", "nx", "py", "ny", "pz", "nz"];
+    let mut want: Vec<String> = faces.iter().map(|f| format!("sky_{f}.exr")).collect();
+    want.sort();
+    assert_eq!(names_in(dir.path()), want);
+    let mut brightest = ("", 0.0_f32);
+    for face in faces {
+        let (width, floats) = exr_image(&dir.path().join(format!("sky_{face}.exr")));
+        assert_eq!((width, floats.len() / 4 / width), (16, 16), "{face}");
+        let (peak, finite) = peak_green(&floats);
+        assert!(finite, "{face}");
+        if peak > brightest.1 {
+            brightest = (face, peak);
+        }
+    }
+    assert!(["pz", "py"].contains(&brightest.0), "the Sun on {brightest:?}");
+    assert!(brightest.1 > 65_504.0 * 10.0);
+}
+
+/// `--no-sun` leaves the disc out (the map stays within the half-float range) and writes
+/// `<stem>.sun.json`: the Sun south at 45° up, its irradiance after the air on the ground the
+/// same as `sky-sample --reference` reports for that sun.
+#[test]
+fn no_sun_writes_the_json_and_leaves_the_disc_out() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    envmap(dir.path(), &["--no-sun", "--width", "64", "-o", "sky.exr"]);
+    assert_eq!(names_in(dir.path()), ["sky.exr", "sky.sun.json"]);
+    let (_, floats) = exr_image(&dir.path().join("sky.exr"));
+    let (peak, _) = peak_green(&floats);
+    assert!(peak < 65_504.0, "no disc: {peak}");
+
+    let text = std::fs::read_to_string(dir.path().join("sky.sun.json")).expect("the JSON");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    let suns = json["suns"].as_array().expect("suns");
+    assert_eq!(suns.len(), 1);
+    let sun = &suns[0];
+    let number = |v: &serde_json::Value| v.as_f64().expect("a number");
+    assert!((number(&sun["azimuth_deg"]) - 180.0).abs() < 1e-6, "{sun}");
+    assert!((number(&sun["elevation_deg"]) - 45.0).abs() < 1e-6, "{sun}");
+    let y_up: Vec<f64> = sun["direction_y_up"]
+        .as_array()
+        .expect("xyz")
+        .iter()
+        .map(number)
+        .collect();
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(
+        (y_up[1] - half).abs() < 1e-9 && (y_up[2] - half).abs() < 1e-9,
+        "south is +Z: {y_up:?}"
+    );
+
+    let out = firmament(
+        dir.path(),
+        &[
+            "sky-sample",
+            "--reference",
+            "--paths",
+            "1",
+            "--json",
+            "--altitude",
+            "0",
+            "--sun-zenith",
+            "45",
+            "--view-zenith",
+            "0",
+        ],
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let sample: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let want = sample["reference"]["sun_irradiance"].as_array().expect("spectrum");
+    let got = sun["irradiance_horizontal"].as_array().expect("spectrum");
+    for (g, w) in got.iter().zip(want) {
+        // The map's camera stands 1.7 m above sky-sample's eye: 10⁻⁵ less air.
+        assert!((number(g) / number(w) - 1.0).abs() < 1e-4, "{got:?} vs {want:?}");
+    }
+}
+
+/// `--time-lapse` writes one map per instant into the folder, named like `timelapse`'s frames.
+#[test]
+fn time_lapse_writes_one_map_per_instant() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    envmap(
+        dir.path(),
+        &[
+            "--preset",
+            "earth-sunset",
+            "--time-lapse",
+            "--from",
+            "2024-06-21T18:00Z",
+            "--to",
+            "2024-06-21T19:00Z",
+            "--frames",
+            "2",
+            "--width",
+            "16",
+            "-o",
+            "maps",
+        ],
+    );
+    assert_eq!(names_in(&dir.path().join("maps")), ["frame_0001.exr", "frame_0002.exr"]);
+    let (width, floats) = exr_image(&dir.path().join("maps/frame_0002.exr"));
+    assert_eq!((width, floats.len() / 4 / width), (16, 8));
+}
+
+/// Bad arguments: one message naming the argument and its rule, a non-zero exit, no file.
+#[test]
+fn bad_arguments_fail_with_a_message_and_no_file() {
+    let cases: &[(&[&str], i32, &str)] = &[
+        (&["--width", "63"], 2, "even number of pixels"),
+        (&["--width", "0"], 2, "even number of pixels"),
+        (&["--width", "64", "-o", "sky.png"], 1, "must end in .exr"),
+        (&["--cubemap", "--width", "64"], 2, "cannot be used with"),
+        (&["--face-size", "8"], 2, "--cubemap"),
+        (&["--cubemap", "--face-size", "0"], 2, "--face-size"),
+        (&["--from", "2024-06-21T18:00Z"], 2, "--time-lapse"),
+        (
+            &[
+                "--time-lapse",
+                "--from",
+                "2024-06-21T19:00Z",
+                "--to",
+                "2024-06-21T18:00Z",
+                "--frames",
+                "2",
+                "-o",
+                "maps",
+            ],
+            2,
+            "must not be later than --to",
+        ),
+        (&["--width", "64", "-o", "missing/sky.exr"], 1, "does not exist"),
+        (
+            &["--preset", "dawn", "--no-sun", "--width", "64"],
+            1,
+            "sky.model = \"atmosphere\"",
+        ),
+        (&["--preset", "no-such-preset", "--width", "64"], 1, "no-such-preset"),
+        (&["--time", "25:00", "--width", "64"], 1, "time.time_of_day"),
+    ];
+    for (args, code, message) in cases {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let out = firmament(dir.path(), &[&["envmap"][..], args].concat());
+        let said = stderr(&out);
+        assert_eq!(out.status.code(), Some(*code), "{args:?}: {said}");
+        assert!(said.contains(message), "{args:?}: {said}");
+        assert!(!said.contains("panicked"), "{args:?}: {said}");
+        assert!(
+            names_in(dir.path()).is_empty(),
+            "{args:?} left {:?}",
+            names_in(dir.path())
+        );
+    }
+}
