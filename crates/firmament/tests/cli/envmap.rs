@@ -119,6 +119,55 @@ fn no_sun_writes_the_json_and_leaves_the_disc_out() {
     }
 }
 
+/// The night sky at night (`earth-night`: 2025-03-13 23:30 UTC at 45° N): the map's brightest
+/// pixel is the Moon, drawn by the night-sky pass in its phase, where the JSON puts the light it
+/// casts (a sun without a disc); the Sun below the horizon casts nothing.
+#[test]
+fn the_night_map_holds_the_moon_where_the_json_puts_it() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    envmap(
+        dir.path(),
+        &[
+            "--preset",
+            "earth-night",
+            "--no-sun",
+            "--width",
+            "256",
+            "-o",
+            "night.exr",
+        ],
+    );
+    let text = std::fs::read_to_string(dir.path().join("night.sun.json")).expect("the JSON");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    let number = |v: &serde_json::Value| v.as_f64().expect("a number");
+    let suns = json["suns"].as_array().expect("suns");
+    let moon = suns
+        .iter()
+        .find(|s| s["disc_drawn"] == false)
+        .expect("the Moon's light");
+    let sun = suns.iter().find(|s| s["disc_drawn"] == true).expect("the Sun");
+    assert!(number(&sun["elevation_deg"]) < 0.0 && number(&sun["illuminance_normal_lux"]) == 0.0);
+    let lux = number(&moon["illuminance_normal_lux"]);
+    assert!((0.05..0.5).contains(&lux), "a gibbous to full Moon: {lux} lx");
+
+    let d: Vec<f64> = moon["direction_enu"]
+        .as_array()
+        .expect("xyz")
+        .iter()
+        .map(number)
+        .collect();
+    let at = firmament_core::envmap::equirect_position(glam::DVec3::new(d[0], d[1], d[2]), 256, 128);
+    let (width, floats) = exr_image(&dir.path().join("night.exr"));
+    let brightest = (0..floats.len() / 4)
+        .max_by(|&a, &b| floats[4 * a + 1].total_cmp(&floats[4 * b + 1]))
+        .map(|k| ((k % width) as f64 + 0.5, (k / width) as f64 + 0.5))
+        .expect("pixels");
+    assert!(
+        (brightest.0 - at.x).abs() <= 1.5 && (brightest.1 - at.y).abs() <= 1.5,
+        "the brightest pixel {brightest:?}, the Moon at {at}"
+    );
+}
+
 /// `--time-lapse` writes one map per instant into the folder, named like `timelapse`'s frames.
 #[test]
 fn time_lapse_writes_one_map_per_instant() {
