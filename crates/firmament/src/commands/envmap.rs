@@ -87,7 +87,8 @@ pub(crate) fn run(args: &EnvmapArgs) -> Result<()> {
         );
     }
     match layout.cube {
-        Some(side) => crate::limits::check_pixels("each cube face", side, side)?,
+        // The six faces are held together: counted as one strip of six.
+        Some(side) => crate::limits::check_pixels("the cube (six faces side by side)", side, 6 * side)?,
         None => crate::limits::check_pixels("the map", layout.width, layout.width / 2)?,
     }
     let extra = super::scene_input::time_override(args.time.as_deref())

@@ -285,6 +285,8 @@ fn bad_arguments_fail_with_a_message_and_no_file() {
         ),
         (&["--preset", "no-such-preset", "--width", "64"], 1, "no-such-preset"),
         (&["--time", "25:00", "--width", "64"], 1, "time.time_of_day"),
+        (&["--width", "16384"], 1, "FIRMAMENT_MAX_PIXELS"),
+        (&["--cubemap", "--face-size", "4096"], 1, "FIRMAMENT_MAX_PIXELS"),
     ];
     for (args, code, message) in cases {
         let dir = tempfile::tempdir().expect("temp dir");
