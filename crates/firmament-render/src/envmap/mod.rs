@@ -50,7 +50,8 @@ pub enum SunDiscs {
     /// Each sun's disc at its radiance after the air (the physical atmosphere's suns).
     Included,
     /// No discs: the sky around them only, for engines that light with the suns as separate
-    /// directional lights ([`suns_at_eye`]).
+    /// directional lights ([`suns_at_eye`]). Only the physical atmosphere's suns are left out;
+    /// the gradient and the seed's skies draw their suns as always.
     Omitted,
 }
 
