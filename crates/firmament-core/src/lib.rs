@@ -37,6 +37,7 @@ pub mod camera;
 pub mod classic;
 pub mod color;
 pub mod display;
+pub mod envmap;
 pub mod error;
 pub mod flare;
 pub mod frame;

@@ -15,6 +15,7 @@
 use std::path::PathBuf;
 use std::sync::{Mutex, PoisonError};
 
+use firmament_render::envmap::SunDiscs;
 use firmament_render::headless::HeadlessRenderer;
 use firmament_render::{Backend, GpuContext};
 use firmament_scene::{Scene, SceneDocument, SceneSource};
@@ -173,29 +174,65 @@ fn render<'py>(
     let (w, h) = (scene.render.width, scene.render.height);
     firmament_cli::check_render_pixels(w, h).map_err(error)?;
     let frame = scene.frame_at(None).map_err(|e| error(e.to_string()))?;
-    let image = py.detach(|| -> Result<Pixels, String> {
-        let mut gpu = GPU.lock().unwrap_or_else(PoisonError::into_inner);
-        if gpu.as_ref().is_none_or(|(b, _, _)| *b != wanted) {
-            let ctx = GpuContext::headless(wanted).map_err(|e| e.to_string())?;
-            let renderer = HeadlessRenderer::new(&ctx);
-            *gpu = Some((wanted, ctx, renderer));
-        }
-        let Some((_, ctx, renderer)) = gpu.as_mut() else {
-            return Err("no GPU context".to_owned());
-        };
+    let image = with_gpu(py, wanted, |ctx, renderer| {
         if hdr {
             renderer.render_hdr(ctx, &frame, w, h).map(|i| Pixels::Hdr(i.pixels))
         } else {
             renderer.render_ldr(ctx, &frame, w, h).map(|i| Pixels::Ldr(i.pixels))
         }
-        .map_err(|e| e.to_string())
-    });
+    })?;
     let shape = [h as usize, w as usize, 4];
-    let array = match image.map_err(error)? {
+    let array = match image {
         Pixels::Hdr(pixels) => PyArray1::from_vec(py, pixels).reshape(shape)?.into_any(),
         Pixels::Ldr(pixels) => PyArray1::from_vec(py, pixels).reshape(shape)?.into_any(),
     };
     Ok(array)
+}
+
+/// Runs `draw` on the kept GPU of `backend` (made on first use) with the GIL released.
+fn with_gpu<T: Send>(
+    py: Python<'_>,
+    backend: Backend,
+    draw: impl FnOnce(&GpuContext, &mut HeadlessRenderer) -> Result<T, firmament_render::RenderError> + Send,
+) -> PyResult<T> {
+    py.detach(|| -> Result<T, String> {
+        let mut gpu = GPU.lock().unwrap_or_else(PoisonError::into_inner);
+        if gpu.as_ref().is_none_or(|(b, _, _)| *b != backend) {
+            let ctx = GpuContext::headless(backend).map_err(|e| e.to_string())?;
+            let renderer = HeadlessRenderer::new(&ctx);
+            *gpu = Some((backend, ctx, renderer));
+        }
+        let Some((_, ctx, renderer)) = gpu.as_mut() else {
+            return Err("no GPU context".to_owned());
+        };
+        draw(ctx, renderer).map_err(|e| e.to_string())
+    })
+    .map_err(error)
+}
+
+/// Renders the equirectangular environment map around a scene's camera position, `float32`
+/// linear radiance `(width / 2, width, 4)`, with or without the suns' discs.
+#[pyfunction]
+#[pyo3(signature = (scene=None, *, preset=None, overrides=Vec::new(), width=1024, sun=true, backend_name="auto"))]
+fn envmap<'py>(
+    py: Python<'py>,
+    scene: Option<&Bound<'py, PyAny>>,
+    preset: Option<&str>,
+    overrides: Vec<String>,
+    width: u32,
+    sun: bool,
+    backend_name: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let wanted = backend(backend_name)?;
+    let scene = load_scene(&scene_input(scene)?, preset, &overrides)?;
+    firmament_cli::check_render_pixels(width, width / 2).map_err(error)?;
+    let frame = scene.frame_at(None).map_err(|e| error(e.to_string()))?;
+    let discs = if sun { SunDiscs::Included } else { SunDiscs::Omitted };
+    let map = with_gpu(py, wanted, |ctx, renderer| {
+        renderer.render_equirect(ctx, &frame, width, discs)
+    })?;
+    let shape = [map.height as usize, map.width as usize, 4];
+    Ok(PyArray1::from_vec(py, map.pixels).reshape(shape)?.into_any())
 }
 
 /// An image's channels, as read back.
@@ -226,6 +263,7 @@ fn scene_toml(scene: &Bound<'_, PyAny>) -> PyResult<String> {
 fn _firmament(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("FirmamentError", m.py().get_type::<FirmamentError>())?;
     m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(envmap, m)?)?;
     m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_function(wrap_pyfunction!(scene_toml, m)?)?;
     Ok(())

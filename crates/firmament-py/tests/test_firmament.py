@@ -127,3 +127,13 @@ def test_sky_sample_reports_the_reference_and_the_gpu():
         {"preset": "earth-noon"}, altitude_m=0.0, sun_zenith_deg=30.0, view_zenith_deg=60.0, gpu=False, paths=64
     )
     assert only_reference["gpu"] is None and only_reference["reference"] is not None
+
+
+def test_an_envmap_is_the_sphere_with_the_sun_apart():
+    with_sun = firmament.envmap(preset="earth-noon", width=64)
+    without = firmament.envmap(preset="earth-noon", width=64, sun=False)
+    assert with_sun.shape == (32, 64, 4) and with_sun.dtype == np.float32
+    assert np.isfinite(without).all() and (without[:16, :, :3] > 0).all()
+    # The disc adds energy in a few pixels only (its irradiance is checked by the Rust tests).
+    added = (with_sun - without)[..., :3].sum(axis=2)
+    assert (added >= 0).all() and 0 < (added > 0).sum() <= 16

@@ -77,6 +77,11 @@
 //!   cannot draw into ([`check_output_format`]) is refused by `prepare` with
 //!   [`RenderError::OutputFormat`].
 //! - **Images in memory**: [`headless::HeadlessRenderer`] (8-bit display or linear HDR).
+//! - **Environment maps** (HDRIs for image-based lighting): [`envmap`] —
+//!   [`HeadlessRenderer::render_equirect`](headless::HeadlessRenderer::render_equirect) and
+//!   [`render_cube_faces`](headless::HeadlessRenderer::render_cube_faces), linear radiance with
+//!   the suns' discs at their true radiance (or left out, the suns given apart by
+//!   [`envmap::suns_at_eye`]).
 //! - **Your frame: your HDR target, depth buffer and depth convention**:
 //!   [`Renderer::prepare_into`] and [`Renderer::record_into`] with an [`EmbedTarget`] (your
 //!   colour view of one of [`EMBED_COLOR_FORMATS`], your depth view of one of
@@ -115,6 +120,7 @@
 //!   an error.
 
 mod context;
+pub mod envmap;
 mod error;
 pub mod headless;
 mod renderer;

@@ -38,6 +38,8 @@ Examples:
   firmament view --preset earth-sunset          # fly around; F1 panel, F12 screenshot
   firmament timelapse --from 2024-03-20T16:00Z --to 2024-03-20T20:00Z --frames 120 -o lapse
   firmament timelapse … --shard 3/8 -o /shared/lapse   # then: firmament timelapse --assemble /shared/lapse
+  firmament envmap --preset earth-sunset --width 4096 -o sky.exr   # HDRI for Blender, Unreal…
+  firmament envmap --preset earth-noon --cubemap --no-sun -o sky.exr  # 6 faces + sky.sun.json
   firmament completions bash > ~/.local/share/bash-completion/completions/firmament
   firmament manpages --dir ~/.local/share/man/man1
 
@@ -64,6 +66,10 @@ pub(crate) enum Command {
     /// Render a scene at N real instants from --from to --to into a folder of PNG frames, then an
     /// animated GIF and a contact sheet; Ctrl-C keeps the frames done, and a second run resumes.
     Timelapse(TimelapseArgs),
+    /// Render the full sphere of directions around the scene's camera as a linear HDR
+    /// environment map (an equirectangular EXR, or six cube faces) for image-based lighting, the
+    /// suns' discs at their true radiance or given apart as JSON (--no-sun).
+    Envmap(EnvmapArgs),
     /// Open a window on a scene: fly around (mouse and WASD/QE, or NeHe's keys), run and scrub
     /// the time, edit every scene value live in the panel, save the scene and screenshots.
     View(ViewArgs),
@@ -81,6 +87,7 @@ impl Command {
             Self::Check(args) => Some(&args.untrusted),
             Self::SkySample(args) => Some(&args.untrusted),
             Self::Timelapse(args) => Some(&args.untrusted),
+            Self::Envmap(args) => Some(&args.untrusted),
             Self::Presets
             | Self::Bench(_)
             | Self::Sun(_)
@@ -334,6 +341,58 @@ pub(crate) struct TimelapseArgs {
     /// Render every frame again, even those already in the folder (default: resume, skipping them).
     #[arg(long)]
     pub(crate) overwrite: bool,
+    /// Graphics API to render with.
+    #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
+    pub(crate) backend: BackendArg,
+    #[command(flatten)]
+    pub(crate) untrusted: untrusted::UntrustedArgs,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct EnvmapArgs {
+    /// A scene file (TOML): the map is taken at its camera's position. Without one, the preset
+    /// (default `earth-noon`) is used.
+    pub(crate) scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) scene_args: SceneArgs,
+    /// Output `.exr` file (linear float, the units of `render`'s EXR). With --cubemap, the six
+    /// faces are `<stem>_px.exr` … `<stem>_nz.exr` beside it; with --time-lapse, a folder.
+    #[arg(short, long, value_name = "FILE", default_value = "envmap.exr")]
+    pub(crate) output: PathBuf,
+    /// The equirectangular map's width, pixels: even, 4 to 16384 (the height is half of it).
+    #[arg(long, value_name = "W", default_value_t = 2048, value_parser = values::equirect_width)]
+    pub(crate) width: u32,
+    /// Write six cube faces (OpenGL's convention in the Y-up frame: x east, y up, z south)
+    /// instead of the equirectangular map.
+    #[arg(long, conflicts_with = "width")]
+    pub(crate) cubemap: bool,
+    /// Each cube face's side with --cubemap, pixels, 1 to 16384.
+    #[arg(long, value_name = "N", default_value_t = 512, requires = "cubemap",
+          value_parser = clap::value_parser!(u32).range(1..=16_384))]
+    pub(crate) face_size: u32,
+    /// Leave the suns' discs out of the map and write each sun's direction and irradiance after
+    /// the air to `<stem>.sun.json`, for engines that light with a separate directional light.
+    #[arg(long)]
+    pub(crate) no_sun: bool,
+    /// Local solar time of day, `HH:MM` or `HH:MM:SS` (overrides `time.time_of_day`).
+    #[arg(long, value_name = "HH:MM", conflicts_with = "time_lapse")]
+    pub(crate) time: Option<String>,
+    /// One map per instant, --frames of them from --from to --to (both included), into the
+    /// folder -o: `frame_0001.exr` … (with --cubemap `frame_0001_px.exr` …).
+    #[arg(long, requires_all = ["from", "to", "frames"])]
+    pub(crate) time_lapse: bool,
+    /// The first map's instant with --time-lapse, ISO 8601 (`2024-03-20T16:00:00Z`).
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time, requires = "time_lapse")]
+    pub(crate) from: Option<CivilDateTime>,
+    /// The last map's instant with --time-lapse, ISO 8601; not before --from.
+    #[arg(long, value_name = "ISO8601", value_parser = values::date_time, requires = "time_lapse")]
+    pub(crate) to: Option<CivilDateTime>,
+    /// Maps with --time-lapse, evenly spaced from --from to --to.
+    #[arg(long, value_name = "N", value_parser = values::frame_count, requires = "time_lapse")]
+    pub(crate) frames: Option<u32>,
+    /// How the EXR files are compressed, always lossless (default: zip).
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub(crate) exr_compression: Option<ExrCompression>,
     /// Graphics API to render with.
     #[arg(long, value_enum, default_value_t = BackendArg::Auto)]
     pub(crate) backend: BackendArg,

@@ -32,7 +32,7 @@ import numpy as np
 from . import _firmament
 from ._firmament import FirmamentError
 
-__all__ = ["FirmamentError", "render", "sky_sample", "sun_position"]
+__all__ = ["FirmamentError", "envmap", "render", "sky_sample", "sun_position"]
 
 SceneLike = Union[str, "os.PathLike[str]", Mapping[str, Any], None]
 """A scene: TOML text, a scene file's path, a dict of a scene file's keys, or None."""
@@ -73,6 +73,41 @@ def render(
         width=width,
         height=height,
         hdr=hdr,
+        backend_name=backend,
+    )
+
+
+def envmap(
+    scene: SceneLike = None,
+    *,
+    preset: Optional[str] = None,
+    overrides: Sequence[str] = (),
+    width: int = 1024,
+    sun: bool = True,
+    backend: str = "auto",
+) -> np.ndarray:
+    """Render the sphere of directions around the scene's camera as an equirectangular map.
+
+    Returns ``float32`` linear radiance, ``(width // 2, width, 4)``: zenith on the top row,
+    north a quarter of the way across, east in the middle, west at the seam (docs/ENVMAP.md has
+    the orientation of Blender, Unreal, Unity and three.js). ``firmament envmap``'s map.
+
+    Args:
+        scene, preset, overrides: as :func:`render`.
+        width: even, 4 to 16384 pixels.
+        sun: False leaves the suns' discs out (light the scene with a directional light instead;
+            ``firmament envmap --no-sun`` writes each sun's direction and irradiance).
+        backend: as :func:`render`.
+
+    Raises:
+        FirmamentError: a bad scene or argument, or a GPU failure.
+    """
+    return _firmament.envmap(
+        scene if isinstance(scene, os.PathLike) else _plain(scene),
+        preset=preset,
+        overrides=list(overrides),
+        width=width,
+        sun=sun,
         backend_name=backend,
     )
 

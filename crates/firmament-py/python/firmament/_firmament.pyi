@@ -18,5 +18,14 @@ def render(
     hdr: bool = False,
     backend_name: str = "auto",
 ) -> np.ndarray: ...
+def envmap(
+    scene: Union[str, os.PathLike[str], Mapping[str, Any], None] = None,
+    *,
+    preset: Optional[str] = None,
+    overrides: list[str] = ...,
+    width: int = 1024,
+    sun: bool = True,
+    backend_name: str = "auto",
+) -> np.ndarray: ...
 def report(args: list[str]) -> str: ...
 def scene_toml(scene: Union[str, Mapping[str, Any]]) -> str: ...

@@ -12,6 +12,7 @@ mod clouds;
 mod embed_target;
 mod embedding;
 mod empirical_sky;
+mod envmap;
 mod flare;
 mod lut_rebuild;
 mod multiscattering;

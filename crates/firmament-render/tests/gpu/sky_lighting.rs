@@ -9,16 +9,18 @@ use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::{Atmosphere, Planet, Sun, presets};
 use firmament_core::classic::sky_light::SkyLight;
 use firmament_core::color::LinearRgb;
+use firmament_core::envmap::{CubeFace, cube_direction, cube_texel_solid_angle};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::{Camera, Frame};
 use firmament_render::GpuContext;
+use firmament_render::envmap::SunDiscs;
 use firmament_render::gpu_types::SkyLightingGpu;
 use firmament_render::gpu_types::sky_lighting::{SKY_SH_COEFFICIENTS, sh_basis, sh_irradiance};
 use firmament_render::passes::AtmospherePass;
 use firmament_render::passes::atmosphere::sky_lighting_layout_entry;
 use firmament_render::readback::read_buffer;
 use firmament_render::shaders::firmament_lighting_wgsl;
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 /// Bruneton's 6360 km sphere with the `earth` medium, posed so the world is ENU at
 /// (`latitude`, `longitude`) — so the planet frame is not the world frame.
@@ -199,32 +201,30 @@ struct CubePixel {
     radiance: DVec3,
 }
 
-/// The GPU's own sky around `position`: HDR images of the six faces of a cube (draw `sky` with
-/// disc-less suns), each pixel's solid angle `(2/FACE)² / (1 + u² + v²)^(3/2)`.
+/// The GPU's own sky around `position`: its cube faces (`render_cube_faces`, no sun discs),
+/// each texel with its direction and exact solid angle.
 fn render_cube(gpu: &mut Gpu, sky: &AtmosphereSky, position: DVec3) -> Vec<CubePixel> {
+    let Gpu { ctx, renderer } = gpu;
+    let frame = Frame::new(camera(position, DVec3::Y), Sky::Atmosphere(sky.clone()));
+    let cube = renderer
+        .render_cube_faces(ctx, &frame, FACE, SunDiscs::Omitted)
+        .expect("render");
     let mut pixels = Vec::new();
-    for view in [DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y, DVec3::Z, -DVec3::Z] {
-        let camera = camera(position, view);
-        let frame = Frame::new(camera, Sky::Atmosphere(sky.clone()));
-        let Gpu { ctx, renderer } = gpu;
-        let image = renderer.render_hdr(ctx, &frame, FACE, FACE).expect("render");
+    for face in CubeFace::ALL {
+        let image = cube.face(face);
         for y in 0..FACE {
             for x in 0..FACE {
-                let ndc = DVec2::new(
-                    (f64::from(x) + 0.5) / f64::from(FACE) * 2.0 - 1.0,
-                    1.0 - (f64::from(y) + 0.5) / f64::from(FACE) * 2.0,
-                );
                 let p = image.pixel(x, y).expect("inside");
                 pixels.push(CubePixel {
-                    direction: camera.view_direction(ndc),
-                    solid_angle: (2.0 / f64::from(FACE)).powi(2) / (1.0 + ndc.length_squared()).powf(1.5),
+                    direction: cube_direction(face, f64::from(x) + 0.5, f64::from(y) + 0.5, FACE),
+                    solid_angle: cube_texel_solid_angle(x, y, FACE),
                     radiance: DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2])),
                 });
             }
         }
     }
     let total: f64 = pixels.iter().map(|p| p.solid_angle).sum();
-    assert!((total / (4.0 * std::f64::consts::PI) - 1.0).abs() < 1e-3, "{total} sr");
+    assert!((total / (4.0 * std::f64::consts::PI) - 1.0).abs() < 1e-9, "{total} sr");
     pixels
 }
 

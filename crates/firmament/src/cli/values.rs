@@ -107,9 +107,26 @@ pub(crate) fn frame_count(text: &str) -> Result<u32, String> {
     }
 }
 
+/// `envmap --width`: an even number of pixels from 4 to 16384 (the height is half of it).
+pub(crate) fn equirect_width(text: &str) -> Result<u32, String> {
+    match text.trim().parse::<u32>() {
+        Ok(n) if (4..=16_384).contains(&n) && n.is_multiple_of(2) => Ok(n),
+        _ => Err("must be an even number of pixels from 4 to 16384 (the height is half of it)".to_owned()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn equirect_widths_are_even_and_bounded() {
+        assert_eq!(equirect_width("2048"), Ok(2048));
+        assert_eq!(equirect_width("4"), Ok(4));
+        for bad in ["2", "2047", "16386", "-4", "wide", ""] {
+            assert!(equirect_width(bad).is_err(), "{bad}");
+        }
+    }
 
     #[test]
     fn time_lapse_arguments_are_checked() {

@@ -3,6 +3,7 @@
 mod bench;
 mod check;
 mod completions;
+mod envmap;
 mod presets;
 mod render;
 mod scene_input;
@@ -40,6 +41,7 @@ pub(crate) fn run(command: Command) -> Result<()> {
         Command::SkySample(args) => sky_sample::run(&args),
         Command::Sun(args) => sun::run(&args),
         Command::Timelapse(args) => timelapse::run(&args),
+        Command::Envmap(args) => envmap::run(&args),
         Command::View(args) => view::run(&args),
         Command::Completions(args) => completions::run_completions(&args),
         Command::Manpages(args) => completions::run_manpages(&args),

@@ -36,10 +36,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
     let png16 = format == OutputFormat::Png && args.png_bits == 16;
 
     let mut extra = super::scene_input::size_overrides(args.width, args.height);
-    if let Some(time) = &args.time {
-        // Quoted, so the scene's own validation names the rule for a bad time.
-        extra.push(format!("time.time_of_day=\"{}\"", time.replace('"', "")));
-    }
+    extra.extend(super::scene_input::time_override(args.time.as_deref()));
     let scene_args = super::scene_input::with_default_preset(&args.scene_args, args.scene.as_deref(), SHOWCASE_PRESET);
     let what = super::scene_input::describe_scene(args.scene.as_deref(), &scene_args);
     let policy = crate::untrusted::Policy::new(&args.untrusted, args.scene.as_deref())?;

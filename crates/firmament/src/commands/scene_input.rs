@@ -100,6 +100,12 @@ pub(crate) fn size_overrides(width: Option<u32>, height: Option<u32>) -> Vec<Str
     extra
 }
 
+/// The `time.time_of_day` override for `--time HH:MM`, quoted so that the scene's own validation
+/// names the rule for a bad time.
+pub(crate) fn time_override(time: Option<&str>) -> Option<String> {
+    time.map(|t| format!("time.time_of_day=\"{}\"", t.replace('"', "")))
+}
+
 /// How messages name the scene: its file, its preset, or the default scene.
 pub(crate) fn describe_scene(file: Option<&std::path::Path>, args: &SceneArgs) -> String {
     match (file, &args.preset) {

@@ -87,19 +87,20 @@ pub(crate) fn run(args: &TimelapseArgs) -> Result<()> {
 /// Renders the frames of `args` (checked first: a bad span exits like clap's own errors).
 fn render(args: &TimelapseArgs) -> Result<Outcome> {
     let plan = Plan::of(args)?;
-    let span = match time_span(&plan) {
-        Ok(span) => span,
-        Err(message) => {
-            let mut command = crate::cli::Cli::command();
-            command.build();
-            let error = match command.find_subcommand_mut("timelapse") {
-                Some(sub) => sub.error(clap::error::ErrorKind::ArgumentConflict, message),
-                None => command.error(clap::error::ErrorKind::ArgumentConflict, message),
-            };
-            error.exit();
-        }
-    };
+    let span =
+        time_span(&plan.from, &plan.to, plan.frames).unwrap_or_else(|message| argument_error("timelapse", message));
     render_all(args, &plan, span)
+}
+
+/// Exits with status 2 and clap's usage for `subcommand`, like clap's own argument errors.
+pub(crate) fn argument_error(subcommand: &str, message: String) -> ! {
+    let mut command = crate::cli::Cli::command();
+    command.build();
+    let error = match command.find_subcommand_mut(subcommand) {
+        Some(sub) => sub.error(clap::error::ErrorKind::ArgumentConflict, message),
+        None => command.error(clap::error::ErrorKind::ArgumentConflict, message),
+    };
+    error.exit()
 }
 
 /// `--assemble DIR`: the GIF and the contact sheet of the sharded time-lapse in `dir`, once
@@ -151,20 +152,18 @@ fn assemble(dir: &Path) -> Result<Outcome> {
 }
 
 /// Seconds from `--from` to `--to`, checked: `--to` not before `--from`, and after it when more
-/// than one frame is asked for.
-fn time_span(args: &Plan<'_>) -> Result<f64, String> {
-    let span = seconds_between(&args.from, &args.to);
+/// than one of `frames` is asked for.
+pub(crate) fn time_span(from: &CivilDateTime, to: &CivilDateTime, frames: u32) -> Result<f64, String> {
+    let span = seconds_between(from, to);
     if span < 0.0 {
         return Err(format!(
-            "--from {} is after --to {}: --from must not be later than --to",
-            &args.from, &args.to
+            "--from {from} is after --to {to}: --from must not be later than --to"
         ));
     }
-    if span == 0.0 && args.frames > 1 {
+    if span == 0.0 && frames > 1 {
         return Err(format!(
-            "--from and --to are the same instant ({}): {} frames need --to later than --from \
-             (or use --frames 1)",
-            &args.from, args.frames
+            "--from and --to are the same instant ({from}): {frames} frames need --to later than --from \
+             (or use --frames 1)"
         ));
     }
     Ok(span)
@@ -190,7 +189,7 @@ fn seconds_between(a: &CivilDateTime, b: &CivilDateTime) -> f64 {
 }
 
 /// The instant of frame `k` (0-based) of `n`: `from + k·span/(n − 1)` on `from`'s clock.
-fn frame_instant(from: &CivilDateTime, span: f64, k: u32, n: u32) -> CivilDateTime {
+pub(crate) fn frame_instant(from: &CivilDateTime, span: f64, k: u32, n: u32) -> CivilDateTime {
     if n <= 1 {
         return *from;
     }
@@ -221,7 +220,7 @@ fn trim_number(v: f64) -> String {
 
 /// The file name of frame `k` (0-based) of `n`: `frame_0001.png`, numbered from 1 and zero-padded
 /// to the digits of `n`, at least 4.
-fn frame_name(k: u32, n: u32, extension: &str) -> String {
+pub(crate) fn frame_name(k: u32, n: u32, extension: &str) -> String {
     let digits = n.to_string().len().max(4);
     format!("frame_{:0digits$}.{extension}", k + 1)
 }
@@ -233,7 +232,7 @@ fn png_paths(dir: &Path, n: u32) -> Vec<PathBuf> {
 
 /// Fails unless `dir` is a folder or could be created as one (its nearest existing ancestor is a
 /// folder); creates nothing.
-fn check_output_dir(dir: &Path) -> Result<()> {
+pub(crate) fn check_output_dir(dir: &Path) -> Result<()> {
     if dir.exists() {
         if !dir.is_dir() {
             bail!(
@@ -262,7 +261,7 @@ fn check_output_dir(dir: &Path) -> Result<()> {
 }
 
 /// Creates the output folder and proves it writable with a temporary file (removed at once).
-fn create_output_dir(dir: &Path) -> Result<()> {
+pub(crate) fn create_output_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("output {}: cannot create the folder", dir.display()))?;
     crate::output::temp_file_in(dir)
         .with_context(|| format!("output {}: cannot write in the folder", dir.display()))?;

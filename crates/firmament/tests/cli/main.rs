@@ -5,6 +5,7 @@
 mod bad_inputs;
 mod commands;
 mod determinism;
+mod envmap;
 mod png_bits;
 mod sun;
 mod support;

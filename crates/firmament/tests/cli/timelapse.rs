@@ -7,7 +7,7 @@ use std::process::Command;
 use firmament_core::astro::spa::{SpaInput, sun_times};
 use firmament_core::astro::{CivilDateTime, Instant};
 
-use crate::support::{firmament, names_in, stderr};
+use crate::support::{exr_floats, firmament, names_in, stderr};
 
 /// Every path under `dir`, recursively, sorted.
 fn files_in(dir: &Path) -> Vec<PathBuf> {
@@ -375,20 +375,6 @@ fn every_bad_input_fails_cleanly_and_writes_nothing() {
 
 /// An image's floats, RGBA rows top first.
 type Floats = Vec<f32>;
-
-/// Every float of `path`'s first RGBA layer, read by the `exr` crate, rows top first.
-fn exr_floats(path: &Path) -> Floats {
-    let image = exr::prelude::read_first_rgba_layer_from_file(
-        path,
-        |size, _| (size.width(), vec![0.0_f32; size.width() * size.height() * 4]),
-        |(width, floats), at, (r, g, b, a): (f32, f32, f32, f32)| {
-            let i = (at.y() * *width + at.x()) * 4;
-            floats[i..i + 4].copy_from_slice(&[r, g, b, a]);
-        },
-    )
-    .unwrap_or_else(|e| panic!("{}: not an EXR the exr crate reads: {e}", path.display()));
-    image.layer_data.channel_data.pixels.1
-}
 
 /// `--exr` frames are compressed as `--exr-compression` says (zip by default), in 32-bit float,
 /// and every compression holds the same floats, read by the `exr` crate and by `image` alike —

@@ -239,10 +239,12 @@ fn hostile_scenes_are_refused_without_looking_outside_the_folder() {
         }
         std::fs::remove_file(job.join(&scene)).expect("the scene is removed");
     }
-    // A render refuses the same way, before any output exists.
+    // A render and an environment map refuse the same way, before any output exists.
     write(&job.join("s.toml"), texture_scene("link.png"));
-    let out = firmament(&job, &["-q", "render", "s.toml", "--untrusted", "-o", "out.png"]);
-    refused(&out, 1, &["symbolic link on the way leads out"], "render");
+    for (command, output) in [("render", "out.png"), ("envmap", "out.exr")] {
+        let out = firmament(&job, &["-q", command, "s.toml", "--untrusted", "-o", output]);
+        refused(&out, 1, &["symbolic link on the way leads out"], command);
+    }
     std::fs::remove_file(job.join("s.toml")).expect("the scene is removed");
     assert_eq!(names_in(&job), before, "files were left behind");
 }
