@@ -12,6 +12,7 @@ fi
 "$venv/bin/python" -m pip install -q --upgrade pip
 "$venv/bin/python" -m pip install -q "numpy>=1.21" "pytest>=7"
 MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install -q --force-reinstall --no-deps .
-# The tests compare against the command line's own PNG: it must be built.
-cargo build -q -p firmament
+# The tests compare against the command line's own PNG: its binary, as `cargo test --workspace`
+# built it (a no-op after it; `cargo build -p firmament` would resolve features anew).
+cargo test -q --workspace --no-run
 "$venv/bin/python" -m pytest -q crates/firmament-py/tests

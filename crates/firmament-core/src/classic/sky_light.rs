@@ -10,6 +10,11 @@
 //! `E_sky/π`, the irradiance of the whole sky on a horizontal surface, taken once at the camera
 //! (it changes over kilometres of altitude; the direct beam changes across a terminator). Aerial
 //! perspective between the object and the camera is the renderer's.
+//!
+//! The beam also passes through the sky's cloud layers: an object under a cloud (at its origin)
+//! gets the sun's light through it, a lens flare's sun is dimmed by it, and a sun behind an
+//! overcast gives no shadows before a clear one. The ambient term and the ground's bounce do not
+//! see the clouds yet (docs/CLOUDS.md, "Not yet done").
 
 use glam::{DVec3, DVec4};
 
@@ -32,7 +37,10 @@ pub const SKY_IRRADIANCE_PATHS: usize = 1024;
 #[derive(Debug)]
 pub struct SkyLight<'a> {
     sky: &'a AtmosphereSky,
+    /// The clear air: the sky's irradiance.
     reference: Reference,
+    /// The air and the clouds: the suns' beams.
+    beams: Reference,
     conversion: SpectralConversion,
     /// The last point's irradiance ([`Self::lighting`] and [`Self::ground`] share it).
     irradiance: std::sync::Mutex<Option<(DVec3, GroundIrradiance)>>,
@@ -45,9 +53,11 @@ impl<'a> SkyLight<'a> {
             paths: SKY_IRRADIANCE_PATHS,
             ..ReferenceSettings::default()
         };
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
         Self {
             sky,
-            reference: Reference::new(sky.atmosphere, &sky.suns, settings),
+            beams: reference.clone().with_clouds(&sky.clouds),
+            reference,
             conversion: sky.atmosphere.spectral_conversion(),
             irradiance: std::sync::Mutex::new(None),
         }
@@ -73,8 +83,8 @@ impl<'a> SkyLight<'a> {
         DVec4::new(c.r.max(0.0), c.g.max(0.0), c.b.max(0.0), 1.0)
     }
 
-    /// Each sun's light colour at `point` (world frame, metres): `E·T/π`, black when the sun is
-    /// below the point's horizon.
+    /// Each sun's light colour at `point` (world frame, metres): `E·T/π`, `T` through the air
+    /// and the clouds; black when the sun is below the point's horizon.
     pub fn sun_colors(&self, point: DVec3) -> Vec<DVec4> {
         let planet = &self.sky.atmosphere.planet;
         let at = planet.to_planet_frame(point);
@@ -83,7 +93,7 @@ impl<'a> SkyLight<'a> {
             .iter()
             .map(|sun| {
                 let towards = planet.direction_to_planet_frame(sun.direction.normalize());
-                self.rgb(sun.irradiance * self.reference.transmittance_to_space(at, towards))
+                self.rgb(sun.irradiance * self.beams.transmittance_to_space(at, towards))
             })
             .collect()
     }
@@ -250,5 +260,50 @@ mod tests {
         assert!(summit.x > 0.0 && summit.x > summit.z, "a red sunset beam: {summit}");
         let lit = light.lighting(DVec3::new(0.0, 0.0, 2.0), Shading::Gouraud, SpecularModel::Blinn);
         assert_eq!(lit.lights[0].light.diffuse, street);
+    }
+
+    #[test]
+    fn a_uniform_cloud_layer_dims_the_beam_by_its_optical_depth() {
+        use crate::atmosphere::clouds::{CloudKind, CloudLayer};
+        let mut earth = presets::earth();
+        earth.planet = earth.planet.posed_at(45f64.to_radians(), 0.0);
+        let sky = |zenith_deg: f64, clouds: Vec<CloudLayer>| {
+            let z = zenith_deg.to_radians();
+            AtmosphereSky {
+                atmosphere: earth,
+                suns: vec![presets::earth_sun(DVec3::new(0.0, z.sin(), z.cos()))],
+                clouds,
+            }
+        };
+        // 1000 m of 0.001 m⁻¹ seen from 2 m: the beam's path through the shell between 1000 and
+        // 2000 m on a sphere of the Earth's mean radius (a slant path's curvature term, 0.07 % at
+        // 60°; the ellipsoid's own curvature here changes it by parts in 10⁶).
+        let layer = CloudLayer::new(1000.0, 2000.0, 1.0, 0.001, CloudKind::Uniform);
+        let path = |zenith_deg: f64| {
+            let (r0, mu) = (6_371_000.0 + 2.0, zenith_deg.to_radians().cos());
+            let to = |h: f64| -r0 * mu + ((6_371_000.0 + h).powi(2) - r0 * r0 * (1.0 - mu * mu)).sqrt();
+            to(2000.0) - to(1000.0)
+        };
+        for zenith_deg in [0.0, 60.0] {
+            let tau = 0.001 * path(zenith_deg);
+            let (clear, cloudy) = (sky(zenith_deg, Vec::new()), sky(zenith_deg, vec![layer.clone()]));
+            let (clear, cloudy) = (SkyLight::new(&clear), SkyLight::new(&cloudy));
+            let below = DVec3::new(0.0, 0.0, 2.0);
+            let ratio = cloudy.sun_colors(below)[0] / clear.sun_colors(below)[0];
+            for channel in [ratio.x, ratio.y, ratio.z] {
+                let want = (-tau).exp();
+                assert!((channel / want - 1.0).abs() < 1e-5, "{zenith_deg}°: {ratio} vs {want}");
+            }
+            let above = DVec3::new(0.0, 0.0, 2500.0);
+            assert_eq!(cloudy.sun_colors(above), clear.sun_colors(above), "{zenith_deg}°");
+            // The sky's irradiance (the ambient) does not see the clouds yet.
+            let lit = |light: &SkyLight<'_>| {
+                light
+                    .lighting(below, Shading::Phong, SpecularModel::Blinn)
+                    .model
+                    .ambient
+            };
+            assert_eq!(lit(&cloudy), lit(&clear));
+        }
     }
 }

@@ -522,3 +522,39 @@ fn every_bad_flare_value_names_its_key() {
     let message = load_error("[flare]\nsamples = 0\n");
     assert!(message.contains("flare.samples"), "{message}");
 }
+
+#[test]
+fn a_cloud_between_the_eye_and_the_sun_dims_its_flare_by_the_beam() {
+    // The sun 60° up behind a uniform layer 500 m thick of 0.001 m⁻¹: its optical depth along
+    // the beam, from the camera's altitude, through the shell (the Earth's mean radius; the
+    // ellipsoid's own curvature changes it by parts in 10⁶).
+    let sets = ["suns.0.elevation=60"];
+    let altitude = preset("earth-sunset", &sets)
+        .expect("valid")
+        .camera_altitude()
+        .expect("over the ground");
+    let (r0, mu) = (6_371_000.0 + altitude, 30f64.to_radians().cos());
+    let to = |h: f64| -r0 * mu + ((6_371_000.0_f64 + h).powi(2) - r0 * r0 * (1.0 - mu * mu)).sqrt();
+    let tau = 0.001 * (to(1500.0) - to(1000.0));
+    let clear = flares(&preset("earth-sunset", &sets).expect("valid")).sources[0].color;
+    let cloud = [
+        "suns.0.elevation=60",
+        "clouds.0.kind=\"uniform\"",
+        "clouds.0.bottom=1000.0",
+        "clouds.0.top=1500.0",
+        "clouds.0.coverage=1.0",
+        "clouds.0.density=0.001",
+    ];
+    let dimmed = flares(&preset("earth-sunset", &cloud).expect("valid")).sources[0].color;
+    let want = (-tau).exp();
+    for (d, c) in [(dimmed.x, clear.x), (dimmed.y, clear.y), (dimmed.z, clear.z)] {
+        assert!((d / c / want - 1.0).abs() < 1e-5, "{dimmed} / {clear} vs {want}");
+    }
+    // Above the layer the flare is the clear sky's.
+    let over = [&cloud[..], &["camera.position=[0, 0, 3000]"]].concat();
+    let over_clear = [&sets[..], &["camera.position=[0, 0, 3000]"]].concat();
+    assert_eq!(
+        flares(&preset("earth-sunset", &over).expect("valid")).sources[0].color,
+        flares(&preset("earth-sunset", &over_clear).expect("valid")).sources[0].color
+    );
+}
