@@ -67,7 +67,7 @@ def render(
         FirmamentError: a bad scene or argument, or a GPU failure.
     """
     return _firmament.render(
-        scene if isinstance(scene, os.PathLike) else _plain(scene),
+        _scene_arg(scene),
         preset=preset,
         overrides=list(overrides),
         width=width,
@@ -103,7 +103,7 @@ def envmap(
         FirmamentError: a bad scene or argument, or a GPU failure.
     """
     return _firmament.envmap(
-        scene if isinstance(scene, os.PathLike) else _plain(scene),
+        _scene_arg(scene),
         preset=preset,
         overrides=list(overrides),
         width=width,
@@ -206,6 +206,11 @@ def sun_position(
     if delta_t_s is not None:
         args.append(f"--delta-t={delta_t_s!r}")
     return json.loads(_firmament.report(args))
+
+
+def _scene_arg(scene: SceneLike) -> Any:
+    """``scene`` as the extension's render functions take it: a path as it is, else :func:`_plain`."""
+    return scene if isinstance(scene, os.PathLike) else _plain(scene)
 
 
 def _plain(scene: SceneLike) -> Any:

@@ -116,16 +116,8 @@ fn assemble(dir: &Path) -> Result<Outcome> {
     })?;
     let n = manifest.frames;
     let pngs = png_paths(dir, n);
-    let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
-    let files = |k: u32| {
-        let png = pngs[k as usize].clone();
-        if manifest.exr {
-            vec![png, exr_path(k)]
-        } else {
-            vec![png]
-        }
-    };
-    let present: Vec<u32> = (0..n).filter(|&k| files(k).iter().all(|f| f.is_file())).collect();
+    let files = |k: u32| frame_files(dir, k, n, manifest.exr);
+    let present: Vec<u32> = (0..n).filter(|&k| all_files(&files(k))).collect();
     let mut missing: Vec<u32> = (0..n).filter(|k| present.binary_search(k).is_err()).collect();
     missing.extend(incomplete_frames(&present, files, manifest.width, manifest.height)?);
     missing.sort_unstable();
@@ -223,6 +215,20 @@ fn trim_number(v: f64) -> String {
 pub(crate) fn frame_name(k: u32, n: u32, extension: &str) -> String {
     let digits = n.to_string().len().max(4);
     format!("frame_{:0digits$}.{extension}", k + 1)
+}
+
+/// The files of frame `k` of `n` in `dir`: its PNG, and its EXR when `exr`.
+fn frame_files(dir: &Path, k: u32, n: u32, exr: bool) -> Vec<PathBuf> {
+    let mut files = vec![dir.join(frame_name(k, n, "png"))];
+    if exr {
+        files.push(dir.join(frame_name(k, n, "exr")));
+    }
+    files
+}
+
+/// Whether every one of `files` is a file.
+fn all_files(files: &[PathBuf]) -> bool {
+    files.iter().all(|f| f.is_file())
 }
 
 /// The frames' PNG paths, in order.
@@ -448,13 +454,12 @@ fn render_all(args: &TimelapseArgs, plan: &Plan<'_>, span: f64) -> Result<Outcom
 
     let pngs = png_paths(dir, n);
     let exr_path = |k: u32| dir.join(frame_name(k, n, "exr"));
-    let is_done = |k: u32| pngs[k as usize].is_file() && (!args.exr || exr_path(k).is_file());
-    let mut todo: Vec<u32> = mine.clone().filter(|&k| args.overwrite || !is_done(k)).collect();
+    let files = |k: u32| frame_files(dir, k, n, args.exr);
+    let mut todo: Vec<u32> = mine
+        .clone()
+        .filter(|&k| args.overwrite || !all_files(&files(k)))
+        .collect();
     let done: Vec<u32> = mine.clone().filter(|k| todo.binary_search(k).is_err()).collect();
-    let files = |k: u32| {
-        let png = pngs[k as usize].clone();
-        if args.exr { vec![png, exr_path(k)] } else { vec![png] }
-    };
     todo.extend(incomplete_frames(&done, files, width, height)?);
     todo.sort_unstable();
     let mine_count = mine.len() as u32;
