@@ -344,6 +344,7 @@ impl Renderer {
             ..frame.camera
         };
         self.sky = passes.prepare(ctx, frame, &camera, (width, height));
+        passes.atmosphere.bind_clouds_into(&ctx.device, target.depth);
         self.active = Some(key);
         self.lighting_recorded.set(false);
         self.embedded_size = (width, height);
@@ -366,8 +367,8 @@ impl Renderer {
     /// this encoder or before): the sky behind that geometry where the depth buffer still holds
     /// the far plane, the stars and the Moon over the sky, aerial perspective over the geometry
     /// (`colour · T + S`, with distances from the depth buffer) when the sky is an atmosphere
-    /// (unless [`EmbedTarget::without_aerial_perspective`]),
-    /// and the lens flares, hidden by the geometry, over everything. Colour is loaded and
+    /// (unless [`EmbedTarget::without_aerial_perspective`]), the cloud layers in front of the
+    /// geometry, and the lens flares, hidden by the geometry, over everything. Colour is loaded and
     /// blended, never cleared; depth is tested, never written. Linear radiance in the sky's
     /// units: tone-map it yourself, or give the target an output view
     /// ([`EmbedTarget::with_output`]) and firmament's output pass writes the finished image
@@ -406,6 +407,14 @@ impl Renderer {
         if self.sky == SkyKind::Atmosphere && target.aerial_perspective {
             passes.atmosphere.record_aerial_perspective(encoder, target.color);
             timing.mark(encoder, PHASE_AERIAL_PERSPECTIVE);
+        }
+        if self.sky == SkyKind::Atmosphere && passes.atmosphere.has_clouds() {
+            // The volume lights the air in front of the clouds.
+            if !target.aerial_perspective {
+                passes.atmosphere.record_aerial_perspective_volume(encoder);
+            }
+            passes.atmosphere.record_clouds_into(encoder, target.color);
+            timing.mark(encoder, PHASE_CLOUDS);
         }
         passes.flares.record(encoder, target.color);
         timing.mark(encoder, PHASE_FLARES);

@@ -1,15 +1,19 @@
-//! The cloud layers (`shaders/clouds/march.wgsl`): a compute pass over the renderer's own HDR
-//! target, after the sky, the objects and their aerial perspective, that marches each pixel's
-//! ray through the layers in front of its geometry and lays the clouds over the image. Like the
-//! compute aerial perspective it reads the target and writes a scratch copy that is copied back.
+//! The cloud layers (`shaders/clouds/march.wgsl`): a compute pass after the sky, the objects and
+//! their aerial perspective, that marches each pixel's ray through the layers in front of its
+//! geometry and lays the clouds over the image. On the renderer's own HDR target it reads the
+//! target and writes a scratch copy that is copied back, like the compute aerial perspective; on
+//! a caller's target (which it may not write) it writes the clouds as a layer of its own and a
+//! full-screen draw blends that over the caller's colour.
 
 use firmament_core::atmosphere::clouds::{CloudLayer, CoverageMap};
 use firmament_core::frame::AtmosphereSky;
 
 use super::aerial_perspective::{AerialPerspectiveResources, scratch_for};
-use super::stages::{ComputeStage, binding, sampler_entry, storage_entry, texture_entry, uniform_entry};
+use super::stages::{
+    ComputeStage, bind_group, binding, sampler_entry, storage_entry, texture_entry, uniform_entry,
+};
 use crate::gpu_types::clouds::CloudsGpu;
-use crate::passes::common::uniform_buffer;
+use crate::passes::common::{PassPipeline, load_color_attachment, uniform_buffer};
 use crate::shaders;
 
 /// Texels of the GPU's copy of each coverage map (longitude, latitude): maps of any size are
@@ -30,6 +34,8 @@ pub(super) struct CloudStages {
     /// Layers in the frame last prepared.
     layers: usize,
     on_target: Option<OnTarget>,
+    /// The stages for a caller's target, once one with clouds was bound.
+    into_caller: Option<IntoCaller>,
 }
 
 /// The stage bound to one HDR target.
@@ -40,6 +46,27 @@ struct OnTarget {
     target: wgpu::Texture,
     scratch: wgpu::Texture,
 }
+
+/// The stages for a caller's target: the march writing the clouds as a layer, and the draw that
+/// blends the layer over the caller's colour (`src + dst · src.a`).
+#[derive(Debug)]
+struct IntoCaller {
+    stage: ComputeStage,
+    /// The clouds' light (rgb) and transmittance (a) at the caller's size, [`HDR_FORMAT`].
+    ///
+    /// [`HDR_FORMAT`]: crate::targets::HDR_FORMAT
+    layer: wgpu::Texture,
+    /// Its view, read by the blend (`HDR_IN` of its group).
+    layer_view: wgpu::TextureView,
+    /// What the march reads as `HDR_IN`, which its layer form never reads.
+    placeholder: wgpu::TextureView,
+    blend: wgpu::RenderPipeline,
+    blend_layout: wgpu::BindGroupLayout,
+    blend_group: wgpu::BindGroup,
+}
+
+/// The owner of the caller's blend draw, for labels.
+const BLEND_OWNER: &str = "AtmospherePass clouds blend";
 
 /// The stage's layout entries.
 fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
@@ -58,6 +85,36 @@ fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         texture_entry(binding::HDR_IN, false),
         storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
     ]
+}
+
+/// The draw that blends the clouds' layer over a colour target of `color`: `src + dst · src.a`
+/// in colour, the target's alpha kept.
+fn blend_pipeline(device: &wgpu::Device, color: wgpu::TextureFormat) -> (wgpu::RenderPipeline, wgpu::BindGroupLayout) {
+    PassPipeline {
+        owner: BLEND_OWNER,
+        source: &shaders::CLOUDS_MARCH,
+        entries: &[texture_entry(binding::HDR_IN, false)],
+        color,
+        depth_stencil: None,
+        vertex_buffers: &[],
+        primitive: wgpu::PrimitiveState::default(),
+        constants: &[],
+    }
+    .build_blended(
+        device,
+        Some(wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::One,
+                dst_factor: wgpu::BlendFactor::SrcAlpha,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::One,
+                operation: wgpu::BlendOperation::Add,
+            },
+        }),
+    )
 }
 
 /// A filterable 2D-array texture.
@@ -121,6 +178,7 @@ impl CloudStages {
             uploaded_maps: Vec::new(),
             layers: 0,
             on_target: None,
+            into_caller: None,
         }
     }
 
@@ -174,19 +232,16 @@ impl CloudStages {
         self.layers > 0
     }
 
-    /// Binds `target` (an HDR texture with `TEXTURE_BINDING | COPY_DST`) and its depth buffer.
-    pub(super) fn bind_target(
-        &mut self,
-        device: &wgpu::Device,
-        resources: &AerialPerspectiveResources<'_>,
-        target: &wgpu::Texture,
-        depth: &wgpu::TextureView,
-    ) {
-        let scratch = scratch_for(device, target, "firmament AtmospherePass clouds scratch");
-        let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
-        let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
+    /// Every resource of the march: `hdr_in` and `hdr_out` as given, the depth buffer `depth`.
+    fn resources<'a>(
+        &'a self,
+        resources: &AerialPerspectiveResources<'a>,
+        depth: &'a wgpu::TextureView,
+        hdr_in: &'a wgpu::TextureView,
+        hdr_out: &'a wgpu::TextureView,
+    ) -> Vec<(u32, wgpu::BindingResource<'a>)> {
         let luts = resources.luts;
-        let all = [
+        vec![
             (binding::PARAMS, resources.params.as_entire_binding()),
             (binding::VIEW, resources.view.as_entire_binding()),
             (binding::CLOUDS, self.uniforms.as_entire_binding()),
@@ -216,10 +271,25 @@ impl CloudStages {
                 wgpu::BindingResource::TextureView(&luts.aerial_transmittance.view),
             ),
             (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
-            (binding::HDR_IN, wgpu::BindingResource::TextureView(&target_view)),
-            (binding::HDR_OUT, wgpu::BindingResource::TextureView(&scratch_view)),
-        ];
-        let stage = match self.on_target.take() {
+            (binding::HDR_IN, wgpu::BindingResource::TextureView(hdr_in)),
+            (binding::HDR_OUT, wgpu::BindingResource::TextureView(hdr_out)),
+        ]
+    }
+
+    /// Binds `target` (an HDR texture with `TEXTURE_BINDING | COPY_DST`) and its depth buffer.
+    pub(super) fn bind_target(
+        &mut self,
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        target: &wgpu::Texture,
+        depth: &wgpu::TextureView,
+    ) {
+        let scratch = scratch_for(device, target, "firmament AtmospherePass clouds scratch");
+        let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
+        let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
+        let previous = self.on_target.take();
+        let all = self.resources(resources, depth, &target_view, &scratch_view);
+        let stage = match previous {
             Some(OnTarget { mut stage, .. }) => {
                 stage.rebind(device, &all);
                 stage
@@ -237,6 +307,103 @@ impl CloudStages {
             target: target.clone(),
             scratch,
         });
+    }
+
+    /// Binds a caller's depth buffer `depth` (its colour target's size) for
+    /// [`record_into`](Self::record_into) a colour target of `color`: the layer at that size (kept
+    /// while the size does not change) and the blend's pipeline for that format (built once).
+    /// Nothing without clouds in the frame last prepared.
+    pub(super) fn bind_caller(
+        &mut self,
+        device: &wgpu::Device,
+        resources: &AerialPerspectiveResources<'_>,
+        depth: &wgpu::TextureView,
+        color: wgpu::TextureFormat,
+    ) {
+        if !self.any() {
+            return;
+        }
+        let size = depth.texture().size();
+        let previous = self.into_caller.take();
+        let (layer, layer_view) = match &previous {
+            Some(caller) if caller.layer.size() == size => (caller.layer.clone(), caller.layer_view.clone()),
+            _ => {
+                let layer = crate::targets::texture_2d(
+                    device,
+                    "firmament AtmospherePass clouds layer",
+                    (size.width, size.height),
+                    crate::targets::HDR_FORMAT,
+                    wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                );
+                let view = layer.create_view(&wgpu::TextureViewDescriptor::default());
+                (layer, view)
+            }
+        };
+        let placeholder = match &previous {
+            Some(caller) => caller.placeholder.clone(),
+            None => crate::targets::hdr_placeholder(device, "firmament AtmospherePass clouds unread input"),
+        };
+        let all = self.resources(resources, depth, &placeholder, &layer_view);
+        let (stage, blend, blend_layout) = match previous {
+            Some(IntoCaller {
+                mut stage,
+                blend,
+                blend_layout,
+                ..
+            }) => {
+                stage.rebind(device, &all);
+                (stage, blend, blend_layout)
+            }
+            None => {
+                let stage = ComputeStage::with_constants(
+                    device,
+                    "AtmospherePass clouds layer",
+                    &shaders::CLOUDS_MARCH,
+                    &entries(),
+                    &all,
+                    &[("CLOUD_LAYER", 1.0)],
+                );
+                let (blend, blend_layout) = blend_pipeline(device, color);
+                (stage, blend, blend_layout)
+            }
+        };
+        let blend_group = bind_group(
+            device,
+            BLEND_OWNER,
+            &blend_layout,
+            &[(binding::HDR_IN, wgpu::BindingResource::TextureView(&layer_view))],
+        );
+        self.into_caller = Some(IntoCaller {
+            stage,
+            layer,
+            layer_view,
+            placeholder,
+            blend,
+            blend_layout,
+            blend_group,
+        });
+    }
+
+    /// Encodes the clouds over a caller's `color` (loaded, not cleared), bound by
+    /// [`bind_caller`](Self::bind_caller) (after the aerial-perspective volume); false, encoding
+    /// nothing, without layers or a bound target.
+    pub(super) fn record_into(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) -> bool {
+        let Some(caller) = self.into_caller.as_ref().filter(|_| self.any()) else {
+            return false;
+        };
+        let size = caller.layer.size();
+        caller
+            .stage
+            .dispatch(encoder, (size.width.div_ceil(8), size.height.div_ceil(8), 1));
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("firmament AtmospherePass clouds blend"),
+            color_attachments: &[Some(load_color_attachment(color))],
+            ..Default::default()
+        });
+        pass.set_pipeline(&caller.blend);
+        pass.set_bind_group(0, &caller.blend_group, &[]);
+        pass.draw(0..3, 0..1);
+        true
     }
 
     /// Encodes the clouds over the bound target and the copy back (after the aerial-perspective

@@ -139,6 +139,8 @@ pub struct AtmospherePass {
     method: SkyMethod,
     /// The depth buffer's convention the pipelines were built for.
     convention: DepthConvention,
+    /// The colour format the draws into a caller's target were built for.
+    color: wgpu::TextureFormat,
 }
 
 impl AtmospherePass {
@@ -271,6 +273,7 @@ impl AtmospherePass {
             method: SkyMethod::Lut,
             sky_mode: SkyMode::Lut,
             convention,
+            color,
         }
     }
 
@@ -599,6 +602,29 @@ impl AtmospherePass {
     /// Whether the sky last prepared has cloud layers.
     pub fn has_clouds(&self) -> bool {
         self.clouds.any()
+    }
+
+    /// Binds a caller's depth buffer `depth` (of its colour target's size, this pass's depth
+    /// convention) for [`record_clouds_into`](Self::record_clouds_into), when the sky last
+    /// prepared has clouds. Call after `prepare`, whenever the depth view changes.
+    pub fn bind_clouds_into(&mut self, device: &wgpu::Device, depth: &wgpu::TextureView) {
+        let resources = AerialPerspectiveResources {
+            params: &self.params,
+            view: &self.view,
+            luts: &self.luts,
+            sampler: &self.sampler,
+        };
+        self.clouds.bind_caller(device, &resources, depth, self.color);
+    }
+
+    /// Encodes the cloud layers over a caller's `color` target (of the format this pass was built
+    /// for; loaded, never cleared), in front of what the depth buffer bound by
+    /// [`bind_clouds_into`](Self::bind_clouds_into) holds: after the sky, the geometry and its
+    /// aerial perspective, and after the aerial-perspective volume, which lights the air in
+    /// front of the clouds. Returns false, encoding nothing, without clouds or a bound depth
+    /// buffer.
+    pub fn record_clouds_into(&self, encoder: &mut wgpu::CommandEncoder, color: &wgpu::TextureView) -> bool {
+        self.clouds.record_into(encoder, color)
     }
 
     /// Encodes the cloud layers over the target bound by

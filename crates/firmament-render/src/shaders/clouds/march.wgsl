@@ -18,7 +18,14 @@
 // Frostbite"): the air in front of the cloud is the aerial-perspective volume's at the cloud's
 // transmittance-weighted depth; the image behind keeps its own air:
 // out = A + T_air · L_cloud + T_cloud · (in − A).
+//
+// Into a caller's target (`CLOUD_LAYER`), which a compute pass cannot read and write, cs_main
+// writes the clouds as a layer instead, (A·(1 − T_cloud) + T_air · L_cloud, T_cloud), and
+// vs_main/fs_main lay it over the caller's colour with the blend `src + dst · src.a`: the same
+// sum wherever the image behind is brighter than the air in front (`in ≥ A`; the renderer's own
+// targets clamp `in − A` at zero).
 
+#import common/fullscreen
 #import common/ellipsoid
 #import common/view_ray
 #import atmosphere/bindings
@@ -37,6 +44,10 @@ const FINE_TO_COARSE: u32 = 8u;
 const LIGHT_STEPS: u32 = 6u;
 // Below this the cloud hides everything behind it: the march stops.
 const OPAQUE: f32 = 1e-3;
+
+// Whether cs_main writes the clouds as a layer to blend (a caller's target) rather than the
+// image with the clouds over it (the renderer's own).
+override CLOUD_LAYER: bool = false;
 
 // One stretch of a ray inside one layer.
 struct Stretch {
@@ -289,14 +300,18 @@ fn march_clouds(ray: ViewRay, far: f32, jitter: f32, footprint: f32) -> CloudSam
     return acc;
 }
 
-// The image at pixel `id` with the clouds laid over it.
+// The image at pixel `id` with the clouds laid over it, or with CLOUD_LAYER the clouds alone as a
+// layer to blend.
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = textureDimensions(scene_depth);
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let color = textureLoad(hdr_in, id.xy, 0);
+    var color = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    if !CLOUD_LAYER {
+        color = textureLoad(hdr_in, id.xy, 0);
+    }
     let ndc = pixel_ndc(id.xy, size);
     let ray = view_ray(ndc);
     let depth = textureLoad(scene_depth, id.xy, 0).x;
@@ -310,6 +325,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let footprint = 2.0 * view.camera_shape.w / f32(size.y);
     let cloud = march_clouds(ray, far, pixel_jitter(pixel), footprint);
     if cloud.weight_sum <= 0.0 {
+        // No cloud: the image as it is, or a layer that leaves it so.
         textureStore(hdr_out, id.xy, color);
         return;
     }
@@ -326,7 +342,23 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         air_light = min(to_linear_srgb(firmament_aerial_scattering_at(aerial_scattering, lut_sampler, coordinates)), vec3<f32>(HDR_MAX));
     }
     let cloud_light = to_linear_srgb(cloud.radiance) * air_transmittance;
+    if CLOUD_LAYER {
+        let layer = air_light * (1.0 - cloud.transmittance) + cloud_light;
+        textureStore(hdr_out, id.xy, vec4<f32>(min(layer, vec3<f32>(HDR_MAX)), cloud.transmittance));
+        return;
+    }
     let behind = max(color.rgb - air_light, vec3<f32>(0.0));
     let out = air_light + cloud_light + cloud.transmittance * behind;
     textureStore(hdr_out, id.xy, vec4<f32>(min(out, vec3<f32>(HDR_MAX)), color.a));
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> FullscreenVertex {
+    return fullscreen_vertex(index, FAR_DEPTH);
+}
+
+// The layer cs_main wrote with CLOUD_LAYER (bound as `hdr_in`), to blend `src + dst · src.a`.
+@fragment
+fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
+    return textureLoad(hdr_in, vec2<i32>(in.clip.xy), 0);
 }
