@@ -1,6 +1,6 @@
-//! The cloud layers (`shaders/clouds/march.wgsl`) against closed forms: a uniform slab's
-//! transmittance, the image left alone where no cloud is, objects in front of a cloud, and
-//! reruns identical to the byte.
+//! The cloud layers (`shaders/clouds/march.wgsl`) against closed forms and the f64 reference: a
+//! uniform slab's transmittance, its shadow on the ground, the image left alone where no cloud
+//! is, and reruns identical to the byte.
 
 use firmament_core::atmosphere::clouds::{CloudKind, CloudLayer};
 use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum, Sun, presets};
@@ -56,14 +56,37 @@ fn path_through_shell(radius: f64, height: f64, bottom: f64, top: f64, zenith: f
     distance_to(radius + top) - distance_to(radius + bottom)
 }
 
+/// An absorbing uniform layer (albedo 0), 1000–2000 m up, σ = 10⁻³ m⁻¹ (τ = 1 straight up).
+struct Absorber {
+    bottom_m: f64,
+    top_m: f64,
+    density_per_m: f64,
+}
+
+const ABSORBER: Absorber = Absorber {
+    bottom_m: 1_000.0,
+    top_m: 2_000.0,
+    density_per_m: 1.0e-3,
+};
+
+fn absorber() -> CloudLayer {
+    CloudLayer {
+        albedo: 0.0,
+        ..CloudLayer::new(
+            ABSORBER.bottom_m,
+            ABSORBER.top_m,
+            1.0,
+            ABSORBER.density_per_m,
+            CloudKind::Uniform,
+        )
+    }
+}
+
 #[test]
 fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
     let mut gpu = gpu();
-    let (bottom, top, density) = (1_000.0, 2_000.0, 1.0e-3);
-    let absorber = CloudLayer {
-        albedo: 0.0,
-        ..CloudLayer::new(bottom, top, 1.0, density, CloudKind::Uniform)
-    };
+    let (bottom, top, density) = (ABSORBER.bottom_m, ABSORBER.top_m, ABSORBER.density_per_m);
+    let absorber = absorber();
     let eye = DVec3::new(0.0, 0.0, 2.0);
     for zenith_deg in [0.0, 30.0, 60.0, 75.0] {
         let sun = wide_sun(zenith_deg);
@@ -96,9 +119,10 @@ fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
 #[test]
 fn pixels_whose_rays_miss_every_layer_are_left_alone() {
     let mut gpu = gpu();
-    // A layer far above a camera looking down from 500 m below it: half the image sees only
-    // the ground and air below the layer, the other half the layer.
-    let sky = crate::support::street_sky(90.0, 30.0);
+    // A layer far above a camera looking down from 100 m: every ray meets the ground first. The
+    // sun is below the horizon, so the layer shadows no ground either (see
+    // `a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance`).
+    let sky = crate::support::street_sky(90.0, -3.0);
     let cloudy = AtmosphereSky {
         clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
         ..sky.clone()
@@ -107,6 +131,92 @@ fn pixels_whose_rays_miss_every_layer_are_left_alone() {
     let clear = render(&mut gpu, sky, camera, 8, 8);
     let with = render(&mut gpu, cloudy, camera, 8, 8);
     assert_eq!(clear.pixels, with.pixels, "every ray meets the ground before the layer");
+}
+
+/// The linear sRGB of the centre of a 5 × 5 image along `view` from `eye`, 1° across.
+fn centre_radiance(gpu: &mut Gpu, sky: &AtmosphereSky, eye: DVec3, view: DVec3) -> DVec3 {
+    let image = render(gpu, sky.clone(), camera_at(eye, view, 1.0), 5, 5);
+    let p = image.pixel(2, 2).expect("inside");
+    DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+}
+
+#[test]
+fn a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance() {
+    let mut gpu = gpu();
+    // No air: the ground is lit by the sun alone, `albedo/π · E · μ`, and an absorbing layer
+    // takes e^(−σ·L) of it, L the sun's path through the shell from the ground.
+    let (bottom, top, density) = (ABSORBER.bottom_m, ABSORBER.top_m, ABSORBER.density_per_m);
+    let absorber = absorber();
+    let eye = DVec3::new(0.0, 0.0, 2.0);
+    for zenith_deg in [0.0, 30.0, 60.0, 75.0] {
+        let clear = AtmosphereSky {
+            atmosphere: airless(),
+            suns: vec![presets::earth_sun(direction(90.0, 90.0 - zenith_deg))],
+            clouds: Vec::new(),
+        };
+        let cloudy = AtmosphereSky {
+            clouds: vec![absorber.clone()],
+            ..clear.clone()
+        };
+        // The ground 3 m away, 40° down.
+        let view = direction(250.0, -40.0);
+        let without = centre_radiance(&mut gpu, &clear, eye, view);
+        let with = centre_radiance(&mut gpu, &cloudy, eye, view);
+        let length = path_through_shell(6_360_000.0, 0.0, bottom, top, zenith_deg.to_radians());
+        let expected = (-density * length).exp();
+        // The share of the ground's light the layer takes (the rest, down to 2 %, would show the
+        // sky-view LUT's interpolation of the ground, relative to which it is subtracted).
+        for channel in 0..3 {
+            let lost = 1.0 - with[channel] / without[channel];
+            assert!(
+                (lost / (1.0 - expected) - 1.0).abs() < 0.005,
+                "sun zenith {zenith_deg}°, channel {channel}: the layer takes {lost:.5} of the ground's \
+                 light, closed form {:.5}",
+                1.0 - expected
+            );
+        }
+    }
+}
+
+#[test]
+fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
+    use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+    use firmament_core::geometry::Ray;
+    let mut gpu = gpu();
+    // Earth's air, a scattering layer: what the layer takes off the ground's direct sunlight,
+    // against the reference's sunlit ground (its deterministic part) with and without it. The
+    // sky's light on the ground is not compared: the GPU's keeps no cloud shadow.
+    let layer = CloudLayer::new(1_000.0, 1_500.0, 1.0, 1.0e-3, CloudKind::Uniform);
+    let eye = DVec3::new(0.0, 0.0, 2.0);
+    let view = direction(250.0, -40.0);
+    for elevation in [60.0, 25.0] {
+        let clear = crate::support::street_sky(90.0, elevation);
+        let cloudy = AtmosphereSky {
+            clouds: vec![layer.clone()],
+            ..clear.clone()
+        };
+        let gpu_lost = centre_radiance(&mut gpu, &clear, eye, view) - centre_radiance(&mut gpu, &cloudy, eye, view);
+        let ground = |sky: &AtmosphereSky| {
+            let settings = ReferenceSettings {
+                paths: 1,
+                ..Default::default()
+            };
+            let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_clouds(&sky.clouds);
+            let parts = reference.radiance(&Ray {
+                origin: eye,
+                direction: view,
+            });
+            let rgb = sky.atmosphere.spectral_conversion().linear_srgb(parts.ground);
+            DVec3::new(rgb.r, rgb.g, rgb.b)
+        };
+        let want_lost = ground(&clear) - ground(&cloudy);
+        let error = ((gpu_lost - want_lost) / want_lost).abs().max_element();
+        println!("sun {elevation}°: the ground loses {gpu_lost:.4}, the reference's {want_lost:.4}");
+        assert!(
+            error < 0.02,
+            "sun at {elevation}°: the clouds take {gpu_lost:.4} off the ground, the reference {want_lost:.4}"
+        );
+    }
 }
 
 #[test]

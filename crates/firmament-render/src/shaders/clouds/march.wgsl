@@ -14,6 +14,11 @@
 //   isotropic, as in a plane-parallel slab in the Eddington approximation (`cloud_source`);
 // - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below, each
 //   dimmed by the cloud between the sample and the layer's top or bottom.
+// The clouds' shadow on the ground: the sky draws the ground lit by the suns unshadowed, so where
+// a pixel's ray ends on the ground the sunlight the clouds take off it is subtracted first
+// (`ground_shadow`: the layers' optical depth towards each sun from the ground point, the
+// detail's mean, GROUND_SHADOW_STEPS samples per layer; the air's transmittance between camera and
+// ground from the transmittance LUT). The sky's light on the ground keeps no cloud shadow.
 // Compositing (Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in
 // Frostbite"): the air in front of the cloud is the aerial-perspective volume's at the cloud's
 // transmittance-weighted depth; the image behind keeps its own air:
@@ -35,6 +40,8 @@
 #import atmosphere/aerial_lookup
 #import clouds/density
 
+// Samples along each layer's stretch of a ray from the ground towards a sun (ground_shadow).
+const GROUND_SHADOW_STEPS: u32 = 12u;
 // Most coarse and fine samples along one layer's stretch of a ray (march_stretch).
 const COARSE_STEPS: u32 = 64u;
 const FINE_STEPS: u32 = 128u;
@@ -195,6 +202,66 @@ fn mean_cosine(phase: vec4<f32>) -> f32 {
     return phase.z * phase.x + (1.0 - phase.z) * phase.y;
 }
 
+// The layers' optical depth (grey) from the ground point p towards the sun along s, up to where
+// the ray leaves each layer's top, with the detail's mean.
+fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>) -> f32 {
+    var depth = 0.0;
+    for (var i = 0u; i < clouds.count.x; i++) {
+        let layer = clouds.layers[i];
+        let outer = ellipsoid_hits(p, s, shell_radii(layer.shell.y), ellipsoid_c(p, shell_radii(layer.shell.y)));
+        let inner = ellipsoid_hits(p, s, shell_radii(layer.shell.x), ellipsoid_c(p, shell_radii(layer.shell.x)));
+        // From where the ray leaves the layer's bottom (it starts below it) to where it leaves the top.
+        let a = select(0.0, max(inner.y, 0.0), inner.x <= inner.y && inner.y > 0.0);
+        let b = outer.y;
+        if !(outer.x <= outer.y) || b <= a {
+            continue;
+        }
+        let dt = (b - a) / f32(GROUND_SHADOW_STEPS);
+        for (var k = 0u; k < GROUND_SHADOW_STEPS; k++) {
+            depth += cloud_extinction_at(layer, p + s * (a + (f32(k) + 0.5) * dt), false) * dt;
+        }
+    }
+    return depth;
+}
+
+// The sunlight the clouds take off the ground where the ray meets it before `far` (spectral
+// radiance towards the camera; zero when it meets no ground, or geometry first): for each sun,
+// the albedo over π times its irradiance after the air on the ground, times 1 − e^(−τ) of the
+// clouds towards it, dimmed by the air between the camera and the ground.
+fn ground_shadow(ray: ViewRay, far: f32) -> vec3<f32> {
+    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+    if !(ground.x <= ground.y && ground.x > ray.near && ground.x < far) {
+        return vec3<f32>(0.0);
+    }
+    let g = ray.origin + ray.direction * ground.x;
+    let at_ground = altitude_up(g);
+    let h = max(at_ground.h, 0.0);
+    var lost = vec3<f32>(0.0);
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let sun = view.suns[i];
+        let s = sun.direction.xyz;
+        let mu_s = dot(at_ground.up, s);
+        if mu_s <= 0.0 {
+            continue;
+        }
+        let shade = 1.0 - exp(-cloud_depth_to_sun(g, s));
+        if shade > 0.0 {
+            lost += sun.irradiance.rgb * transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * (mu_s * shade);
+        }
+    }
+    if all(lost <= vec3<f32>(0.0)) {
+        return lost;
+    }
+    // The air between: from the ground back up along the ray to where the air starts, over the
+    // same from the start (Bruneton 2017's ratio; the start is the top of the air from outside).
+    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    let start = altitude_up(ray.origin + ray.direction * max(top.x, ray.near));
+    let r_start = atmosphere.lut.x + clamp(start.h, 0.0, atmosphere.lut.y - atmosphere.lut.x);
+    let through_air = transmittance_to_top(atmosphere.lut.x + h, dot(at_ground.up, -ray.direction))
+        / max(transmittance_to_top(r_start, dot(start.up, -ray.direction)), vec3<f32>(1e-30));
+    return atmosphere.ground_albedo.rgb / PI * lost * min(through_air, vec3<f32>(1.0));
+}
+
 // Interleaved gradient noise (Jimenez 2014): a fixed fraction per pixel, so neighbours' samples
 // interleave and reruns are identical.
 fn pixel_jitter(pixel: vec2<f32>) -> f32 {
@@ -324,6 +391,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     // A pixel's width per metre along its ray (the vertical field of view over the rows).
     let footprint = 2.0 * view.camera_shape.w / f32(size.y);
     let cloud = march_clouds(ray, far, pixel_jitter(pixel), footprint);
+    // The clouds' shadow taken off the ground behind (a layer subtracts it through the blend).
+    let shadow = to_linear_srgb(ground_shadow(ray, far));
+    color = vec4<f32>(color.rgb - shadow, color.a);
+    if !CLOUD_LAYER {
+        color = vec4<f32>(max(color.rgb, vec3<f32>(0.0)), color.a);
+    }
     if cloud.weight_sum <= 0.0 {
         // No cloud: the image as it is, or a layer that leaves it so.
         textureStore(hdr_out, id.xy, color);
@@ -343,7 +416,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let cloud_light = to_linear_srgb(cloud.radiance) * air_transmittance;
     if CLOUD_LAYER {
-        let layer = air_light * (1.0 - cloud.transmittance) + cloud_light;
+        let layer = air_light * (1.0 - cloud.transmittance) + cloud_light + cloud.transmittance * color.rgb;
         textureStore(hdr_out, id.xy, vec4<f32>(min(layer, vec3<f32>(HDR_MAX)), cloud.transmittance));
         return;
     }
