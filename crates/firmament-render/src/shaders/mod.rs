@@ -75,6 +75,9 @@ const FILES: &[(&str, &str)] = &[
         include_str!("atmosphere/aerial_perspective.wgsl"),
     ),
     ("clouds/density", include_str!("clouds/density.wgsl")),
+    ("clouds/extinction", include_str!("clouds/extinction.wgsl")),
+    ("clouds/shadow", include_str!("clouds/shadow.wgsl")),
+    ("clouds/shadow_map", include_str!("clouds/shadow_map.wgsl")),
     ("clouds/march", include_str!("clouds/march.wgsl")),
     ("camera/bindings", include_str!("camera/bindings.wgsl")),
     ("camera/exposure_meter", include_str!("camera/exposure_meter.wgsl")),
@@ -245,13 +248,16 @@ pub static BLOOM_UP: Shader = entry!("camera/bloom_up");
 /// (binding-free: `atmosphere/bindings` imports it, and the tests compose it with kernels of their
 /// own to hold it against the core's `f64` field).
 pub static CLOUD_DENSITY: Shader = entry!("clouds/density");
-/// The cloud layers over the renderer's own HDR target (compute).
+/// The cloud layers over the renderer's own HDR target, or as a layer to blend over a caller's
+/// (compute; and the blend's full-screen draw).
 pub static CLOUDS_MARCH: Shader = entry!("clouds/march");
+/// The clouds' shadow map: their optical depth along each sun's rays around the camera (compute).
+pub static CLOUD_SHADOW_MAP: Shader = entry!("clouds/shadow_map");
 
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 23] = [
+pub static ENTRIES: [&Shader; 24] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -274,6 +280,7 @@ pub static ENTRIES: [&Shader; 23] = [
     &BLOOM_DOWN,
     &BLOOM_UP,
     &CLOUDS_MARCH,
+    &CLOUD_SHADOW_MAP,
     &FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
 ];
 

@@ -16,6 +16,10 @@ use crate::gpu_types::clouds::CloudsGpu;
 use crate::passes::common::{PassPipeline, load_color_attachment, uniform_buffer};
 use crate::shaders;
 
+/// Texels across one sun's square of the clouds' shadow map (`CLOUD_SHADOW_SIZE` in
+/// `shaders/clouds/shadow.wgsl`; a test compares the two).
+pub(super) const CLOUD_SHADOW_SIZE: u32 = 256;
+
 /// Texels of the GPU's copy of each coverage map (longitude, latitude): maps of any size are
 /// resampled to it (about 39 km per texel on Earth's equator), so all fit one array texture.
 pub(super) const COVERAGE_MAP_SIZE: (u32, u32) = (1024, 512);
@@ -33,6 +37,13 @@ pub(super) struct CloudStages {
     uploaded_maps: Vec<CoverageMap>,
     /// Layers in the frame last prepared.
     layers: usize,
+    /// Suns in the frame last prepared (the shadow map's squares).
+    suns: u32,
+    /// The clouds' shadow map: one [`CLOUD_SHADOW_SIZE`]² square per sun, side by side,
+    /// `Rgba32Float` (`shaders/clouds/shadow.wgsl`); the view keeps the texture.
+    shadow_map_view: wgpu::TextureView,
+    /// Its compute stage, built with the first bound target.
+    shadow_stage: Option<ComputeStage>,
     on_target: Option<OnTarget>,
     /// The stages for a caller's target, once one with clouds was bound.
     into_caller: Option<IntoCaller>,
@@ -68,14 +79,21 @@ struct IntoCaller {
 /// The owner of the caller's blend draw, for labels.
 const BLEND_OWNER: &str = "AtmospherePass clouds blend";
 
-/// The stage's layout entries.
-fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+/// The layout entries every cloud stage has: the medium, the view, the layers, their maps.
+fn layer_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     vec![
         uniform_entry(binding::PARAMS),
         uniform_entry(binding::VIEW),
         uniform_entry(binding::CLOUDS),
         texture_array_entry(binding::CLOUD_COVERAGE_MAPS),
         sampler_entry(binding::CLOUD_MAP_SAMPLER),
+    ]
+}
+
+/// The march's layout entries.
+fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut all = layer_entries();
+    all.extend([
         texture_entry(binding::TRANSMITTANCE, false),
         texture_entry(binding::IRRADIANCE, true),
         sampler_entry(binding::SAMPLER),
@@ -84,8 +102,20 @@ fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         texture_entry(binding::SCENE_DEPTH, false),
         texture_entry(binding::HDR_IN, false),
         storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
-    ]
+        texture_entry(binding::CLOUD_SHADOW_MAP, false),
+    ]);
+    all
 }
+
+/// The shadow map stage's layout entries.
+fn shadow_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut all = layer_entries();
+    all.push(storage_entry(binding::CLOUD_SHADOW_OUT, SHADOW_MAP_FORMAT));
+    all
+}
+
+/// The shadow map's texel format: metres along the rays need `f32`.
+const SHADOW_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The draw that blends the clouds' layer over a colour target of `color`: `src + dst · src.a`
 /// in colour, the target's alpha kept.
@@ -170,8 +200,19 @@ impl CloudStages {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
+        let shadow_map_view = crate::targets::texture_2d(
+            device,
+            "firmament AtmospherePass cloud shadow map",
+            (CLOUD_SHADOW_SIZE * firmament_core::frame::MAX_SUNS as u32, CLOUD_SHADOW_SIZE),
+            SHADOW_MAP_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        )
+        .create_view(&wgpu::TextureViewDescriptor::default());
         Self {
             uniforms: uniform_buffer::<CloudsGpu>(device, "firmament AtmospherePass clouds"),
+            suns: 0,
+            shadow_map_view,
+            shadow_stage: None,
             maps,
             maps_view,
             map_sampler,
@@ -185,6 +226,7 @@ impl CloudStages {
     /// Uploads `sky`'s cloud layers.
     pub(super) fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky) {
         self.layers = sky.clouds.len();
+        self.suns = sky.suns.len().min(firmament_core::frame::MAX_SUNS) as u32;
         if self.layers > 0 {
             let uniforms = CloudsGpu::new(&sky.clouds, &sky.atmosphere.planet);
             queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -232,15 +274,8 @@ impl CloudStages {
         self.layers > 0
     }
 
-    /// Every resource of the march: `hdr_in` and `hdr_out` as given, the depth buffer `depth`.
-    fn resources<'a>(
-        &'a self,
-        resources: &AerialPerspectiveResources<'a>,
-        depth: &'a wgpu::TextureView,
-        hdr_in: &'a wgpu::TextureView,
-        hdr_out: &'a wgpu::TextureView,
-    ) -> Vec<(u32, wgpu::BindingResource<'a>)> {
-        let luts = resources.luts;
+    /// What every cloud stage reads: the medium, the view, the layers and their coverage maps.
+    fn layer_resources<'a>(&'a self, resources: &AerialPerspectiveResources<'a>) -> Vec<(u32, wgpu::BindingResource<'a>)> {
         vec![
             (binding::PARAMS, resources.params.as_entire_binding()),
             (binding::VIEW, resources.view.as_entire_binding()),
@@ -253,6 +288,20 @@ impl CloudStages {
                 binding::CLOUD_MAP_SAMPLER,
                 wgpu::BindingResource::Sampler(&self.map_sampler),
             ),
+        ]
+    }
+
+    /// Every resource of the march: `hdr_in` and `hdr_out` as given, the depth buffer `depth`.
+    fn resources<'a>(
+        &'a self,
+        resources: &AerialPerspectiveResources<'a>,
+        depth: &'a wgpu::TextureView,
+        hdr_in: &'a wgpu::TextureView,
+        hdr_out: &'a wgpu::TextureView,
+    ) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+        let luts = resources.luts;
+        let mut all = self.layer_resources(resources);
+        all.extend([
             (
                 binding::TRANSMITTANCE,
                 wgpu::BindingResource::TextureView(&luts.transmittance.view),
@@ -273,7 +322,41 @@ impl CloudStages {
             (binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)),
             (binding::HDR_IN, wgpu::BindingResource::TextureView(hdr_in)),
             (binding::HDR_OUT, wgpu::BindingResource::TextureView(hdr_out)),
-        ]
+            (
+                binding::CLOUD_SHADOW_MAP,
+                wgpu::BindingResource::TextureView(&self.shadow_map_view),
+            ),
+        ]);
+        all
+    }
+
+    /// Builds the shadow map's stage on first use (its resources never change).
+    fn build_shadow_stage(&mut self, device: &wgpu::Device, resources: &AerialPerspectiveResources<'_>) {
+        if self.shadow_stage.is_some() {
+            return;
+        }
+        let mut all = self.layer_resources(resources);
+        all.push((
+            binding::CLOUD_SHADOW_OUT,
+            wgpu::BindingResource::TextureView(&self.shadow_map_view),
+        ));
+        self.shadow_stage = Some(ComputeStage::new(
+            device,
+            "AtmospherePass cloud shadow map",
+            &shaders::CLOUD_SHADOW_MAP,
+            &shadow_entries(),
+            &all,
+        ));
+    }
+
+    /// Encodes the shadow map of this frame's suns (before the march, which reads it).
+    fn record_shadow_map(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(stage) = &self.shadow_stage
+            && self.suns > 0
+        {
+            let side = CLOUD_SHADOW_SIZE.div_ceil(8);
+            stage.dispatch(encoder, (side * self.suns, side, 1));
+        }
     }
 
     /// Binds `target` (an HDR texture with `TEXTURE_BINDING | COPY_DST`) and its depth buffer.
@@ -284,6 +367,7 @@ impl CloudStages {
         target: &wgpu::Texture,
         depth: &wgpu::TextureView,
     ) {
+        self.build_shadow_stage(device, resources);
         let scratch = scratch_for(device, target, "firmament AtmospherePass clouds scratch");
         let scratch_view = scratch.create_view(&wgpu::TextureViewDescriptor::default());
         let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
@@ -323,6 +407,7 @@ impl CloudStages {
         if !self.any() {
             return;
         }
+        self.build_shadow_stage(device, resources);
         let size = depth.texture().size();
         let previous = self.into_caller.take();
         let (layer, layer_view) = match &previous {
@@ -391,6 +476,7 @@ impl CloudStages {
         let Some(caller) = self.into_caller.as_ref().filter(|_| self.any()) else {
             return false;
         };
+        self.record_shadow_map(encoder);
         let size = caller.layer.size();
         caller
             .stage
@@ -412,10 +498,23 @@ impl CloudStages {
         let Some(on) = self.on_target.as_ref().filter(|_| self.any()) else {
             return false;
         };
+        self.record_shadow_map(encoder);
         let size = on.target.size();
         on.stage
             .dispatch(encoder, (size.width.div_ceil(8), size.height.div_ceil(8), 1));
         encoder.copy_texture_to_texture(on.scratch.as_image_copy(), on.target.as_image_copy(), size);
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_shadow_map_side_is_the_shaders() {
+        let source = crate::shaders::module_source("clouds/shadow").expect("the module");
+        assert!(
+            source.contains(&format!("const CLOUD_SHADOW_SIZE: u32 = {}u;", super::CLOUD_SHADOW_SIZE)),
+            "clouds/shadow.wgsl declares another CLOUD_SHADOW_SIZE"
+        );
     }
 }

@@ -35,6 +35,8 @@ pub(super) mod binding {
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
     pub(crate) const MULTISCATTERING_ORDERS: u32 = 28;
+    pub(crate) const CLOUD_SHADOW_OUT: u32 = 29;
+    pub(crate) const CLOUD_SHADOW_MAP: u32 = 30;
 }
 
 /// One of the pass's render pipelines with its bind group.
@@ -101,6 +103,8 @@ mod tests {
             ("clouds", binding::CLOUDS),
             ("cloud_coverage_maps", binding::CLOUD_COVERAGE_MAPS),
             ("cloud_map_sampler", binding::CLOUD_MAP_SAMPLER),
+            ("cloud_shadow_out", binding::CLOUD_SHADOW_OUT),
+            ("cloud_shadow_map", binding::CLOUD_SHADOW_MAP),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),
             ("multiscattering_orders", binding::MULTISCATTERING_ORDERS),
             ("sky_view_out", binding::SKY_VIEW_OUT),

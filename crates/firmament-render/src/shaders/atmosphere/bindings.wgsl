@@ -92,6 +92,11 @@ struct SkyLighting {
 // `cloud_map_sampler` (linear, repeating in longitude, clamped at the poles).
 @group(0) @binding(16) var cloud_coverage_maps: texture_2d_array<f32>;
 @group(0) @binding(17) var cloud_map_sampler: sampler;
+// The clouds' shadow map (clouds/shadow.wgsl): per sun a square of texels across its rays around
+// the camera, the suns' squares side by side; written by clouds/shadow_map.wgsl, read by the
+// march (unfilterable: textureLoad).
+@group(0) @binding(29) var cloud_shadow_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(30) var cloud_shadow_map: texture_2d<f32>;
 
 // One texel's multiple-scattering orders (and sky irradiance) while the LUTs are built, as the seven sums over
 // directions that multiscattering_lut.wgsl reduces (`ORDER_SUMS` there: Ψ, zz, xx, xz, x, z in

@@ -19,6 +19,8 @@
 // (`ground_shadow`: the layers' optical depth towards each sun from the ground point, the
 // detail's mean, GROUND_SHADOW_STEPS samples per layer; the air's transmittance between camera and
 // ground from the transmittance LUT). The sky's light on the ground keeps no cloud shadow.
+// Likewise the air's single scattering where the clouds shadow it (`air_shadow`: light shafts),
+// from the shadow map (clouds/shadow.wgsl), within its reach of the camera.
 // Compositing (Hillaire 2016, "Physically based sky, atmosphere and cloud rendering in
 // Frostbite"): the air in front of the cloud is the aerial-perspective volume's at the cloud's
 // transmittance-weighted depth; the image behind keeps its own air:
@@ -39,7 +41,11 @@
 #import atmosphere/view
 #import atmosphere/aerial_lookup
 #import clouds/density
+#import clouds/extinction
+#import clouds/shadow
 
+// Samples of the air's single scattering in the clouds' shadows along a view ray (air_shadow).
+const SHAFT_STEPS: u32 = 24u;
 // Samples along each layer's stretch of a ray from the ground towards a sun (ground_shadow).
 const GROUND_SHADOW_STEPS: u32 = 12u;
 // Most coarse and fine samples along one layer's stretch of a ray (march_stretch).
@@ -82,26 +88,6 @@ fn henyey_greenstein_phase(g: f32, nu: f32) -> f32 {
     let g2 = g * g;
     let denominator = max(1.0 + g2 - 2.0 * g * nu, 1e-6);
     return (1.0 - g2) / (4.0 * PI * denominator * sqrt(denominator));
-}
-
-// The layer's extinction at p (altitude h, geodetic up `up`), m⁻¹, with its coverage map if it has
-// one; with its detail noise when `detailed`, else the detail's mean (cloud_density_detailed).
-fn cloud_extinction(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, detailed: bool) -> f32 {
-    var coverage = layer.coverage.x;
-    var t = layer.coverage.y;
-    var t_core = layer.coverage.z;
-    if layer.codes.z != 0u {
-        let map = textureSampleLevel(cloud_coverage_maps, cloud_map_sampler, cloud_coverage_map_uv(up), i32(layer.codes.w), 0.0).r;
-        coverage *= map;
-        t = cloud_coverage_threshold(layer, coverage);
-        t_core = cloud_coverage_threshold(layer, coverage * layer.column.w);
-    }
-    return cloud_density_detailed(layer, p, h, coverage, t, t_core, detailed);
-}
-
-fn cloud_extinction_at(layer: CloudLayerGpu, p: vec3<f32>, detailed: bool) -> f32 {
-    let here = altitude_up(p);
-    return cloud_extinction(layer, p, here.h, here.up, detailed);
 }
 
 // The semi-axes of the shell at altitude h.
@@ -262,6 +248,46 @@ fn ground_shadow(ray: ViewRay, far: f32) -> vec3<f32> {
     return atmosphere.ground_albedo.rgb / PI * lost * min(through_air, vec3<f32>(1.0));
 }
 
+// The sunlight the air scatters once towards the camera from where the clouds shadow it, along
+// the ray from where the air starts to `t_end` (at most CLOUD_SHADOW_REACH from the camera, where
+// the shadow map ends; spectral radiance): for each sun, σ_s·p(ν)·E·T_sun·T_view·(1 − e^(−τ)),
+// τ the clouds' optical depth towards it from the map, in SHAFT_STEPS steps offset by the
+// pixel's `jitter`. Light shafts and the shadows' darkening of the air; none from far away.
+fn air_shadow(ray: ViewRay, t_end: f32, jitter: f32) -> vec3<f32> {
+    if view.center.w > 0.5 {
+        return vec3<f32>(0.0);
+    }
+    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    let t0 = max(top.x, ray.near);
+    let t1 = min(min(t_end, top.y), ray.near + CLOUD_SHADOW_REACH);
+    if !(top.x <= top.y) || t1 <= t0 {
+        return vec3<f32>(0.0);
+    }
+    let dt = (t1 - t0) / f32(SHAFT_STEPS);
+    var lost = vec3<f32>(0.0);
+    var transmittance = vec3<f32>(1.0);
+    // Up to the first step, from t0 (the jitter's share of a step).
+    var previous = t0;
+    for (var k = 0u; k < SHAFT_STEPS; k++) {
+        let t = t0 + (f32(k) + jitter) * dt;
+        let p = ray.origin + ray.direction * t;
+        let here = altitude_up(p);
+        let air = coefficients_at(here.h);
+        transmittance *= exp(-air.extinction * (t - previous));
+        previous = t;
+        for (var i = 0u; i < view.sun_count.x; i++) {
+            let sun = view.suns[i];
+            let s = sun.direction.xyz;
+            let shade = 1.0 - exp(-cloud_shadow_depth(p, i, s));
+            if shade > 0.0 {
+                let sunlight = sun.irradiance.rgb * transmittance_to_sun(here.h, dot(here.up, s), abs(sun.direction.w));
+                lost += shade * transmittance * scattering_phase(air, dot(ray.direction, s)) * sunlight * dt;
+            }
+        }
+    }
+    return lost;
+}
+
 // Interleaved gradient noise (Jimenez 2014): a fixed fraction per pixel, so neighbours' samples
 // interleave and reruns are identical.
 fn pixel_jitter(pixel: vec2<f32>) -> f32 {
@@ -390,16 +416,24 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = vec2<f32>(id.xy) + 0.5;
     // A pixel's width per metre along its ray (the vertical field of view over the rows).
     let footprint = 2.0 * view.camera_shape.w / f32(size.y);
-    let cloud = march_clouds(ray, far, pixel_jitter(pixel), footprint);
-    // The clouds' shadow taken off the ground behind (a layer subtracts it through the blend).
-    let shadow = to_linear_srgb(ground_shadow(ray, far));
-    color = vec4<f32>(color.rgb - shadow, color.a);
-    if !CLOUD_LAYER {
-        color = vec4<f32>(max(color.rgb, vec3<f32>(0.0)), color.a);
+    let jitter = pixel_jitter(pixel);
+    let cloud = march_clouds(ray, far, jitter, footprint);
+    // The clouds' shadows: on the ground behind (before the cloud's own transmittance), and in
+    // the air in front of the cloud or of the ray's end (a layer subtracts both through the
+    // blend, starting from nothing: `color` is then −ground).
+    var air_end = far;
+    if cloud.weight_sum > 0.0 {
+        air_end = cloud.depth_sum / cloud.weight_sum;
     }
+    let air_shade = to_linear_srgb(air_shadow(ray, air_end, jitter));
+    color = vec4<f32>(color.rgb - to_linear_srgb(ground_shadow(ray, far)), color.a);
     if cloud.weight_sum <= 0.0 {
-        // No cloud: the image as it is, or a layer that leaves it so.
-        textureStore(hdr_out, id.xy, color);
+        // No cloud: the image less the shadows, or a layer that takes them off it.
+        var rgb = color.rgb - air_shade;
+        if !CLOUD_LAYER {
+            rgb = max(rgb, vec3<f32>(0.0));
+        }
+        textureStore(hdr_out, id.xy, vec4<f32>(rgb, color.a));
         return;
     }
     // The air in front of the cloud, at its transmittance-weighted depth (none from far away,
@@ -416,12 +450,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let cloud_light = to_linear_srgb(cloud.radiance) * air_transmittance;
     if CLOUD_LAYER {
-        let layer = air_light * (1.0 - cloud.transmittance) + cloud_light + cloud.transmittance * color.rgb;
+        let layer = air_light * (1.0 - cloud.transmittance) - air_shade + cloud_light + cloud.transmittance * color.rgb;
         textureStore(hdr_out, id.xy, vec4<f32>(min(layer, vec3<f32>(HDR_MAX)), cloud.transmittance));
         return;
     }
     let behind = max(color.rgb - air_light, vec3<f32>(0.0));
-    let out = air_light + cloud_light + cloud.transmittance * behind;
+    let out = max(air_light - air_shade, vec3<f32>(0.0)) + cloud_light + cloud.transmittance * behind;
     textureStore(hdr_out, id.xy, vec4<f32>(min(out, vec3<f32>(HDR_MAX)), color.a));
 }
 
