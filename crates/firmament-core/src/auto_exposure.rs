@@ -75,13 +75,20 @@ impl AutoExposure {
     }
 
     /// Moves `current` towards `target` by at most the speed times `seconds`; `None` (a still,
-    /// or the first frame) jumps there at once.
+    /// or the first frame) jumps there at once. Within reach it arrives at `target` exactly
+    /// (`current + (target − current)` can miss it by a rounding), so a frame that adapts within
+    /// its step equals one metered afresh.
     pub fn adapt(&self, current: f64, target: f64, seconds: Option<f64>) -> f64 {
         match seconds {
             None => target,
             Some(dt) => {
+                let (down, up) = (self.speed_down_ev_per_s * dt, self.speed_up_ev_per_s * dt);
                 let step = target - current;
-                current + step.clamp(-self.speed_down_ev_per_s * dt, self.speed_up_ev_per_s * dt)
+                if (-down..=up).contains(&step) {
+                    target
+                } else {
+                    current + step.clamp(-down, up)
+                }
             }
         }
     }

@@ -128,6 +128,14 @@ pub(crate) fn abandon_and_exit(message: &str, code: i32) -> ! {
         let _ = std::fs::remove_file(path);
     }
     eprintln!("{message}");
+    // Other threads still run while `exit` runs the atexit handlers, which tear the GPU driver
+    // down (Mesa's EGL) under a render thread inside it: one that panics from now on waits,
+    // silently, for the process to end, rather than print its error or exit with its own status.
+    std::panic::set_hook(Box::new(|_| {
+        loop {
+            std::thread::park();
+        }
+    }));
     // Exits with the lock held: no writer creates or renames a file after this point.
     std::process::exit(code);
 }

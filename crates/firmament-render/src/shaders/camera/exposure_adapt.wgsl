@@ -54,10 +54,13 @@ fn cs_main(@builtin(local_invocation_index) bin: u32) {
             metering.ev.y,
         );
     }
-    if state.frames == 0u || metering.step.z > 0.5 {
+    // Within reach the exposure arrives exactly (ev + (target − ev) can miss by a rounding), so
+    // a frame that adapts within its step equals one metered afresh (the core's `adapt`).
+    let change = state.target_ev100 - state.ev100;
+    if state.frames == 0u || metering.step.z > 0.5 || (change >= -metering.step.y && change <= metering.step.x) {
         state.ev100 = state.target_ev100;
     } else {
-        state.ev100 += clamp(state.target_ev100 - state.ev100, -metering.step.y, metering.step.x);
+        state.ev100 += clamp(change, -metering.step.y, metering.step.x);
     }
     state.frames += 1u;
     exposure_state = state;
