@@ -181,20 +181,29 @@ impl CloudLayer {
     /// 0–1 (the layer's `coverage` times its map's value: [`coverage_at`](Self::coverage_at)),
     /// m⁻¹ — the GPU's `cloud_density_with_coverage`.
     pub fn density_with_coverage(&self, p: DVec3, h: f64, coverage: f64) -> f64 {
-        field::density(
-            &field::FieldLayer {
-                bottom_m: self.bottom_m,
-                top_m: self.top_m,
-                density_per_m: self.density_per_m,
-                kind: self.kind,
-                seed: self.seed,
-                drift: self.drift,
-                shape: self.kind.shape(),
-            },
-            p,
-            h,
-            coverage,
-        )
+        field::density(&self.field_layer(), p, h, coverage)
+    }
+
+    /// The density at altitude `h` (m) averaged over the layer's columns with the coverage there
+    /// given (0–1), m⁻¹: the field's level of detail from afar, where a pixel spans many columns
+    /// (the detail at its mean), with exactly `coverage` of the columns covered — the GPU's
+    /// `cloud_mean_density_with_coverage`. `density_per_m` throughout a [`CloudKind::Uniform`]
+    /// slab.
+    pub fn mean_density_with_coverage(&self, h: f64, coverage: f64) -> f64 {
+        field::mean_density(&self.field_layer(), h, coverage)
+    }
+
+    /// What the field reads of the layer.
+    fn field_layer(&self) -> field::FieldLayer<'_> {
+        field::FieldLayer {
+            bottom_m: self.bottom_m,
+            top_m: self.top_m,
+            density_per_m: self.density_per_m,
+            kind: self.kind,
+            seed: self.seed,
+            drift: self.drift,
+            shape: self.kind.shape(),
+        }
     }
 
     /// The layer's coverage at planet-frame point `p`, 0–1: `coverage`, times the coverage map

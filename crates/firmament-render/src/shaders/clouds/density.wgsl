@@ -288,24 +288,85 @@ fn cloud_density_detailed(layer: CloudLayerGpu, p: vec3<f32>, h: f32, coverage: 
         return 0.0;
     }
     let s = min((f - t) / (t_core - t), 1.0);
-    let u = min(s / layer.edges.x, 1.0);
-    let body = s * (2.0 - s);
-    let anchor = layer.profile.x;
-    let below = layer.profile.y;
-    let full = (layer.profile.z + (layer.profile.w - layer.profile.z) * body) * sqrt(u * (2.0 - u));
-    if x <= anchor - below * full || x >= anchor + (1.0 - below) * full {
+    let full = cloud_full_thickness(layer, s);
+    if !cloud_within(layer, full, x) {
         return 0.0;
     }
     var d = 0.5;
     if detailed {
         d = cloud_detail(layer, q, x);
     }
+    return layer.shell.w * cloud_eroded(layer, full, s, x, d);
+}
+
+// A column's cloud thickness before erosion (fraction of the layer) at strength s: a parabola in
+// the strength times a quarter circle (step 5 of the core's field).
+fn cloud_full_thickness(layer: CloudLayerGpu, s: f32) -> f32 {
+    let u = min(s / layer.edges.x, 1.0);
+    let body = s * (2.0 - s);
+    return (layer.profile.z + (layer.profile.w - layer.profile.z) * body) * sqrt(u * (2.0 - u));
+}
+
+// Whether height fraction x lies inside a column's uneroded cloud of thickness `full` (erosion
+// only lowers it: outside, there is none).
+fn cloud_within(layer: CloudLayerGpu, full: f32, x: f32) -> bool {
+    let anchor = layer.profile.x;
+    let below = layer.profile.y;
+    return x > anchor - below * full && x < anchor + (1.0 - below) * full;
+}
+
+// The density over the layer's, 0–1, at height fraction x of a column of strength s, uneroded
+// thickness `full` and detail d (step 6; the core's field::in_column).
+fn cloud_eroded(layer: CloudLayerGpu, full: f32, s: f32, x: f32, d: f32) -> f32 {
+    let anchor = layer.profile.x;
+    let below = layer.profile.y;
     let thickness = full * (1.0 - layer.detail.z * (1.0 - d));
     let bottom = anchor - below * thickness;
     let top = anchor + (1.0 - below) * thickness;
     let fall = cloud_smooth((x - bottom) / layer.edges.y) * cloud_smooth((top - x) / layer.edges.z);
     let core = layer.edges.w + (1.0 - layer.edges.w) * s;
-    return layer.shell.w * fall * core * (1.0 - layer.detail.w * (1.0 - d));
+    return fall * core * (1.0 - layer.detail.w * (1.0 - d));
+}
+
+// The density at altitude h averaged over the layer's columns, with the coverage there and its
+// two thresholds given, m⁻¹: the field from afar (the core's field::mean_density). Each interval
+// of the quantile table above the threshold counts with its share of the columns at its middle,
+// the detail at its mean.
+fn cloud_mean_density_at(layer: CloudLayerGpu, h: f32, coverage: f32, t: f32, t_core: f32) -> f32 {
+    if !(h >= layer.shell.x && h <= layer.shell.y) {
+        return 0.0;
+    }
+    if layer.codes.x == CLOUD_KIND_UNIFORM {
+        return layer.shell.w;
+    }
+    if !(coverage > 0.0) {
+        return 0.0;
+    }
+    let x = (h - layer.shell.x) * layer.shell.z;
+    var sum = 0.0;
+    var lo = cloud_quantile(layer, 0u);
+    for (var i = 1u; i <= CLOUD_QUANTILE_STEPS; i++) {
+        let hi = cloud_quantile(layer, i);
+        let start = max(lo, t);
+        if hi > start {
+            let share = (hi - start) / (hi - lo) / f32(CLOUD_QUANTILE_STEPS);
+            let s = min((0.5 * (start + hi) - t) / (t_core - t), 1.0);
+            let full = cloud_full_thickness(layer, s);
+            if cloud_within(layer, full, x) {
+                sum += share * cloud_eroded(layer, full, s, x, 0.5);
+            }
+        }
+        lo = hi;
+    }
+    return layer.shell.w * sum;
+}
+
+// The same with the coverage there given, 0–1 (the core's
+// CloudLayer::mean_density_with_coverage).
+fn cloud_mean_density_with_coverage(layer: CloudLayerGpu, h: f32, coverage: f32) -> f32 {
+    let t = cloud_coverage_threshold(layer, coverage);
+    let t_core = cloud_coverage_threshold(layer, coverage * layer.column.w);
+    return cloud_mean_density_at(layer, h, coverage, t, t_core);
 }
 
 // The extinction of `layer` at `p` (planet frame, m), altitude `h` (m), m⁻¹, with the layer's own

@@ -115,7 +115,7 @@ fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> 
 
 // Optical depth from p towards the sun along s through `layer`: LIGHT_STEPS samples over
 // stretches doubling in length, out to where the ray leaves the layer's top.
-fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32 {
+fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>, lod: f32) -> f32 {
     let top = layer.shell.y;
     let exit = ellipsoid_hits(p, s, shell_radii(top), ellipsoid_c(p, shell_radii(top))).y;
     let length_out = max(exit, 0.0);
@@ -127,7 +127,7 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32
     for (var k = 0u; k < LIGHT_STEPS; k++) {
         let q = p + s * (t + 0.5 * dt);
         let here = altitude_up(q);
-        depth += cloud_extinction(layer, q, here.h, here.up, false) * dt;
+        depth += cloud_extinction_lod(layer, q, here.h, here.up, false, lod) * dt;
         t += dt;
         dt *= 2.0;
     }
@@ -136,8 +136,8 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>) -> f32
 
 // The light a unit of cloud extinction at p (altitude h, up `up`) scatters towards −d (spectral,
 // per metre per unit extinction: multiply by the extinction), from every sun, the sky and the
-// ground.
-fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: vec3<f32>, extinction: f32) -> vec3<f32> {
+// ground; the way to each sun through the field at the view sample's level of detail `lod`.
+fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: vec3<f32>, extinction: f32, lod: f32) -> vec3<f32> {
     let albedo = layer.coverage.w;
     var source = vec3<f32>(0.0);
     var ground_irradiance = vec3<f32>(0.0);
@@ -155,7 +155,7 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         if all(air <= vec3<f32>(0.0)) {
             continue;
         }
-        let tau = optical_depth_to_sun(layer, p, s);
+        let tau = optical_depth_to_sun(layer, p, s, lod);
         // δ-scaling (Joseph, Wiscombe & Weinman 1976): the forward peak f = g² of the droplets'
         // light goes on with the sun's, so the sun's beam fades over (1 − f)·τ.
         let g = mean_cosine(layer.phase);
@@ -190,7 +190,7 @@ fn mean_cosine(phase: vec4<f32>) -> f32 {
 
 // The layers' optical depth (grey) from the ground point p towards the sun along s, up to where
 // the ray leaves each layer's top, with the detail's mean.
-fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>) -> f32 {
+fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
     var depth = 0.0;
     for (var i = 0u; i < clouds.count.x; i++) {
         let layer = clouds.layers[i];
@@ -204,7 +204,7 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>) -> f32 {
         }
         let dt = (b - a) / f32(GROUND_SHADOW_STEPS);
         for (var k = 0u; k < GROUND_SHADOW_STEPS; k++) {
-            depth += cloud_extinction_at(layer, p + s * (a + (f32(k) + 0.5) * dt), false) * dt;
+            depth += cloud_extinction_at(layer, p + s * (a + (f32(k) + 0.5) * dt), false, cloud_lod(layer, span)) * dt;
         }
     }
     return depth;
@@ -214,7 +214,7 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>) -> f32 {
 // radiance towards the camera; zero when it meets no ground, or geometry first): for each sun,
 // the albedo over π times its irradiance after the air on the ground, times 1 − e^(−τ) of the
 // clouds towards it, dimmed by the air between the camera and the ground.
-fn ground_shadow(ray: ViewRay, far: f32) -> vec3<f32> {
+fn ground_shadow(ray: ViewRay, far: f32, footprint: f32) -> vec3<f32> {
     let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
     if !(ground.x <= ground.y && ground.x > ray.near && ground.x < far) {
         return vec3<f32>(0.0);
@@ -230,7 +230,7 @@ fn ground_shadow(ray: ViewRay, far: f32) -> vec3<f32> {
         if mu_s <= 0.0 {
             continue;
         }
-        let shade = 1.0 - exp(-cloud_depth_to_sun(g, s));
+        let shade = 1.0 - exp(-cloud_depth_to_sun(g, s, ground.x * footprint));
         if shade > 0.0 {
             lost += sun.irradiance.rgb * transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * (mu_s * shade);
         }
@@ -316,7 +316,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         }
         if !fine_mode {
             let p = ray.origin + ray.direction * t;
-            if cloud_extinction_at(layer, p, t * footprint < detail_cell) > 0.0 {
+            if cloud_extinction_at(layer, p, t * footprint < detail_cell, cloud_lod(layer, t * footprint)) > 0.0 {
                 fine_mode = true;
                 empty = 0u;
                 t = max(t - coarse, t0);
@@ -329,7 +329,8 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         let tm = t + 0.5 * dt;
         let p = ray.origin + ray.direction * tm;
         let here = altitude_up(p);
-        let extinction = cloud_extinction(layer, p, here.h, here.up, tm * footprint < detail_cell);
+        let lod = cloud_lod(layer, tm * footprint);
+        let extinction = cloud_extinction_lod(layer, p, here.h, here.up, tm * footprint < detail_cell, lod);
         t += dt;
         if extinction <= 0.0 {
             empty += 1u;
@@ -337,7 +338,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
             continue;
         }
         empty = 0u;
-        let source = cloud_source(layer, p, here.h, here.up, ray.direction, extinction) * extinction;
+        let source = cloud_source(layer, p, here.h, here.up, ray.direction, extinction, lod) * extinction;
         let step = exp(-extinction * dt);
         let scattered = select((source - source * step) / extinction, source * dt, extinction * dt < 1e-4);
         (*acc).radiance += (*acc).transmittance * scattered;
@@ -426,7 +427,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         air_end = cloud.depth_sum / cloud.weight_sum;
     }
     let air_shade = to_linear_srgb(air_shadow(ray, air_end, jitter));
-    color = vec4<f32>(color.rgb - to_linear_srgb(ground_shadow(ray, far)), color.a);
+    color = vec4<f32>(color.rgb - to_linear_srgb(ground_shadow(ray, far, footprint)), color.a);
     if cloud.weight_sum <= 0.0 {
         // No cloud: the image less the shadows, or a layer that takes them off it.
         var rgb = color.rgb - air_shade;
