@@ -12,6 +12,8 @@
 //! disc is that sun's irradiance at the eye whatever the map's size. Discs hidden by the
 //! frame's objects are still added (the objects' depth is not consulted).
 //!
+//! [`CubeFaces::to_horizontal_cross`] lays the faces out as one 4:3 horizontal cross.
+//!
 //! Layouts and frames: [`firmament_core::envmap`] (equirectangular: zenith on top, north a
 //! quarter across, east in the middle, the seam in the west; cube faces: OpenGL's convention in
 //! the Y-up frame `x` east, `y` up, `z` south).
@@ -32,6 +34,7 @@
 //! # }
 //! ```
 
+mod cross;
 mod discs;
 mod resample;
 
@@ -206,10 +209,28 @@ fn check_equirect_width(width: u32) -> Result<(), RenderError> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use firmament_core::envmap::cube_direction;
     use glam::{DVec2, DVec3};
+
+    /// A cube whose texels hold their own direction's `(x, y, z)` (ENU) in RGB, alpha 1.
+    pub(crate) fn direction_cube(size: u32) -> CubeFaces {
+        let faces = CubeFace::ALL
+            .iter()
+            .map(|&face| Image {
+                width: size,
+                height: size,
+                pixels: (0..size * size)
+                    .flat_map(|k| {
+                        let d = cube_direction(face, f64::from(k % size) + 0.5, f64::from(k / size) + 0.5, size);
+                        [d.x as f32, d.y as f32, d.z as f32, 1.0]
+                    })
+                    .collect(),
+            })
+            .collect();
+        CubeFaces { size, faces }
+    }
 
     /// The mirrored face camera's pixel centres are the OpenGL faces' texel directions.
     #[test]
