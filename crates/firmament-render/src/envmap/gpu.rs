@@ -29,8 +29,9 @@ const SLOT: u64 = 256;
 /// The faces in the atlas: 3 across, 2 down.
 const ATLAS_FACES: (u32, u32) = (3, 2);
 
-/// The sky kernels' workgroup side (`@workgroup_size(8, 8)`) and the disc kernels' workgroup size.
+/// The sky kernels' workgroup side (`@workgroup_size(8, 8)` in `envmap/write.wgsl`).
 const SKY_GROUP: u32 = 8;
+/// The disc kernels' workgroup size (`@workgroup_size(64)`).
 const DISC_GROUP: u32 = 64;
 
 /// The `output` declaration of `envmap/write.wgsl`, whose format word [`write_source`] replaces.
