@@ -67,6 +67,11 @@ pub enum RenderError {
     /// format, sample count, usages or depth buffer (the message names what is needed).
     #[error("unsupported embedding target: {0}")]
     InvalidTarget(String),
+    /// A texture given to [`EnvironmentMapPass`](crate::envmap::EnvironmentMapPass) cannot hold
+    /// the map asked for: its dimension, layers, size, format, usages, or half floats asked to
+    /// hold the suns' discs (the message names the rule).
+    #[error("unsupported environment-map target: {0}")]
+    EnvironmentMapTarget(String),
     /// The output format given to [`Renderer::new`](crate::Renderer::new) cannot be drawn into
     /// (each [`Renderer::prepare`](crate::Renderer::prepare) refuses it; the message names what
     /// is needed).
@@ -86,6 +91,24 @@ pub enum RenderError {
         /// What wgpu said.
         reason: String,
     },
+}
+
+/// Pops `oom` then `validation` (pushed in that order's reverse around a submission) and returns
+/// the first error either caught as [`RenderError::Gpu`], `during` saying what was being done.
+pub(crate) fn pop_error_scopes(
+    oom: wgpu::ErrorScopeGuard,
+    validation: wgpu::ErrorScopeGuard,
+    during: &'static str,
+) -> Result<(), RenderError> {
+    for scope in [oom, validation] {
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu {
+                during,
+                reason: error.to_string(),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// One device limit below what firmament needs.

@@ -12,6 +12,7 @@ use crate::gpu_types::ExposureStateGpu;
 use crate::readback::{PendingRead, TextureCopy};
 pub use crate::readback::{decode_f16, read_texture};
 use crate::renderer::Renderer;
+use crate::targets::FrameTargets;
 
 /// Format of the display image: 8-bit RGBA, sRGB-encoded by the hardware.
 pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -244,6 +245,36 @@ impl HeadlessRenderer {
         height: u32,
         readback: Readback,
     ) -> Result<(Option<PendingRead>, Option<PendingRead>), RenderError> {
+        // The copies follow the render in the queue, so the next frame may reuse the targets.
+        let ((ldr, hdr), submission) = self.render_then(ctx, frame, (width, height), |encoder, output, targets| {
+            let ldr = match readback.ldr {
+                true => Some(TextureCopy::record(ctx, encoder, output)?),
+                false => None,
+            };
+            let hdr = match readback.hdr {
+                true => Some(TextureCopy::record(ctx, encoder, &targets.hdr)?),
+                false => None,
+            };
+            Ok((ldr, hdr))
+        })?;
+        Ok((
+            ldr.map(|copy| copy.map(submission.clone())),
+            hdr.map(|copy| copy.map(submission)),
+        ))
+    }
+
+    /// Renders `frame` at `width` × `height` into the output texture, then records what `then`
+    /// adds to the same encoder (given the output texture and the renderer's HDR and depth
+    /// targets, holding this frame), and submits: `then`'s result and the submission. GPU
+    /// validation and out-of-memory errors of the whole submission are returned as
+    /// [`RenderError::Gpu`].
+    pub(crate) fn render_then<R>(
+        &mut self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        (width, height): (u32, u32),
+        then: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::Texture, &FrameTargets) -> Result<R, RenderError>,
+    ) -> Result<(R, wgpu::SubmissionIndex), RenderError> {
         ctx.check_image_size(width, height)?;
         let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let oom = ctx.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
@@ -260,42 +291,18 @@ impl HeadlessRenderer {
             .output
             .as_ref()
             .ok_or_else(|| RenderError::Readback("no output texture".into()))?;
+        let targets = self
+            .renderer
+            .targets()
+            .ok_or_else(|| RenderError::Readback("no HDR target".into()))?;
         let view = output.create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = ctx.device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("firmament HeadlessRenderer encoder"),
         });
         self.renderer.record(&mut encoder, &view);
-        // The copies follow the render in the queue, so the next frame may reuse the targets.
-        let ldr = match readback.ldr {
-            true => Some(TextureCopy::record(ctx, &mut encoder, output)?),
-            false => None,
-        };
-        let hdr = match readback.hdr {
-            true => {
-                let targets = self
-                    .renderer
-                    .targets()
-                    .ok_or_else(|| RenderError::Readback("no HDR target".into()))?;
-                Some(TextureCopy::record(ctx, &mut encoder, &targets.hdr)?)
-            }
-            false => None,
-        };
+        let result = then(&mut encoder, output, targets)?;
         let submission = ctx.queue.submit([encoder.finish()]);
-        if let Some(error) = pollster::block_on(oom.pop()) {
-            return Err(RenderError::Gpu {
-                during: "rendering",
-                reason: error.to_string(),
-            });
-        }
-        if let Some(error) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu {
-                during: "rendering",
-                reason: error.to_string(),
-            });
-        }
-        Ok((
-            ldr.map(|copy| copy.map(submission.clone())),
-            hdr.map(|copy| copy.map(submission)),
-        ))
+        crate::error::pop_error_scopes(oom, scope, "rendering")?;
+        Ok((result, submission))
     }
 }

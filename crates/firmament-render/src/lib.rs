@@ -81,7 +81,8 @@
 //!   [`HeadlessRenderer::render_equirect`](headless::HeadlessRenderer::render_equirect) and
 //!   [`render_cube_faces`](headless::HeadlessRenderer::render_cube_faces), linear radiance with
 //!   the suns' discs at their true radiance (or left out, the suns given apart by
-//!   [`envmap::suns_at_eye`]).
+//!   [`envmap::suns_at_eye`]); into your own cube or 2D texture, with no read-back, by
+//!   [`envmap::EnvironmentMapPass`].
 //! - **Your frame: your HDR target, depth buffer and depth convention**:
 //!   [`Renderer::prepare_into`] and [`Renderer::record_into`] with an [`EmbedTarget`] (your
 //!   colour view of one of [`EMBED_COLOR_FORMATS`], your depth view of one of

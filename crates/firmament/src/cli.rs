@@ -370,6 +370,11 @@ pub(crate) struct EnvmapArgs {
     #[arg(long, value_name = "N", default_value_t = 512, requires = "cubemap",
           value_parser = clap::value_parser!(u32).range(1..=16_384))]
     pub(crate) face_size: u32,
+    /// How --cubemap writes the faces: six files `<stem>_px.exr` … (faces), or one EXR of
+    /// 4·N × 3·N holding them as a horizontal cross (cross: +Y above the second column, then
+    /// −X +Z +X −Z, −Y below; the unused cells black with alpha 0). Default: faces.
+    #[arg(long, value_enum, value_name = "LAYOUT", requires = "cubemap")]
+    pub(crate) cube_layout: Option<CubeLayout>,
     /// Leave the suns' discs out of the map and write each sun's direction and irradiance after
     /// the air to `<stem>.sun.json`, for engines that light with a separate directional light.
     #[arg(long)]
@@ -483,6 +488,16 @@ pub(crate) enum ExrCompression {
     Zips,
     /// Wavelet and Huffman, 32 rows a block: best on noisy images (grain, stars).
     Piz,
+}
+
+/// `--cube-layout` values: how `envmap --cubemap` writes the six faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub(crate) enum CubeLayout {
+    /// Six files, `<stem>_px.exr` … `<stem>_nz.exr`.
+    #[default]
+    Faces,
+    /// One file, the faces as a horizontal cross (4·N × 3·N).
+    Cross,
 }
 
 /// `--backend` values.

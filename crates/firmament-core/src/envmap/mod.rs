@@ -16,11 +16,14 @@
 //!
 //! The cube faces follow the OpenGL / Khronos cube-map convention in the **Y-up** frame
 //! `x` = east, `y` = up, `z` = south ([`enu_to_y_up`]): faces `+X` (east), `−X` (west), `+Y`
-//! (up), `−Y` (down), `+Z` (south), `−Z` (north), each image's top row first.
+//! (up), `−Y` (down), `+Z` (south), `−Z` (north), each image's top row first; [`cross`] lays
+//! them out in one image as a horizontal cross.
 
+pub mod cross;
 pub mod projection;
 pub mod sun_disc;
 
+pub use cross::{CROSS_CELLS, cross_face, cross_position};
 pub use projection::{
     CubeFace, cube_direction, cube_position, cube_texel_solid_angle, enu_to_y_up, equirect_direction,
     equirect_pixel_solid_angle, equirect_position, y_up_to_enu,

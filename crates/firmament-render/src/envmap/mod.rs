@@ -12,6 +12,11 @@
 //! disc is that sun's irradiance at the eye whatever the map's size. Discs hidden by the
 //! frame's objects are still added (the objects' depth is not consulted).
 //!
+//! Into your own wgpu textures, with no read-back: [`EnvironmentMapPass`] renders the six faces
+//! into a cube texture's layers or the equirectangular map into a 2D texture, the same texels as
+//! the images here (the discs only into `Rgba32Float`). [`CubeFaces::to_horizontal_cross`] lays
+//! the faces out as one 4:3 horizontal cross.
+//!
 //! Layouts and frames: [`firmament_core::envmap`] (equirectangular: zenith on top, north a
 //! quarter across, east in the middle, the seam in the west; cube faces: OpenGL's convention in
 //! the Y-up frame `x` east, `y` up, `z` south).
@@ -32,8 +37,14 @@
 //! # }
 //! ```
 
+mod cross;
 mod discs;
+mod gpu;
 mod resample;
+
+#[cfg(test)]
+pub(crate) use gpu::write_source;
+pub use gpu::{ENVMAP_FORMATS, EnvironmentMapPass};
 
 use firmament_core::envmap::{CubeFace, SunAtEye, sun_at_eye};
 use firmament_core::flare::FlareLayer;
@@ -142,20 +153,33 @@ impl HeadlessRenderer {
     /// The six faces as the GPU draws them: no sun discs, no flares, radiance before the camera.
     fn render_sky_faces(&mut self, ctx: &GpuContext, frame: &Frame, size: u32) -> Result<CubeFaces, RenderError> {
         ctx.check_image_size(size, size)?;
-        let mut base = frame.clone();
-        base.flares = FlareLayer::default();
-        base.display = Default::default();
-        if let Sky::Atmosphere(sky) = &mut base.sky {
-            sky.suns.iter_mut().for_each(|sun| sun.disc = false);
-        }
         let mut faces = Vec::with_capacity(CubeFace::ALL.len());
-        for face in CubeFace::ALL {
-            base.camera = face_camera(&frame.camera, face)?;
-            let image = self.render_hdr(ctx, &base, size, size)?;
-            faces.push(mirrored(image));
-        }
+        for_each_face_frame(frame, |_, face_frame| {
+            faces.push(mirrored(self.render_hdr(ctx, face_frame, size, size)?));
+            Ok(())
+        })?;
         Ok(CubeFaces { size, faces })
     }
+}
+
+/// Calls `draw` with each face of [`CubeFace::ALL`] and `frame` as its face camera sees it for
+/// the map: flares off, the display's defaults, no sun discs (they do not fit the half-float
+/// target; they are added afterwards).
+fn for_each_face_frame(
+    frame: &Frame,
+    mut draw: impl FnMut(CubeFace, &Frame) -> Result<(), RenderError>,
+) -> Result<(), RenderError> {
+    let mut base = frame.clone();
+    base.flares = FlareLayer::default();
+    base.display = Default::default();
+    if let Sky::Atmosphere(sky) = &mut base.sky {
+        sky.suns.iter_mut().for_each(|sun| sun.disc = false);
+    }
+    for face in CubeFace::ALL {
+        base.camera = face_camera(&frame.camera, face)?;
+        draw(face, &base)?;
+    }
+    Ok(())
 }
 
 /// A 90° square camera at `camera`'s position looking through `face`: right-handed, so its image
@@ -206,10 +230,28 @@ fn check_equirect_width(width: u32) -> Result<(), RenderError> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use firmament_core::envmap::cube_direction;
     use glam::{DVec2, DVec3};
+
+    /// A cube whose texels hold their own direction's `(x, y, z)` (ENU) in RGB, alpha 1.
+    pub(crate) fn direction_cube(size: u32) -> CubeFaces {
+        let faces = CubeFace::ALL
+            .iter()
+            .map(|&face| Image {
+                width: size,
+                height: size,
+                pixels: (0..size * size)
+                    .flat_map(|k| {
+                        let d = cube_direction(face, f64::from(k % size) + 0.5, f64::from(k / size) + 0.5, size);
+                        [d.x as f32, d.y as f32, d.z as f32, 1.0]
+                    })
+                    .collect(),
+            })
+            .collect();
+        CubeFaces { size, faces }
+    }
 
     /// The mirrored face camera's pixel centres are the OpenGL faces' texel directions.
     #[test]

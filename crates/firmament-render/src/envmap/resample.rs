@@ -51,25 +51,8 @@ pub(super) fn equirect_from_cube(cube: &CubeFaces, width: u32) -> Image<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use firmament_core::envmap::{CubeFace, cube_direction, equirect_pixel_solid_angle};
-
-    /// A cube whose texels hold their own direction's `(x, y, z)` (ENU) in RGB.
-    fn direction_cube(size: u32) -> CubeFaces {
-        let faces = CubeFace::ALL
-            .iter()
-            .map(|&face| Image {
-                width: size,
-                height: size,
-                pixels: (0..size * size)
-                    .flat_map(|k| {
-                        let d = cube_direction(face, f64::from(k % size) + 0.5, f64::from(k / size) + 0.5, size);
-                        [d.x as f32, d.y as f32, d.z as f32, 1.0]
-                    })
-                    .collect(),
-            })
-            .collect();
-        CubeFaces { size, faces }
-    }
+    use crate::envmap::tests::direction_cube;
+    use firmament_core::envmap::equirect_pixel_solid_angle;
 
     /// Resampled, every equirectangular pixel holds (nearly) its own direction: the two
     /// projections agree, and the map's ∫ z·cos over the upper hemisphere is 2π/3.

@@ -85,6 +85,8 @@ const FILES: &[(&str, &str)] = &[
     ("camera/bloom_from_image", include_str!("camera/bloom_from_image.wgsl")),
     ("camera/bloom_down", include_str!("camera/bloom_down.wgsl")),
     ("camera/bloom_up", include_str!("camera/bloom_up.wgsl")),
+    ("envmap/from_faces", include_str!("envmap/from_faces.wgsl")),
+    ("envmap/write", include_str!("envmap/write.wgsl")),
     ("include/firmament_lighting", FIRMAMENT_LIGHTING_WGSL),
     (
         "include/firmament_aerial_perspective",
@@ -254,10 +256,15 @@ pub static CLOUDS_MARCH: Shader = entry!("clouds/march");
 /// The clouds' shadow map: their optical depth along each sun's rays around the camera (compute).
 pub static CLOUD_SHADOW_MAP: Shader = entry!("clouds/shadow_map");
 
+/// The environment-map pass's kernels (compute): the six faces into a cube layer or an
+/// equirectangular map, with the suns' disc pieces (an `rgba16float` output; the pass derives the
+/// `rgba32float` one).
+pub static ENVMAP_WRITE: Shader = entry!("envmap/write");
+
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 24] = [
+pub static ENTRIES: [&Shader; 25] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -281,6 +288,7 @@ pub static ENTRIES: [&Shader; 24] = [
     &BLOOM_UP,
     &CLOUDS_MARCH,
     &CLOUD_SHADOW_MAP,
+    &ENVMAP_WRITE,
     &FIRMAMENT_AERIAL_PERSPECTIVE_WGSL,
 ];
 
@@ -643,6 +651,18 @@ mod tests {
             ]
         );
         assert_layout!(night, "StarIn", StarInstance, [direction, color]);
+    }
+
+    #[test]
+    fn envmap_layouts_match() {
+        use crate::gpu_types::{DiscTexelInstance, EnvmapParamsUniforms};
+        let module = validate("envmap/write", &ENVMAP_WRITE);
+        assert_layout!(module, "EnvmapParams", EnvmapParamsUniforms, [face, size, width, height]);
+        assert_layout!(module, "DiscTexel", DiscTexelInstance, [x, y, face, first, count]);
+        // The pass's rgba32float variant is the same module with one word changed.
+        let wide = crate::envmap::write_source(wgpu::TextureFormat::Rgba32Float);
+        assert_ne!(wide, ENVMAP_WRITE.source());
+        validate("envmap/write (rgba32float)", &wide);
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! GPU tests of the environment maps (`firmament_render::envmap`): the sun-less map's sky
 //! irradiance on the ground against the `f64` reference path tracer, the disc's irradiance
-//! against the sun's after the air, and where the sun lands in both layouts.
+//! against the sun's after the air, and where the sun lands in both layouts; the maps written
+//! into the caller's textures (`EnvironmentMapPass`) against the in-memory ones, and the
+//! textures it refuses.
 
 use std::f64::consts::TAU;
 
@@ -10,8 +12,9 @@ use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::envmap::{CubeFace, cube_position, equirect_position, sun_at_eye};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_core::{Camera, Frame};
-use firmament_render::envmap::SunDiscs;
+use firmament_render::envmap::{EnvironmentMapPass, SunDiscs};
 use firmament_render::headless::Image;
+use firmament_render::{GpuContext, RenderError};
 use glam::DVec3;
 
 /// The camera 1.7 m above the ground (its orientation does not matter to a map).
@@ -149,4 +152,406 @@ fn the_disc_carries_the_suns_irradiance_and_lands_where_the_sun_is() {
     let (face, q) = cube_position(centre, 32);
     assert_eq!(face, CubeFace::PositiveX, "east is +X");
     assert_eq!(brightest(cube.face(face)), (q.x as u32, q.y as u32));
+}
+
+/// A `width` × `height` texture of `layers` layers and `format` for `EnvironmentMapPass`.
+fn map_texture(
+    ctx: &GpuContext,
+    (width, height, layers): (u32, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("envmap test target"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// The usages the tests' targets have: copied into, read back, sampled.
+const TARGET_USAGE: wgpu::TextureUsages = wgpu::TextureUsages::COPY_DST
+    .union(wgpu::TextureUsages::COPY_SRC)
+    .union(wgpu::TextureUsages::TEXTURE_BINDING);
+
+/// Layer `layer` of a float RGBA `texture` read back as `f32`, rows top first.
+fn read_layer(ctx: &GpuContext, texture: &wgpu::Texture, layer: u32) -> Image<f32> {
+    let (width, height) = (texture.width(), texture.height());
+    let texel = texture.format().block_copy_size(None).expect("a colour format");
+    let row = firmament_render::readback::padded_bytes_per_row(width, texel);
+    let buffer = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("envmap test layer"),
+        size: u64::from(row * height),
+        usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(height),
+            },
+        },
+        wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
+    ctx.queue.submit([encoder.finish()]);
+    let bytes = firmament_render::readback::read_buffer(ctx, &buffer, buffer.size()).expect("read back");
+    let pixels = bytes
+        .chunks_exact(row as usize)
+        .flat_map(|line| {
+            let line = &line[..(width * texel) as usize];
+            match texel {
+                16 => bytemuck::pod_collect_to_vec::<u8, f32>(line),
+                _ => firmament_render::headless::decode_f16(line),
+            }
+        })
+        .collect();
+    Image { width, height, pixels }
+}
+
+/// What a `texture_cube` samples (nearest) at the centre of each face's texel `(i, j)`, by
+/// OpenGL's table (the direction `cube_direction` gives, in the Y-up frame), into an `atlas` of
+/// the six faces side by side.
+const CUBE_READER: &str = "
+@group(0) @binding(0) var cube: texture_cube<f32>;
+@group(0) @binding(1) var nearest: sampler;
+@group(0) @binding(2) var atlas: texture_storage_2d<rgba32float, write>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = textureDimensions(cube).x;
+    let face = id.x / n;
+    if face >= 6u || id.y >= n {
+        return;
+    }
+    let sc = (f32(id.x % n) + 0.5) / f32(n) * 2.0 - 1.0;
+    let tc = (f32(id.y) + 0.5) / f32(n) * 2.0 - 1.0;
+    var d: vec3<f32>;
+    switch face {
+        case 0u: { d = vec3<f32>(1.0, -tc, -sc); }
+        case 1u: { d = vec3<f32>(-1.0, -tc, sc); }
+        case 2u: { d = vec3<f32>(sc, 1.0, tc); }
+        case 3u: { d = vec3<f32>(sc, -1.0, -tc); }
+        case 4u: { d = vec3<f32>(sc, -tc, 1.0); }
+        default: { d = vec3<f32>(-sc, -tc, -1.0); }
+    }
+    textureStore(atlas, id.xy, textureSampleLevel(cube, nearest, d, 0.0));
+}
+";
+
+/// The six faces of a cube `texture` as a cube sampler sees them (wgpu's GL backend cannot copy a
+/// cube map out), in the order of `CubeFace::ALL`, rows top first.
+fn read_cube(ctx: &GpuContext, texture: &wgpu::Texture) -> Vec<Image<f32>> {
+    let n = texture.width();
+    let device = &ctx.device;
+    let atlas = map_texture(
+        ctx,
+        (6 * n, n, 1),
+        wgpu::TextureFormat::Rgba32Float,
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("envmap test cube reader"),
+        source: wgpu::ShaderSource::Wgsl(CUBE_READER.into()),
+    });
+    let compute = wgpu::ShaderStages::COMPUTE;
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("envmap test cube reader"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: compute,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::Cube,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: compute,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering),
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: compute,
+                ty: wgpu::BindingType::StorageTexture {
+                    access: wgpu::StorageTextureAccess::WriteOnly,
+                    format: wgpu::TextureFormat::Rgba32Float,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                },
+                count: None,
+            },
+        ],
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("envmap test cube reader"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("envmap test cube reader"),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("envmap test nearest"),
+        ..Default::default()
+    });
+    let cube_view = texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::Cube),
+        ..Default::default()
+    });
+    let atlas_view = atlas.create_view(&Default::default());
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("envmap test cube reader"),
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&cube_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&atlas_view),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups((6 * n).div_ceil(8), n.div_ceil(8), 1);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    let all = read_layer(ctx, &atlas, 0);
+    (0..6)
+        .map(|face| Image {
+            width: n,
+            height: n,
+            pixels: all
+                .pixels
+                .chunks_exact(4 * 6 * n as usize)
+                .flat_map(|row| row[(4 * face * n) as usize..(4 * (face + 1) * n) as usize].to_vec())
+                .collect(),
+        })
+        .collect()
+}
+
+/// The largest difference between `got` and `want`, relative to `floor` or the value if larger,
+/// and where.
+fn worst_relative(got: &Image<f32>, want: &Image<f32>, floor: f32) -> (f32, usize) {
+    assert_eq!((got.width, got.height), (want.width, want.height));
+    got.pixels
+        .iter()
+        .zip(&want.pixels)
+        .map(|(g, w)| (g - w).abs() / w.abs().max(floor))
+        .enumerate()
+        .map(|(k, e)| (e, k))
+        .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a })
+}
+
+/// The six GPU layers, with the disc (Rgba32Float) and without (Rgba16Float), sampled as a cube
+/// at each texel's direction, are `render_cube_faces`' faces texel for texel: both come from the
+/// same half-float HDR images and add the same pieces in the same order.
+#[test]
+fn the_gpu_cube_is_the_cpu_cube() {
+    let mut gpu = gpu();
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let sky = street_sky(100.0, 30.0);
+    let frame = street_frame(&sky);
+    let size = 16;
+    let mut pass = EnvironmentMapPass::new(ctx);
+    for (format, discs) in [
+        (wgpu::TextureFormat::Rgba32Float, SunDiscs::Included),
+        (wgpu::TextureFormat::Rgba16Float, SunDiscs::Omitted),
+    ] {
+        let cpu = renderer.render_cube_faces(ctx, &frame, size, discs).expect("render");
+        let target = map_texture(ctx, (size, size, 6), format, TARGET_USAGE);
+        pass.render_cube(ctx, renderer, &frame, &target, discs).expect("render");
+        let layers = read_cube(ctx, &target);
+        let mut peak: f32 = 0.0;
+        for face in CubeFace::ALL {
+            let got = &layers[face.index()];
+            let want = cpu.face(face);
+            peak = peak.max(got.pixels.iter().copied().fold(0.0, f32::max));
+            let (error, at) = worst_relative(got, want, 1e-6);
+            println!("{format:?} {discs:?} {face:?}: worst relative difference {error:e} at {at}");
+            // Half-float rounding of the HDR target would be 2⁻¹¹; the paths agree far closer.
+            assert!(
+                error <= 1e-6,
+                "{face:?}: {error} at {at}: {} vs {}",
+                got.pixels[at],
+                want.pixels[at]
+            );
+        }
+        if discs == SunDiscs::Included {
+            assert!(peak > firmament_render::HDR_MAX * 10.0, "the disc: {peak}");
+        }
+    }
+}
+
+/// The GPU's equirectangular map is `render_equirect`'s within f32 resampling (the GPU finds the
+/// sample positions in `f32`, the CPU in `f64`), the disc included.
+#[test]
+fn the_gpu_equirect_is_the_cpu_equirect() {
+    let mut gpu = gpu();
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let sky = street_sky(100.0, 30.0);
+    let frame = street_frame(&sky);
+    let width = 64;
+    let cpu = renderer
+        .render_equirect(ctx, &frame, width, SunDiscs::Included)
+        .expect("render");
+    let target = map_texture(
+        ctx,
+        (width, width / 2, 1),
+        wgpu::TextureFormat::Rgba32Float,
+        TARGET_USAGE,
+    );
+    let mut pass = EnvironmentMapPass::new(ctx);
+    pass.render_equirect(ctx, renderer, &frame, &target, SunDiscs::Included)
+        .expect("render");
+    let got = read_layer(ctx, &target, 0);
+    let (error, at) = worst_relative(&got, &cpu, 1e-3);
+    println!("equirect: worst relative difference {error:e} at {at}");
+    assert!(
+        error < 1e-4,
+        "{error} at {at}: {} vs {}",
+        got.pixels[at],
+        cpu.pixels[at]
+    );
+}
+
+/// The GPU map's disc carries the sun's irradiance after the air: the map with the disc less the
+/// map without, `Σ ΔL·dω`, against `E·T` (sun 30° up, 128 × 64).
+#[test]
+fn the_gpu_disc_carries_the_suns_irradiance() {
+    let mut gpu = gpu();
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let sky = street_sky(100.0, 30.0);
+    let frame = street_frame(&sky);
+    let width = 128;
+    let mut pass = EnvironmentMapPass::new(ctx);
+    let mut map = |discs| {
+        let target = map_texture(
+            ctx,
+            (width, width / 2, 1),
+            wgpu::TextureFormat::Rgba32Float,
+            TARGET_USAGE,
+        );
+        pass.render_equirect(ctx, renderer, &frame, &target, discs)
+            .expect("render");
+        read_layer(ctx, &target, 0)
+    };
+    let (with, without) = (map(SunDiscs::Included), map(SunDiscs::Omitted));
+    let sun = sun_at_eye(&sky.atmosphere, &[], &sky.suns[0], frame.camera.position);
+    let want = DVec3::new(sun.irradiance_rgb.r, sun.irradiance_rgb.g, sun.irradiance_rgb.b);
+    let got = total_irradiance(&with) - total_irradiance(&without);
+    let error = relative(got, want);
+    println!("GPU disc: map {got:.1} lux, E·T {want:.1} lux: relative {error:.6}");
+    assert!(error.abs().max_element() < 0.01, "{error}");
+}
+
+/// A target the pass must refuse: its size (width, height, layers), format and usage, the discs
+/// asked for, and words of the rule its message must name.
+type BadTarget = (
+    (u32, u32, u32),
+    wgpu::TextureFormat,
+    wgpu::TextureUsages,
+    SunDiscs,
+    &'static str,
+);
+
+/// Targets the pass cannot fill are refused with the rule they break, before anything is drawn.
+#[test]
+fn bad_targets_are_refused_with_their_rule() {
+    let mut gpu = gpu();
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let frame = street_frame(&street_sky(100.0, 30.0));
+    let mut pass = EnvironmentMapPass::new(ctx);
+    let f16 = wgpu::TextureFormat::Rgba16Float;
+    let f32 = wgpu::TextureFormat::Rgba32Float;
+    let cube_cases: &[BadTarget] = &[
+        (
+            (16, 16, 6),
+            f16,
+            TARGET_USAGE,
+            SunDiscs::Included,
+            "SunDiscs::Included needs Rgba32Float",
+        ),
+        (
+            (16, 16, 3),
+            f32,
+            TARGET_USAGE,
+            SunDiscs::Omitted,
+            "exactly 6 array layers",
+        ),
+        ((16, 8, 6), f32, TARGET_USAGE, SunDiscs::Omitted, "must be square"),
+        (
+            (16, 16, 6),
+            wgpu::TextureFormat::Rgba8Unorm,
+            TARGET_USAGE,
+            SunDiscs::Omitted,
+            "Rgba16Float or Rgba32Float",
+        ),
+        (
+            (16, 16, 6),
+            f32,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+            SunDiscs::Omitted,
+            "COPY_DST",
+        ),
+    ];
+    for &(size, format, usage, discs, rule) in cube_cases {
+        let target = map_texture(ctx, size, format, usage);
+        let error = pass
+            .render_cube(ctx, renderer, &frame, &target, discs)
+            .expect_err("refused");
+        let message = error.to_string();
+        assert!(matches!(error, RenderError::EnvironmentMapTarget(_)), "{message}");
+        assert!(message.contains(rule), "{size:?} {format:?}: {message}");
+    }
+    for (size, rule) in [
+        ((64, 64, 1), "half of it"),
+        ((64, 32, 6), "exactly 1 layer"),
+        ((2, 1, 1), "at least 4"),
+    ] {
+        let target = map_texture(ctx, size, f32, TARGET_USAGE);
+        let error = pass
+            .render_equirect(ctx, renderer, &frame, &target, SunDiscs::Omitted)
+            .expect_err("refused");
+        assert!(error.to_string().contains(rule), "{size:?}: {error}");
+    }
 }

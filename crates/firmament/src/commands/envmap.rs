@@ -1,5 +1,6 @@
 //! `firmament envmap`: the full sphere of directions around the scene's camera as a linear HDR
-//! environment map — an equirectangular EXR or six cube-face EXRs — once, or at N instants into
+//! environment map — an equirectangular EXR, six cube-face EXRs or one horizontal-cross EXR —
+//! once, or at N instants into
 //! a folder (`--time-lapse`). With `--no-sun` the discs are left out and the suns are written
 //! beside the map as JSON (`sun_json.rs`). Layouts and units: docs/ENVMAP.md.
 
@@ -16,7 +17,7 @@ use firmament_render::GpuContext;
 use firmament_render::envmap::SunDiscs;
 use firmament_render::headless::HeadlessRenderer;
 
-use crate::cli::{EnvmapArgs, ExrCompression};
+use crate::cli::{CubeLayout, EnvmapArgs, ExrCompression};
 use crate::output::{OutputFormat, check_parent_dir, write_exr};
 
 use super::timelapse::{argument_error, check_output_dir, create_output_dir, frame_instant, frame_name, time_span};
@@ -29,14 +30,16 @@ const DEFAULT_PRESET: &str = "earth-noon";
 struct Layout {
     /// `Some(face side)` for six cube faces, `None` for the equirectangular map.
     cube: Option<u32>,
+    /// Whether the faces go into one horizontal-cross image rather than six files.
+    cross: bool,
     /// The equirectangular map's width, pixels.
     width: u32,
     discs: SunDiscs,
     compression: ExrCompression,
 }
 
-/// The files one map is written to, named after `output` (`<stem>.exr`): the map itself or its
-/// six faces `<stem>_px.exr` …, and with `--no-sun` `<stem>.sun.json`.
+/// The files one map is written to, named after `output` (`<stem>.exr`): the map itself (or the
+/// faces' cross) or its six faces `<stem>_px.exr` …, and with `--no-sun` `<stem>.sun.json`.
 struct MapFiles {
     images: Vec<PathBuf>,
     sun_json: Option<PathBuf>,
@@ -51,11 +54,11 @@ impl MapFiles {
             PathBuf::from(name)
         };
         let images = match layout.cube {
-            Some(_) => CubeFace::ALL
+            Some(_) if !layout.cross => CubeFace::ALL
                 .iter()
                 .map(|face| beside(&format!("_{}.exr", face.suffix())))
                 .collect(),
-            None => vec![output.to_path_buf()],
+            _ => vec![output.to_path_buf()],
         };
         let sun_json = (layout.discs == SunDiscs::Omitted).then(|| beside(".sun.json"));
         Self { images, sun_json }
@@ -69,8 +72,16 @@ impl MapFiles {
 
 /// Renders the map (or the time-lapse of maps); nothing is written unless its render succeeds.
 pub(crate) fn run(args: &EnvmapArgs) -> Result<()> {
+    // clap waives `requires = "cubemap"` when --width (which --cubemap conflicts with) is given.
+    if args.cube_layout.is_some() && !args.cubemap {
+        argument_error(
+            "envmap",
+            "--cube-layout arranges the faces of --cubemap: give --cubemap (and --face-size, not --width)".into(),
+        );
+    }
     let layout = Layout {
         cube: args.cubemap.then_some(args.face_size),
+        cross: args.cube_layout.unwrap_or_default() == CubeLayout::Cross,
         width: args.width,
         discs: if args.no_sun {
             SunDiscs::Omitted
@@ -91,6 +102,8 @@ pub(crate) fn run(args: &EnvmapArgs) -> Result<()> {
         policy.check_frames(args.frames.unwrap_or(1))?;
     }
     let (what_pixels, width, height) = match layout.cube {
+        // The cross is twelve faces' pixels, half of them blank.
+        Some(side) if layout.cross => ("the cube's cross (4 x 3 faces)", 4 * side, 3 * side),
         // The six faces are held together: counted as one strip of six.
         Some(side) => ("the cube (six faces side by side)", side, 6 * side),
         None => ("the map", layout.width, layout.width / 2),
@@ -174,8 +187,12 @@ fn render_map(
     match layout.cube {
         Some(side) => {
             let cube = renderer.render_cube_faces(ctx, frame, side, layout.discs)?;
-            for (face, path) in CubeFace::ALL.iter().zip(&files.images) {
-                write_exr(path, cube.face(*face), layout.compression)?;
+            if layout.cross {
+                write_exr(&files.images[0], &cube.to_horizontal_cross(), layout.compression)?;
+            } else {
+                for (face, path) in CubeFace::ALL.iter().zip(&files.images) {
+                    write_exr(path, cube.face(*face), layout.compression)?;
+                }
             }
         }
         None => {

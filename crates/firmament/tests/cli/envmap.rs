@@ -61,6 +61,57 @@ fn cubemap_writes_six_faces() {
     assert!(brightest.1 > 65_504.0 * 10.0);
 }
 
+/// `--cube-layout cross` writes one 4·N × 3·N EXR whose cells are the six face files of the same
+/// render (`+Y` above the second column; `−X +Z +X −Z`; `−Y` below the second column) and whose
+/// six other cells are black with alpha 0.
+#[test]
+fn cube_layout_cross_holds_the_six_faces() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let size = 8;
+    let common = ["--cubemap", "--face-size", "8", "--exr-compression", "none"];
+    envmap(dir.path(), &[&common[..], &["-o", "faces.exr"]].concat());
+    envmap(
+        dir.path(),
+        &[&common[..], &["--cube-layout", "cross", "-o", "cross.exr"]].concat(),
+    );
+    let mut want: Vec<String> = ["px", "nx", "py", "ny", "pz", "nz"]
+        .iter()
+        .map(|f| format!("faces_{f}.exr"))
+        .chain(["cross.exr".to_owned()])
+        .collect();
+    want.sort();
+    assert_eq!(names_in(dir.path()), want, "one cross file, nothing else");
+    let (width, cross) = exr_image(&dir.path().join("cross.exr"));
+    assert_eq!((width, cross.len() / 4 / width), (4 * size, 3 * size));
+    // (column, row) of each face's cell.
+    let cells = [
+        ("px", (2, 1)),
+        ("nx", (0, 1)),
+        ("py", (1, 0)),
+        ("ny", (1, 2)),
+        ("pz", (1, 1)),
+        ("nz", (3, 1)),
+    ];
+    let mut used = vec![false; width * 3 * size];
+    for (face, (column, row)) in cells {
+        let (_, texels) = exr_image(&dir.path().join(format!("faces_{face}.exr")));
+        for j in 0..size {
+            for i in 0..size {
+                let (x, y) = (column * size + i, row * size + j);
+                used[y * width + x] = true;
+                let at = 4 * (y * width + x);
+                let from = 4 * (j * size + i);
+                assert_eq!(cross[at..at + 4], texels[from..from + 4], "{face} ({i}, {j})");
+            }
+        }
+    }
+    for (k, pixel) in cross.chunks_exact(4).enumerate() {
+        if !used[k] {
+            assert_eq!(pixel, [0.0; 4], "blank cell pixel {k}");
+        }
+    }
+}
+
 /// `--no-sun` leaves the disc out (the map stays within the half-float range) and writes
 /// `<stem>.sun.json`: the Sun south at 45° up, its irradiance after the air on the ground the
 /// same as `sky-sample --reference` reports for that sun.
@@ -261,6 +312,18 @@ fn bad_arguments_fail_with_a_message_and_no_file() {
         (&["--cubemap", "--width", "64"], 2, "cannot be used with"),
         (&["--face-size", "8"], 2, "--cubemap"),
         (&["--cubemap", "--face-size", "0"], 2, "--face-size"),
+        (
+            &["--cubemap", "--face-size", "8", "--cube-layout", "strip"],
+            2,
+            "--cube-layout",
+        ),
+        (&["--cube-layout", "cross"], 2, "--cubemap"),
+        (&["--cube-layout", "cross", "--width", "64"], 2, "--cubemap"),
+        (
+            &["--cubemap", "--cube-layout", "cross", "--face-size", "4096"],
+            1,
+            "FIRMAMENT_MAX_PIXELS",
+        ),
         (&["--from", "2024-06-21T18:00Z"], 2, "--time-lapse"),
         (
             &[
