@@ -50,7 +50,17 @@ pub struct CloudLayerGpu {
     pub detail: [f32; 4],
     /// The kind's column-field quantiles at 0, 1/32, …, 1: entry `i` at `[i / 4][i % 4]`.
     pub quantiles: [[f32; 4]; QUANTILE_ROWS],
+    /// The layer's density averaged over its columns at its own coverage, over `density_per_m`
+    /// (0–1), at height fractions `(i / 31)²` (crowded at the bottom, where flat bases make it
+    /// rise steeply): entry `i` at `[i / 4][i % 4]`
+    /// ([`CloudLayer::mean_density_with_coverage`]; the level of detail from afar).
+    pub mean_profile: [[f32; 4]; MEAN_PROFILE_ROWS],
 }
+
+/// Entries of [`CloudLayerGpu::mean_profile`].
+pub const MEAN_PROFILE_ENTRIES: usize = 32;
+/// Rows of four of [`CloudLayerGpu::mean_profile`].
+pub const MEAN_PROFILE_ROWS: usize = MEAN_PROFILE_ENTRIES / 4;
 
 /// Mirrors `CloudsGpu` in `shaders/clouds/density.wgsl`: every layer of a sky.
 #[repr(C)]
@@ -142,6 +152,14 @@ impl CloudLayerGpu {
             ];
             for (i, q) in shape.quantiles.iter().enumerate() {
                 u.quantiles[i / 4][i % 4] = *q as f32;
+            }
+        }
+        if layer.density_per_m > 0.0 {
+            let last = (MEAN_PROFILE_ENTRIES - 1) as f64;
+            for i in 0..MEAN_PROFILE_ENTRIES {
+                let h = layer.bottom_m + thickness * (i as f64 / last).powi(2);
+                let mean = layer.mean_density_with_coverage(h, layer.coverage) / layer.density_per_m;
+                u.mean_profile[i / 4][i % 4] = mean as f32;
             }
         }
         u

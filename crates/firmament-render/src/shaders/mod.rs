@@ -897,7 +897,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 profile,
                 edges,
                 detail,
-                quantiles
+                quantiles,
+                mean_profile
             ]
         );
         assert_layout!(clouds, "CloudsGpu", CloudsGpu, [count, layers]);

@@ -63,6 +63,9 @@ struct CloudLayerGpu {
     detail: vec4<f32>,
     // The kind's column-field quantiles at 0, 1/32, …, 1: entry i at [i / 4][i % 4] (33 used).
     quantiles: array<vec4<f32>, 9>,
+    // The density averaged over the columns at the layer's own coverage, over shell.w, at height
+    // fractions (i / 31)²: entry i at [i / 4][i % 4] (the core's mean_density_with_coverage).
+    mean_profile: array<vec4<f32>, 8>,
 }
 
 // Every layer of a sky (gpu_types::clouds::CloudsGpu).
@@ -359,6 +362,33 @@ fn cloud_mean_density_at(layer: CloudLayerGpu, h: f32, coverage: f32, t: f32, t_
         lo = hi;
     }
     return layer.shell.w * sum;
+}
+
+// Entry i (0 … 31) of the layer's mean profile, by constant indices (as cloud_quantile).
+fn cloud_mean_entry(layer: CloudLayerGpu, i: u32) -> f32 {
+    let r = i / 4u;
+    var row = layer.mean_profile[0];
+    row = select(row, layer.mean_profile[1], r == 1u);
+    row = select(row, layer.mean_profile[2], r == 2u);
+    row = select(row, layer.mean_profile[3], r == 3u);
+    row = select(row, layer.mean_profile[4], r == 4u);
+    row = select(row, layer.mean_profile[5], r == 5u);
+    row = select(row, layer.mean_profile[6], r == 6u);
+    row = select(row, layer.mean_profile[7], r == 7u);
+    return row[i % 4u];
+}
+
+// The density at altitude h averaged over the columns at the layer's own coverage, m⁻¹: its mean
+// profile, linear in √x between entries (cloud_mean_density_at at the layer's coverage,
+// tabulated).
+fn cloud_mean_density(layer: CloudLayerGpu, h: f32) -> f32 {
+    if !(h >= layer.shell.x && h <= layer.shell.y) {
+        return 0.0;
+    }
+    let u = sqrt(clamp((h - layer.shell.x) * layer.shell.z, 0.0, 1.0)) * 31.0;
+    let i = min(u32(floor(u)), 30u);
+    let a = cloud_mean_entry(layer, i);
+    return layer.shell.w * (a + (cloud_mean_entry(layer, i + 1u) - a) * (u - f32(i)));
 }
 
 // The same with the coverage there given, 0–1 (the core's

@@ -28,7 +28,14 @@ fn cloud_extinction_lod(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32
     if lod <= 0.0 {
         return field;
     }
-    return mix(field, cloud_mean_density_at(layer, h, coverage, t, t_core), lod);
+    // Without a map the average is the layer's tabulated profile; with one, at the map's coverage.
+    var mean: f32;
+    if layer.codes.z == 0u {
+        mean = cloud_mean_density(layer, h);
+    } else {
+        mean = cloud_mean_density_at(layer, h, coverage, t, t_core);
+    }
+    return mix(field, mean, lod);
 }
 
 // The field itself (level of detail 0).
