@@ -1,11 +1,20 @@
 // clouds/extinction.wgsl — a cloud layer's extinction where the passes sample it: the density
-// field (clouds/density.wgsl) with the layer's coverage map read at the point.
+// field (clouds/density.wgsl) with the layer's coverage map read at the point, at a level of
+// detail; and where a ray meets the layers' shells.
 //
 // Conventions: as clouds/density.wgsl (planet frame, metres, extinction in m⁻¹, grey).
 
+#import common/ellipsoid
 #import atmosphere/bindings
 #import atmosphere/common
 #import clouds/density
+
+// Where the ray o + t·d meets the shell at altitude h (the ellipsoid's semi-axes plus h): the
+// two t of common/ellipsoid's ellipsoid_hits (x > y when it misses).
+fn cloud_shell_hits(o: vec3<f32>, d: vec3<f32>, h: f32) -> vec2<f32> {
+    let radii = atmosphere.radii.xyz + vec3<f32>(h);
+    return ellipsoid_hits(o, d, radii, ellipsoid_c(o, radii));
+}
 
 // The layer's extinction at p (altitude h, geodetic up `up`), m⁻¹, with its coverage map if it has
 // one; with its detail noise when `detailed`, else the detail's mean (cloud_density_detailed);

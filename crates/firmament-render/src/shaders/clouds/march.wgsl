@@ -90,20 +90,15 @@ fn henyey_greenstein_phase(g: f32, nu: f32) -> f32 {
     return (1.0 - g2) / (4.0 * PI * denominator * sqrt(denominator));
 }
 
-// The semi-axes of the shell at altitude h.
-fn shell_radii(h: f32) -> vec3<f32> {
-    return atmosphere.radii.xyz + vec3<f32>(h);
-}
-
 // Where the ray meets the layer: up to two stretches, [t0, t1] inside the top shell and outside
 // the bottom one, cut to [near, far]. Empty stretches have t1 <= t0.
 fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> array<vec2<f32>, 2> {
     var out = array<vec2<f32>, 2>(vec2<f32>(0.0), vec2<f32>(0.0));
-    let outer = ellipsoid_hits(ray.origin, ray.direction, shell_radii(top), ellipsoid_c(ray.origin, shell_radii(top)));
+    let outer = cloud_shell_hits(ray.origin, ray.direction, top);
     if outer.x > outer.y {
         return out;
     }
-    let inner = ellipsoid_hits(ray.origin, ray.direction, shell_radii(bottom), ellipsoid_c(ray.origin, shell_radii(bottom)));
+    let inner = cloud_shell_hits(ray.origin, ray.direction, bottom);
     if inner.x > inner.y {
         out[0] = vec2<f32>(max(outer.x, near), min(outer.y, far));
     } else {
@@ -117,7 +112,7 @@ fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> 
 // stretches doubling in length, out to where the ray leaves the layer's top.
 fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>, lod: f32) -> f32 {
     let top = layer.shell.y;
-    let exit = ellipsoid_hits(p, s, shell_radii(top), ellipsoid_c(p, shell_radii(top))).y;
+    let exit = cloud_shell_hits(p, s, top).y;
     let length_out = max(exit, 0.0);
     // Steps of 1, 2, 4, … units, summing to the way out.
     let unit = length_out / f32((1u << LIGHT_STEPS) - 1u);
@@ -194,8 +189,8 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
     var depth = 0.0;
     for (var i = 0u; i < clouds.count.x; i++) {
         let layer = clouds.layers[i];
-        let outer = ellipsoid_hits(p, s, shell_radii(layer.shell.y), ellipsoid_c(p, shell_radii(layer.shell.y)));
-        let inner = ellipsoid_hits(p, s, shell_radii(layer.shell.x), ellipsoid_c(p, shell_radii(layer.shell.x)));
+        let outer = cloud_shell_hits(p, s, layer.shell.y);
+        let inner = cloud_shell_hits(p, s, layer.shell.x);
         // From where the ray leaves the layer's bottom (it starts below it) to where it leaves the top.
         let a = select(0.0, max(inner.y, 0.0), inner.x <= inner.y && inner.y > 0.0);
         let b = outer.y;

@@ -6,7 +6,6 @@
 // shadows nothing the map serves), SHADOW_MAP_STEPS midpoint samples per stretch, with the
 // detail's mean (the light march's field, clouds/march.wgsl).
 
-#import common/ellipsoid
 #import atmosphere/bindings
 #import atmosphere/common
 #import clouds/extinction
@@ -14,11 +13,6 @@
 
 // Samples over each layer's stretch of a texel's ray.
 const SHADOW_MAP_STEPS: u32 = 24u;
-
-// The semi-axes of the shell at altitude h.
-fn shell_axes(h: f32) -> vec3<f32> {
-    return atmosphere.radii.xyz + vec3<f32>(h);
-}
 
 @compute @workgroup_size(8, 8)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -35,11 +29,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     var last = -3.0e38;
     for (var i = 0u; i < clouds.count.x; i++) {
         let layer = clouds.layers[i];
-        let outer = ellipsoid_hits(o, s, shell_axes(layer.shell.y), ellipsoid_c(o, shell_axes(layer.shell.y)));
+        let outer = cloud_shell_hits(o, s, layer.shell.y);
         if !(outer.x <= outer.y) {
             continue;
         }
-        let inner = ellipsoid_hits(o, s, shell_axes(layer.shell.x), ellipsoid_c(o, shell_axes(layer.shell.x)));
+        let inner = cloud_shell_hits(o, s, layer.shell.x);
         // The stretches inside the top shell and outside the bottom one.
         var stretches = array<vec2<f32>, 2>(outer, vec2<f32>(0.0));
         if inner.x <= inner.y {
