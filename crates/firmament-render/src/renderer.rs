@@ -172,12 +172,15 @@ impl Renderer {
             None => output_format,
             Some(_) => crate::targets::HDR_FORMAT,
         };
+        let own = SkyPasses::new(ctx, SkyTarget::OWN, None);
+        let mut objects = ObjectPass::new(&ctx.device, &ctx.queue);
+        objects.bind_cloud_shadow_map(&ctx.device, own.atmosphere.cloud_shadow_map_view());
         Self {
-            own: SkyPasses::new(ctx, SkyTarget::OWN, None),
+            own,
             embedded: HashMap::new(),
             active: None,
             sky: SkyKind::Gradient,
-            objects: ObjectPass::new(&ctx.device, &ctx.queue),
+            objects,
             camera: CameraPasses::new(&ctx.device),
             tonemap: TonemapPass::new(&ctx.device, tonemap_format),
             embedded_tonemaps: HashMap::new(),
@@ -220,6 +223,11 @@ impl Renderer {
         self.active = None;
         self.lighting_recorded.set(false);
         self.sky = self.own.prepare(ctx, frame, &camera, (width, height));
+        let cloud_axes = match &frame.sky {
+            Sky::Atmosphere(sky) => crate::gpu_types::shadow::cloud_shadow_axes(sky, &camera),
+            _ => [[0.0; 4]; crate::gpu_types::shadow::CLOUD_ROWS],
+        };
+        self.objects.set_cloud_shadow_axes(cloud_axes);
         self.objects.prepare(&ctx.device, &ctx.queue, &frame.objects, &camera);
         if let Some(targets) = &self.targets {
             let hdr = &targets.hdr_view;
@@ -253,6 +261,10 @@ impl Renderer {
         if self.objects.has_shadows() {
             self.objects.record_shadows(encoder);
             timing.mark(encoder, PHASE_SHADOWS);
+        }
+        if self.sky == SkyKind::Atmosphere && !self.objects.is_empty() {
+            // The objects' suns are dimmed by the clouds' shadow map: it goes before them.
+            own.atmosphere.record_cloud_shadow_map(encoder);
         }
         let clear = match self.sky {
             SkyKind::Clear(color) => color,

@@ -11,10 +11,11 @@
 //! (it changes over kilometres of altitude; the direct beam changes across a terminator). Aerial
 //! perspective between the object and the camera is the renderer's.
 //!
-//! The beam also passes through the sky's cloud layers: an object under a cloud (at its origin)
-//! gets the sun's light through it, a lens flare's sun is dimmed by it, and a sun behind an
-//! overcast gives no shadows before a clear one. The ambient term and the ground's bounce do not
-//! see the clouds yet (docs/CLOUDS.md, "Not yet done").
+//! The beam also passes through the sky's cloud layers ([`SkyLight::sun_colors`]): a lens flare's
+//! sun is dimmed by them, and a sun behind an overcast gives no shadows before a clear one.
+//! Objects take the beam through the clear air ([`SkyLight::sun_colors_through_air`]): the
+//! renderer dims it per fragment by the clouds' shadow map. The ambient term and the ground's
+//! bounce do not see the clouds yet (docs/CLOUDS.md, "Not yet done").
 
 use glam::{DVec3, DVec4};
 
@@ -86,6 +87,19 @@ impl<'a> SkyLight<'a> {
     /// Each sun's light colour at `point` (world frame, metres): `E·T/π`, `T` through the air
     /// and the clouds; black when the sun is below the point's horizon.
     pub fn sun_colors(&self, point: DVec3) -> Vec<DVec4> {
+        self.beam_colors(&self.beams, point)
+    }
+
+    /// Each sun's light colour at `point` (world frame, metres) through the air alone: `E·T/π`,
+    /// the clouds left to the renderer's shadow map (firmament-render's object pass dims each
+    /// fragment by it, within its reach of the camera); black when the sun is below the point's
+    /// horizon.
+    pub fn sun_colors_through_air(&self, point: DVec3) -> Vec<DVec4> {
+        self.beam_colors(&self.reference, point)
+    }
+
+    /// `E·T/π` of each sun at `point`, `T` through `medium`'s media.
+    fn beam_colors(&self, medium: &Reference, point: DVec3) -> Vec<DVec4> {
         let planet = &self.sky.atmosphere.planet;
         let at = planet.to_planet_frame(point);
         self.sky
@@ -93,14 +107,15 @@ impl<'a> SkyLight<'a> {
             .iter()
             .map(|sun| {
                 let towards = planet.direction_to_planet_frame(sun.direction.normalize());
-                self.rgb(sun.irradiance * self.beams.transmittance_to_space(at, towards))
+                self.rgb(sun.irradiance * medium.transmittance_to_space(at, towards))
             })
             .collect()
     }
 
     /// The classic lighting for objects seen from `camera` (world frame, metres): one
-    /// world-space directional light per sun, coloured as at the camera (objects replace that
-    /// with [`Self::sun_colors`] at their own origin), no ambient of its own; the sky's
+    /// world-space directional light per sun, coloured through the air at the camera (objects
+    /// replace that with [`Self::sun_colors_through_air`] at their own origin; the clouds are the
+    /// renderer's shadow map), no ambient of its own; the sky's
     /// irradiance at the camera as the scene ambient; a local viewer (real highlights depend on
     /// where the eye is).
     pub fn lighting(&self, camera: DVec3, shading: Shading, specular: SpecularModel) -> ClassicLighting {
@@ -108,7 +123,7 @@ impl<'a> SkyLight<'a> {
             .sky
             .suns
             .iter()
-            .zip(self.sun_colors(camera))
+            .zip(self.sun_colors_through_air(camera))
             .map(|(sun, color)| SceneLight {
                 light: Light {
                     ambient: DVec4::new(0.0, 0.0, 0.0, 1.0),
@@ -159,7 +174,7 @@ impl SkyLight<'_> {
         let (mut object, up, camera_height_m) = ground_object(&atmosphere.planet, camera, albedo_rgb)?;
         // A centimetre above the foot point: on the surface itself, rounding decides whether the
         // path to a sun starts below the ground.
-        object.light_colors = self.sun_colors(object.model.transform_point3(DVec3::Z * 0.01));
+        object.light_colors = self.sun_colors_through_air(object.model.transform_point3(DVec3::Z * 0.01));
         Some(Ground {
             object,
             up,

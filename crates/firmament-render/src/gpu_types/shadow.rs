@@ -1,13 +1,16 @@
 //! `f32` uniforms of the sun shadows: what the object pass samples ([`ShadowFrameUniforms`],
-//! mirroring `ShadowFrame` in `shaders/shadow/sampling.wgsl`) and what each caster draw of the
-//! shadow-map pass takes ([`ShadowCasterUniform`], `shaders/shadow/shadow_map.wgsl`).
+//! mirroring `ShadowFrame` in `shaders/shadow/sampling.wgsl`, the clouds' shadow map's axes in
+//! eye space included: [`cloud_shadow_axes`]) and what each caster draw of the shadow-map pass
+//! takes ([`ShadowCasterUniform`], `shaders/shadow/shadow_map.wgsl`).
 //!
 //! The cascades come fitted in `f64` from `firmament_core::classic::shadow`; matrices are
 //! composed in `f64` (eye → light clip, object → light clip) and rounded once.
 
 use bytemuck::{Pod, Zeroable};
+use firmament_core::Camera;
 use firmament_core::classic::shadow::{CascadeSet, MAX_SHADOW_CASCADES, MAX_SHADOW_LIGHTS, ShadowLight, ShadowSettings};
-use glam::DMat4;
+use firmament_core::frame::AtmosphereSky;
+use glam::{DMat4, DVec3};
 
 /// Mirrors `ShadowCascade` in `shaders/shadow/sampling.wgsl`.
 #[repr(C)]
@@ -36,6 +39,43 @@ pub struct ShadowFrameUniforms {
     pub tan_radius: [[f32; 4]; 2],
     /// Slot `s`, cascade `c` at `s * MAX_SHADOW_CASCADES + c`.
     pub cascades: [ShadowCascadeGpu; SLOTS],
+    /// The clouds' shadow map for light `i` (a sun): rows `3i`, `3i + 1`, `3i + 2` hold the
+    /// map's two axes across the sun's rays and the sun's direction, in eye space (xyz); row
+    /// `3i`'s w is the sun's square in the map + 1 (0: no cloud shadow) ([`cloud_shadow_axes`]).
+    pub clouds: [[f32; 4]; CLOUD_ROWS],
+}
+
+/// Rows of [`ShadowFrameUniforms::clouds`]: three per light.
+pub const CLOUD_ROWS: usize = 3 * MAX_SHADOW_LIGHTS as usize;
+
+/// The axes of the clouds' shadow map for each of `sky`'s suns (the first
+/// `MAX_SHADOW_LIGHTS`, which are the object pass's lights in order) in the eye space of
+/// `camera`: `clouds/shadow.wgsl`'s `cloud_shadow_axes` of the sun's planet-frame direction,
+/// turned into eye space, whose origin is the camera the map is centred on. All zero without
+/// cloud layers.
+pub fn cloud_shadow_axes(sky: &AtmosphereSky, camera: &Camera) -> [[f32; 4]; CLOUD_ROWS] {
+    let mut rows = [[0.0; 4]; CLOUD_ROWS];
+    if sky.clouds.is_empty() {
+        return rows;
+    }
+    let planet = &sky.atmosphere.planet;
+    let world_to_eye = camera.view_matrix();
+    let to_eye = |planet_frame: DVec3| {
+        let world = planet.orientation.normalize() * planet_frame;
+        world_to_eye.transform_vector3(world)
+    };
+    for (i, sun) in sky.suns.iter().take(MAX_SHADOW_LIGHTS as usize).enumerate() {
+        // As the shader computes them, from the planet-frame direction the atmosphere uploads.
+        let s = planet.direction_to_planet_frame(sun.direction).normalize_or_zero().as_vec3().as_dvec3();
+        let helper = if s.z.abs() > 0.9 { DVec3::X } else { DVec3::Z };
+        let across = s.cross(helper).normalize_or_zero();
+        let axes = [across, s.cross(across), s].map(to_eye);
+        for (k, axis) in axes.iter().enumerate() {
+            let w = if k == 0 { i as f32 + 1.0 } else { 0.0 };
+            rows[3 * i + k] = [axis.x as f32, axis.y as f32, axis.z as f32, w];
+        }
+    }
+    rows
 }
 
 impl ShadowFrameUniforms {

@@ -26,6 +26,7 @@ use firmament_core::texture::TextureImage;
 pub use self::gpu_mesh::GpuMesh;
 use self::gpu_mesh::{GpuTexture, SHADE_ATTRIBUTES, VERTEX_ATTRIBUTES, VERTEX_STRIDE, sampler};
 use self::shadow_maps::ShadowMaps;
+use crate::gpu_types::shadow::CLOUD_ROWS;
 use crate::gpu_types::{ClassicFrameUniforms, ClassicObjectUniforms};
 use crate::passes::common::{PassPipeline, begin_load_pass, uniform_buffer, uniform_entry};
 use crate::shaders;
@@ -74,6 +75,8 @@ pub struct ObjectPass {
     /// The layer's objects, then its ground (if any).
     draws: Vec<ObjectDraw>,
     shadows: ShadowMaps,
+    /// The clouds' shadow map's axes for the next `prepare` (all zero: no cloud shadows).
+    cloud_axes: [[f32; 4]; CLOUD_ROWS],
 }
 
 impl ObjectPass {
@@ -155,7 +158,21 @@ impl ObjectPass {
             textures: HashMap::new(),
             draws: Vec::new(),
             shadows,
+            cloud_axes: [[0.0; 4]; CLOUD_ROWS],
         }
+    }
+
+    /// Makes `view` the clouds' shadow map the objects' suns are dimmed by (the atmosphere pass's
+    /// `shaders/clouds/shadow.wgsl`), read with the axes of the next
+    /// [`set_cloud_shadow_axes`](Self::set_cloud_shadow_axes).
+    pub(crate) fn bind_cloud_shadow_map(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) {
+        self.shadows.bind_cloud_shadow_map(device, view);
+    }
+
+    /// The clouds' shadow map's axes in the next prepared frame's eye space
+    /// ([`cloud_shadow_axes`](crate::gpu_types::shadow::cloud_shadow_axes); all zero: no clouds).
+    pub(crate) fn set_cloud_shadow_axes(&mut self, axes: [[f32; 4]; CLOUD_ROWS]) {
+        self.cloud_axes = axes;
     }
 
     /// Uploads what `layer` needs to be seen by `camera` (whose aspect must be the target's):
@@ -231,7 +248,7 @@ impl ObjectPass {
             queue.write_buffer(&draw.uniforms, 0, bytemuck::bytes_of(&uniforms));
         }
         let casters: Vec<MeshKey> = self.draws.iter().take(layer.objects.len()).map(|d| d.mesh).collect();
-        self.shadows.prepare(device, queue, layer, camera, &casters);
+        self.shadows.prepare(device, queue, layer, camera, &casters, &self.cloud_axes);
         self.meshes.retain(|key, _| used_meshes.contains(key));
         self.textures.retain(|key, _| used_textures.contains(key));
     }

@@ -10,8 +10,9 @@
 // Gouraud over a mesh whose vertices carry their triangle's provoking (GL: last) vertex as
 // `shade_*` (see `GpuMesh`), so all three light the same point and no flat interpolation
 // qualifier (WGSL's takes the first vertex) is involved.
-// Under a physical sky (`mode.z` = 1) two things go past GL, both off in classic scenes: sun
-// shadows (shadow/sampling.wgsl; per fragment, so Phong only) and, with a ground
+// Under a physical sky (`mode.z` = 1) three things go past GL, all off in classic scenes: sun
+// shadows (shadow/sampling.wgsl; per fragment, so Phong only), the clouds' shadows on the suns'
+// beams (`cloud_visibility`, per vertex or fragment as the shading) and, with a ground
 // (`ground_mode.x` = 1), an ambient term by view factors — the sky's light over (1 + n·up)/2,
 // the ground's bounce over (1 − n·up)/2 (`firmament_core::classic::ground`).
 
@@ -135,6 +136,9 @@ fn ambient_light(p: vec3<f32>, n: vec3<f32>, shadowed: bool) -> vec4<f32> {
         let below = p - up * (dot(p, up) + frame.ground_up.w);
         sun = shadow_visibility(0u, below, up, normalize(frame.lights[0].position.xyz));
     }
+    if frame.model_flags.x > 0u {
+        sun *= cloud_visibility(0u, p - up * (dot(p, up) + frame.ground_up.w));
+    }
     let ground = frame.bounced_sky.rgb + frame.bounced_sun.rgb * sun;
     return vec4<f32>(frame.scene_ambient.rgb * up_facing + ground * (1.0 - up_facing), 1.0);
 }
@@ -176,7 +180,9 @@ fn shade(position: vec3<f32>, normal: vec3<f32>, back: bool, shadowed: bool) -> 
         }
         let factor = attenuation * spot;
         // A shadow hides the light's direct part (diffuse and specular), not its ambient term.
-        var direct = factor;
+        // The clouds' shadow hides a sun's beam on every object (its colour is the beam through
+        // the clear air).
+        var direct = factor * cloud_visibility(i, position);
         if shadowed {
             direct *= shadow_visibility(i, position, n, to_light);
         }

@@ -312,3 +312,48 @@ fn cloud_radiance_survey() {
         }
     }
 }
+
+/// The objects' sunlight under the clouds: the scene's ground patch (an object, lit by the GL
+/// equations) loses what an absorbing uniform layer keeps from its sun, `1 − e^(−σ·L)` of its
+/// direct light (`d_cm · light · n·l`, computed here from the frame), per fragment from the
+/// clouds' shadow map. The sky's light on it is left as it was.
+#[test]
+fn the_objects_sunlight_passes_through_the_clouds_shadow_map() {
+    let mut gpu = gpu();
+    // Looking south and down at the ground 2.5 m away, the scene's objects and their shadows
+    // (the sun in the south-west, 20° up) out of sight.
+    let overrides = ["camera.heading=180", "camera.pitch=-42", "camera.fov_y=4"].map(String::from);
+    let scene = firmament_scene::load(firmament_scene::SceneSource::Preset("earth-objects"), None, &overrides)
+        .expect("the preset");
+    let clear = scene.frame_at(None).expect("a frame");
+    let mut cloudy = clear.clone();
+    let Sky::Atmosphere(sky) = &mut cloudy.sky else {
+        unreachable!("an atmosphere scene")
+    };
+    sky.clouds = vec![absorber()];
+    let sun = sky.suns[0].direction.normalize();
+    let ground = clear.objects.ground.as_ref().expect("a ground");
+    let n_dot_l = ground.up.dot(sun);
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let mut centre = |frame: &Frame| {
+        let image = renderer.render_hdr(ctx, frame, 9, 9).expect("render");
+        let p = image.pixel(4, 4).expect("inside");
+        DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+    };
+    let lost = centre(&clear) - centre(&cloudy);
+    let zenith = n_dot_l.acos();
+    let kept = (-ABSORBER.density_per_m
+        * path_through_shell(6_367_000.0, 0.0, ABSORBER.bottom_m, ABSORBER.top_m, zenith))
+    .exp();
+    let direct = ground.object.front.diffuse.truncate() * ground.object.light_colors[0].truncate() * n_dot_l;
+    let want = direct * (1.0 - kept);
+    let error = ((lost - want) / want).abs().max_element();
+    println!(
+        "the ground loses {lost:.3}, closed form {want:.3} ({:.2} %)",
+        100.0 * error
+    );
+    assert!(
+        error < 0.01,
+        "the ground loses {lost:.3} under the layer, the closed form {want:.3}"
+    );
+}

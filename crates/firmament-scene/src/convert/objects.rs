@@ -584,9 +584,10 @@ pub(crate) fn object_layer(scene: &Scene, time: TimeOfDay, sky: &Sky) -> Result<
     let shadow_settings = shadow_settings(scene)?;
     let (mut shadows, mut ground) = (Shadows::default(), None);
     if let Some(light) = &sky_light {
-        // Each object sees the suns through the air at its own origin.
+        // Each object sees the suns through the air at its own origin; the renderer dims them
+        // per fragment by the clouds' shadow map.
         for object in &mut objects {
-            object.light_colors = light.sun_colors(object.model.transform_point3(DVec3::ZERO));
+            object.light_colors = light.sun_colors_through_air(object.model.transform_point3(DVec3::ZERO));
         }
         // The camera, as `lighting` takes the sky's light at it.
         let camera = DVec3::from_array(scene.camera.position);

@@ -44,6 +44,9 @@ pub(super) struct CloudStages {
     shadow_map_view: wgpu::TextureView,
     /// Its compute stage, built with the first bound target.
     shadow_stage: Option<ComputeStage>,
+    /// Set when the map was encoded ahead of the march (for the objects, which read it too):
+    /// the next march then does not encode it again.
+    shadow_map_ahead: std::cell::Cell<bool>,
     on_target: Option<OnTarget>,
     /// The stages for a caller's target, once one with clouds was bound.
     into_caller: Option<IntoCaller>,
@@ -213,6 +216,7 @@ impl CloudStages {
             suns: 0,
             shadow_map_view,
             shadow_stage: None,
+            shadow_map_ahead: std::cell::Cell::new(false),
             maps,
             maps_view,
             map_sampler,
@@ -349,14 +353,34 @@ impl CloudStages {
         ));
     }
 
-    /// Encodes the shadow map of this frame's suns (before the march, which reads it).
+    /// Encodes the shadow map of this frame's suns ahead of the march (before the objects that
+    /// read it): the next march does not encode it again. Nothing without layers.
+    pub(super) fn record_shadow_map_ahead(&self, encoder: &mut wgpu::CommandEncoder) {
+        if self.any() {
+            self.dispatch_shadow_map(encoder);
+            self.shadow_map_ahead.set(true);
+        }
+    }
+
+    /// Encodes the shadow map for the march, unless it was encoded ahead for this one.
     fn record_shadow_map(&self, encoder: &mut wgpu::CommandEncoder) {
+        if !self.shadow_map_ahead.take() {
+            self.dispatch_shadow_map(encoder);
+        }
+    }
+
+    fn dispatch_shadow_map(&self, encoder: &mut wgpu::CommandEncoder) {
         if let Some(stage) = &self.shadow_stage
             && self.suns > 0
         {
             let side = CLOUD_SHADOW_SIZE.div_ceil(8);
             stage.dispatch(encoder, (side * self.suns, side, 1));
         }
+    }
+
+    /// The clouds' shadow map (`shaders/clouds/shadow.wgsl`), for the object pass.
+    pub(super) fn shadow_map_view(&self) -> &wgpu::TextureView {
+        &self.shadow_map_view
     }
 
     /// Binds `target` (an HDR texture with `TEXTURE_BINDING | COPY_DST`) and its depth buffer.

@@ -604,6 +604,18 @@ impl AtmospherePass {
         self.clouds.any()
     }
 
+    /// Encodes the clouds' shadow map of the sky last prepared ahead of the march, for the objects
+    /// drawn before it (`record_clouds_on_target` then does not encode it again); nothing
+    /// without clouds.
+    pub(crate) fn record_cloud_shadow_map(&self, encoder: &mut wgpu::CommandEncoder) {
+        self.clouds.record_shadow_map_ahead(encoder);
+    }
+
+    /// The clouds' shadow map (`shaders/clouds/shadow.wgsl`) the object pass reads.
+    pub(crate) fn cloud_shadow_map_view(&self) -> &wgpu::TextureView {
+        self.clouds.shadow_map_view()
+    }
+
     /// Binds a caller's depth buffer `depth` (of its colour target's size, this pass's depth
     /// convention) for [`record_clouds_into`](Self::record_clouds_into), when the sky last
     /// prepared has clouds. Call after `prepare`, whenever the depth view changes.

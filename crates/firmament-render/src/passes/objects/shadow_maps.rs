@@ -15,6 +15,7 @@ use glam::DVec3;
 
 use super::MeshKey;
 use super::gpu_mesh::{GpuMesh, VERTEX_STRIDE};
+use crate::gpu_types::shadow::CLOUD_ROWS;
 use crate::gpu_types::{ShadowCasterUniform, ShadowFrameUniforms};
 use crate::passes::common::uniform_buffer;
 use crate::shaders;
@@ -52,6 +53,8 @@ pub(crate) struct ShadowMaps {
     frame_uniforms: wgpu::Buffer,
     compare: wgpu::Sampler,
     maps: Maps,
+    /// The clouds' shadow map the lit objects read (a texel of nothing until one is bound).
+    cloud_map: wgpu::TextureView,
     draws: Vec<LayerDraws>,
     /// Object-space bounding spheres of the meshes (centre, radius), by mesh.
     bounds: HashMap<MeshKey, (DVec3, f64)>,
@@ -148,6 +151,17 @@ pub(crate) fn sampling_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 },
                 count: None,
             },
+            // The clouds' shadow map (the atmosphere pass's), read with textureLoad.
+            wgpu::BindGroupLayoutEntry {
+                binding: 4,
+                visibility: visible,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
         ],
     })
 }
@@ -238,7 +252,17 @@ impl ShadowMaps {
         });
         let frame_uniforms = uniform_buffer::<ShadowFrameUniforms>(device, "firmament ObjectPass shadow uniforms");
         let maps = make_maps(device, 1, 1);
-        let sample_bind_group = Self::make_sample_bind_group(device, &sample_layout, &frame_uniforms, &maps, &compare);
+        // No clouds' shadow map until the renderer binds the atmosphere's: one texel of nothing.
+        let cloud_map = crate::targets::texture_2d(
+            device,
+            "firmament ObjectPass no cloud shadow map",
+            (1, 1),
+            wgpu::TextureFormat::Rgba32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING,
+        )
+        .create_view(&wgpu::TextureViewDescriptor::default());
+        let sample_bind_group =
+            Self::make_sample_bind_group(device, &sample_layout, &frame_uniforms, &maps, &compare, &cloud_map);
         let caster_buffer = caster_buffer(device, 1);
         let caster_bind_group = caster_bind_group(device, &caster_layout, &caster_buffer);
         Self {
@@ -251,6 +275,7 @@ impl ShadowMaps {
             frame_uniforms,
             compare,
             maps,
+            cloud_map,
             draws: Vec::new(),
             bounds: HashMap::new(),
         }
@@ -262,6 +287,7 @@ impl ShadowMaps {
         uniforms: &wgpu::Buffer,
         maps: &Maps,
         compare: &wgpu::Sampler,
+        cloud_map: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("firmament ObjectPass shadow sampling bind group"),
@@ -283,9 +309,31 @@ impl ShadowMaps {
                     binding: 3,
                     resource: wgpu::BindingResource::TextureView(&maps.array_view),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::TextureView(cloud_map),
+                },
 
             ],
         })
+    }
+
+    fn rebuild_sample_bind_group(&mut self, device: &wgpu::Device) {
+        self.sample_bind_group = Self::make_sample_bind_group(
+            device,
+            &self.sample_layout,
+            &self.frame_uniforms,
+            &self.maps,
+            &self.compare,
+            &self.cloud_map,
+        );
+    }
+
+    /// Makes `view` (the atmosphere pass's, `shaders/clouds/shadow.wgsl`) the clouds' shadow map
+    /// the lit objects read.
+    pub(crate) fn bind_cloud_shadow_map(&mut self, device: &wgpu::Device, view: &wgpu::TextureView) {
+        self.cloud_map = view.clone();
+        self.rebuild_sample_bind_group(device);
     }
 
     /// The layout of the object pass's group 1.
@@ -299,8 +347,10 @@ impl ShadowMaps {
     }
 
     /// Fits the cascades of `layer`'s casting suns to `camera`'s view and uploads what the maps
-    /// and the lit fragments need; `casters` are the objects' meshes (key and mesh, in the
-    /// layer's order; the ground is not among them). Shadows off: only the "off" uniforms.
+    /// and the lit fragments need, with the clouds' shadow map's axes `clouds`
+    /// ([`cloud_shadow_axes`](crate::gpu_types::shadow::cloud_shadow_axes)); `casters` are the
+    /// objects' meshes (key and mesh, in the layer's order; the ground is not among them).
+    /// Shadows off: only the "off" uniforms and the clouds'.
     pub(crate) fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -308,10 +358,15 @@ impl ShadowMaps {
         layer: &ObjectLayer,
         camera: &Camera,
         casters: &[MeshKey],
+        clouds: &[[f32; 4]; CLOUD_ROWS],
     ) {
         self.draws.clear();
         let (Some(mut settings), true) = (layer.shadows.settings, layer.shadows.any()) else {
-            queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&ShadowFrameUniforms::off()));
+            let uniforms = ShadowFrameUniforms {
+                clouds: *clouds,
+                ..ShadowFrameUniforms::off()
+            };
+            queue.write_buffer(&self.frame_uniforms, 0, bytemuck::bytes_of(&uniforms));
             return;
         };
         // A quality setting, not a promise: a device with smaller textures gets its largest.
@@ -343,15 +398,10 @@ impl ShadowMaps {
         let layers = lights.len() as u32 * settings.cascades;
         if self.maps.size != settings.map_size || self.maps.layers != layers {
             self.maps = make_maps(device, settings.map_size, layers);
-            self.sample_bind_group = Self::make_sample_bind_group(
-                device,
-                &self.sample_layout,
-                &self.frame_uniforms,
-                &self.maps,
-                &self.compare,
-            );
+            self.rebuild_sample_bind_group(device);
         }
         let mut uniforms = ShadowFrameUniforms::new(&settings, lights, &cascades);
+        uniforms.clouds = *clouds;
         // Nothing shades the air above the highest caster (for a sun above the horizon): the
         // light shafts march no higher.
         let up = layer.ground.as_ref().map_or(DVec3::Z, |g| g.up);

@@ -243,6 +243,14 @@ fn ground_shadow(ray: ViewRay, far: f32, footprint: f32) -> vec3<f32> {
     return atmosphere.ground_albedo.rgb / PI * lost * min(through_air, vec3<f32>(1.0));
 }
 
+// The clouds' optical depth between planet-frame point p and sun `sun` (direction s), from the
+// shadow map.
+fn cloud_shadow_depth(p: vec3<f32>, sun: u32, s: vec3<f32>) -> f32 {
+    let axes = cloud_shadow_axes(s);
+    let offset = p - view.camera.xyz;
+    return cloud_shadow_lookup(cloud_shadow_map, vec2<f32>(dot(offset, axes[0]), dot(offset, axes[1])), dot(offset, s), sun);
+}
+
 // The sunlight the air scatters once towards the camera from where the clouds shadow it, along
 // the ray from where the air starts to `t_end` (at most CLOUD_SHADOW_REACH from the camera, where
 // the shadow map ends; spectral radiance): for each sun, σ_s·p(ν)·E·T_sun·T_view·(1 − e^(−τ)),

@@ -1,12 +1,15 @@
 // shadow/sampling.wgsl — sun shadows for the object pass: which cascade, the receiver's biases,
 // and percentage-closer soft shadows (Fernando 2005) whose penumbra follows each sun's disc;
-// for the light shafts, whether a point of the air sees a sun.
+// for the light shafts, whether a point of the air sees a sun; and how much of a sun the clouds'
+// shadow map lets through (`cloud_visibility`).
 //
 // Conventions: positions and normals in GL eye space (the object pass's); each cascade maps eye
 // space to its light's clip space (x, y in [−1, 1], +y up the map; depth 0 nearest the light,
 // growing linearly, `params.y` metres over [0, 1]). The f64 side (cascades, splits, snapping)
 // is `firmament_core::classic::shadow`; the Rust mirrors are `gpu_types/shadow.rs`. Bindings:
 // group 1 of the object pass (`passes/objects/shadow_maps.rs`).
+
+#import clouds/shadow
 
 const MAX_SHADOW_LIGHTS: u32 = 8u;
 const MAX_SHADOW_CASCADES: u32 = 4u;
@@ -35,6 +38,10 @@ struct ShadowFrame {
     tan_radius: array<vec4<f32>, 2>,
     // Slot s, cascade c at s * MAX_SHADOW_CASCADES + c.
     cascades: array<ShadowCascade, 32>,
+    // The clouds' shadow map for light i (a sun): rows 3i, 3i + 1, 3i + 2 hold the map's axes
+    // across the sun's rays and the sun's direction in eye space (xyz); row 3i's w is the sun's
+    // square in the map + 1 (0: no cloud shadow). clouds/shadow.wgsl.
+    clouds: array<vec4<f32>, 24>,
 }
 
 @group(1) @binding(0) var<uniform> shadows: ShadowFrame;
@@ -43,6 +50,23 @@ struct ShadowFrame {
 // The same maps again as unfilterable floats, for the blocker search's depths: GLSL can neither
 // `textureLoad` a depth texture nor pair one texture binding with two samplers.
 @group(1) @binding(3) var shadow_depths: texture_2d_array<f32>;
+// The clouds' shadow map (clouds/shadow.wgsl), centred on the camera: the eye's origin.
+@group(1) @binding(4) var object_cloud_shadows: texture_2d<f32>;
+
+// How much of light `light`'s beam reaches eye-space point p through the clouds: e^(−τ) from the
+// clouds' shadow map; 1 for lights without one and beyond its reach.
+fn cloud_visibility(light: u32, p: vec3<f32>) -> f32 {
+    if light >= MAX_SHADOW_LIGHTS {
+        return 1.0;
+    }
+    let first = shadows.clouds[3u * light];
+    if first.w < 0.5 {
+        return 1.0;
+    }
+    let across = vec2<f32>(dot(p, first.xyz), dot(p, shadows.clouds[3u * light + 1u].xyz));
+    let t = dot(p, shadows.clouds[3u * light + 2u].xyz);
+    return exp(-cloud_shadow_lookup(object_cloud_shadows, across, t, u32(first.w) - 1u));
+}
 
 // Tap k of n on a Vogel disc of unit radius.
 fn vogel_tap(k: u32, n: u32) -> vec2<f32> {
