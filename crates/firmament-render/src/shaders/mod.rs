@@ -1007,7 +1007,7 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             classic,
             "ShadowFrame",
             ShadowFrameUniforms,
-            [counts, bias, slot_of_light, tan_radius, cascades]
+            [counts, bias, slot_of_light, tan_radius, cascades, clouds]
         );
         let shadow_map = validate("shadow/shadow_map", &SHADOW_MAP);
         assert_layout!(shadow_map, "ShadowCaster", ShadowCasterUniform, [model_to_clip]);
