@@ -59,8 +59,10 @@ pub struct CloudLayerGpu {
 
 /// Entries of [`CloudLayerGpu::mean_profile`].
 pub const MEAN_PROFILE_ENTRIES: usize = 32;
-/// Rows of four of [`CloudLayerGpu::mean_profile`].
-pub const MEAN_PROFILE_ROWS: usize = MEAN_PROFILE_ENTRIES / 4;
+/// Rows of four of [`CloudLayerGpu::mean_profile`]: as many as the quantiles' (the last unused),
+/// so that one WGSL selector (`cloud_table_entry`) reads both tables.
+pub const MEAN_PROFILE_ROWS: usize = QUANTILE_ROWS;
+const _: () = assert!(MEAN_PROFILE_ENTRIES <= 4 * MEAN_PROFILE_ROWS);
 
 /// Mirrors `CloudsGpu` in `shaders/clouds/density.wgsl`: every layer of a sky.
 #[repr(C)]

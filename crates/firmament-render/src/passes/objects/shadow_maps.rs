@@ -252,15 +252,9 @@ impl ShadowMaps {
         });
         let frame_uniforms = uniform_buffer::<ShadowFrameUniforms>(device, "firmament ObjectPass shadow uniforms");
         let maps = make_maps(device, 1, 1);
-        // No clouds' shadow map until the renderer binds the atmosphere's: one texel of nothing.
-        let cloud_map = crate::targets::texture_2d(
-            device,
-            "firmament ObjectPass no cloud shadow map",
-            (1, 1),
-            wgpu::TextureFormat::Rgba32Float,
-            wgpu::TextureUsages::TEXTURE_BINDING,
-        )
-        .create_view(&wgpu::TextureViewDescriptor::default());
+        // No clouds' shadow map until the renderer binds the atmosphere's (and none is read
+        // while the frame's cloud rows are zero).
+        let cloud_map = crate::targets::hdr_placeholder(device, "firmament ObjectPass no cloud shadow map");
         let sample_bind_group =
             Self::make_sample_bind_group(device, &sample_layout, &frame_uniforms, &maps, &compare, &cloud_map);
         let caster_buffer = caster_buffer(device, 1);

@@ -64,8 +64,9 @@ struct CloudLayerGpu {
     // The kind's column-field quantiles at 0, 1/32, …, 1: entry i at [i / 4][i % 4] (33 used).
     quantiles: array<vec4<f32>, 9>,
     // The density averaged over the columns at the layer's own coverage, over shell.w, at height
-    // fractions (i / 31)²: entry i at [i / 4][i % 4] (the core's mean_density_with_coverage).
-    mean_profile: array<vec4<f32>, 8>,
+    // fractions (i / 31)²: entry i at [i / 4][i % 4] (32 used; the core's
+    // mean_density_with_coverage).
+    mean_profile: array<vec4<f32>, 9>,
 }
 
 // Every layer of a sky (gpu_types::clouds::CloudsGpu).
@@ -230,20 +231,25 @@ fn cloud_detail(layer: CloudLayerGpu, q: CloudPoint, x: f32) -> f32 {
     return clamp(d, 0.0, 1.0);
 }
 
-// Quantile i (0 … 32) of the layer's column field. Constant indices only into the array (it is a
-// value here, which some backends cannot index at run time without a copy).
-fn cloud_quantile(layer: CloudLayerGpu, i: u32) -> f32 {
+// Entry i of a table of nine rows of four (entry i at [i / 4][i % 4]). Constant indices only into
+// the array (it is a value here, which some backends cannot index at run time without a copy).
+fn cloud_table_entry(rows: array<vec4<f32>, 9>, i: u32) -> f32 {
     let r = i / 4u;
-    var row = layer.quantiles[0];
-    row = select(row, layer.quantiles[1], r == 1u);
-    row = select(row, layer.quantiles[2], r == 2u);
-    row = select(row, layer.quantiles[3], r == 3u);
-    row = select(row, layer.quantiles[4], r == 4u);
-    row = select(row, layer.quantiles[5], r == 5u);
-    row = select(row, layer.quantiles[6], r == 6u);
-    row = select(row, layer.quantiles[7], r == 7u);
-    row = select(row, layer.quantiles[8], r == 8u);
+    var row = rows[0];
+    row = select(row, rows[1], r == 1u);
+    row = select(row, rows[2], r == 2u);
+    row = select(row, rows[3], r == 3u);
+    row = select(row, rows[4], r == 4u);
+    row = select(row, rows[5], r == 5u);
+    row = select(row, rows[6], r == 6u);
+    row = select(row, rows[7], r == 7u);
+    row = select(row, rows[8], r == 8u);
     return row[i % 4u];
+}
+
+// Quantile i (0 … 32) of the layer's column field.
+fn cloud_quantile(layer: CloudLayerGpu, i: u32) -> f32 {
+    return cloud_table_entry(layer.quantiles, i);
 }
 
 // The column-field threshold that leaves `coverage` (0–1) of the columns covered: the
@@ -364,20 +370,6 @@ fn cloud_mean_density_at(layer: CloudLayerGpu, h: f32, coverage: f32, t: f32, t_
     return layer.shell.w * sum;
 }
 
-// Entry i (0 … 31) of the layer's mean profile, by constant indices (as cloud_quantile).
-fn cloud_mean_entry(layer: CloudLayerGpu, i: u32) -> f32 {
-    let r = i / 4u;
-    var row = layer.mean_profile[0];
-    row = select(row, layer.mean_profile[1], r == 1u);
-    row = select(row, layer.mean_profile[2], r == 2u);
-    row = select(row, layer.mean_profile[3], r == 3u);
-    row = select(row, layer.mean_profile[4], r == 4u);
-    row = select(row, layer.mean_profile[5], r == 5u);
-    row = select(row, layer.mean_profile[6], r == 6u);
-    row = select(row, layer.mean_profile[7], r == 7u);
-    return row[i % 4u];
-}
-
 // The density at altitude h averaged over the columns at the layer's own coverage, m⁻¹: its mean
 // profile, linear in √x between entries (cloud_mean_density_at at the layer's coverage,
 // tabulated).
@@ -387,8 +379,8 @@ fn cloud_mean_density(layer: CloudLayerGpu, h: f32) -> f32 {
     }
     let u = sqrt(clamp((h - layer.shell.x) * layer.shell.z, 0.0, 1.0)) * 31.0;
     let i = min(u32(floor(u)), 30u);
-    let a = cloud_mean_entry(layer, i);
-    return layer.shell.w * (a + (cloud_mean_entry(layer, i + 1u) - a) * (u - f32(i)));
+    let a = cloud_table_entry(layer.mean_profile, i);
+    return layer.shell.w * (a + (cloud_table_entry(layer.mean_profile, i + 1u) - a) * (u - f32(i)));
 }
 
 // The same with the coverage there given, 0–1 (the core's

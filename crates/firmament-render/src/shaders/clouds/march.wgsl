@@ -69,6 +69,20 @@ struct Stretch {
     layer: u32,
 }
 
+// Where a pixel's ray meets the ground and the top of the air (common/ellipsoid's hits: x > y
+// when it misses), found once per pixel for the march and the shadows.
+struct RayHits {
+    ground: vec2<f32>,
+    top: vec2<f32>,
+}
+
+fn ray_hits(ray: ViewRay) -> RayHits {
+    return RayHits(
+        ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface),
+        ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top),
+    );
+}
+
 // What the march gathers: the cloud's light reaching the camera's side of it (spectral radiance,
 // before the air in front), its transmittance, and its transmittance-weighted distance.
 struct CloudSample {
@@ -209,8 +223,8 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
 // radiance towards the camera; zero when it meets no ground, or geometry first): for each sun,
 // the albedo over π times its irradiance after the air on the ground, times 1 − e^(−τ) of the
 // clouds towards it, dimmed by the air between the camera and the ground.
-fn ground_shadow(ray: ViewRay, far: f32, footprint: f32) -> vec3<f32> {
-    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<f32> {
+    let ground = hits.ground;
     if !(ground.x <= ground.y && ground.x > ray.near && ground.x < far) {
         return vec3<f32>(0.0);
     }
@@ -235,8 +249,7 @@ fn ground_shadow(ray: ViewRay, far: f32, footprint: f32) -> vec3<f32> {
     }
     // The air between: from the ground back up along the ray to where the air starts, over the
     // same from the start (Bruneton 2017's ratio; the start is the top of the air from outside).
-    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
-    let start = altitude_up(ray.origin + ray.direction * max(top.x, ray.near));
+    let start = altitude_up(ray.origin + ray.direction * max(hits.top.x, ray.near));
     let r_start = atmosphere.lut.x + clamp(start.h, 0.0, atmosphere.lut.y - atmosphere.lut.x);
     let through_air = transmittance_to_top(atmosphere.lut.x + h, dot(at_ground.up, -ray.direction))
         / max(transmittance_to_top(r_start, dot(start.up, -ray.direction)), vec3<f32>(1e-30));
@@ -256,11 +269,11 @@ fn cloud_shadow_depth(p: vec3<f32>, sun: u32, s: vec3<f32>) -> f32 {
 // the shadow map ends; spectral radiance): for each sun, σ_s·p(ν)·E·T_sun·T_view·(1 − e^(−τ)),
 // τ the clouds' optical depth towards it from the map, in SHAFT_STEPS steps offset by the
 // pixel's `jitter`. Light shafts and the shadows' darkening of the air; none from far away.
-fn air_shadow(ray: ViewRay, t_end: f32, jitter: f32) -> vec3<f32> {
+fn air_shadow(ray: ViewRay, hits: RayHits, t_end: f32, jitter: f32) -> vec3<f32> {
     if view.center.w > 0.5 {
         return vec3<f32>(0.0);
     }
-    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    let top = hits.top;
     let t0 = max(top.x, ray.near);
     let t1 = min(min(t_end, top.y), ray.near + CLOUD_SHADOW_REACH);
     if !(top.x <= top.y) || t1 <= t0 {
@@ -353,14 +366,14 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
 }
 
 // The clouds along the ray of pixel `id` up to `far` (metres along the ray).
-fn march_clouds(ray: ViewRay, far: f32, jitter: f32, footprint: f32) -> CloudSample {
+fn march_clouds(ray: ViewRay, hits: RayHits, far: f32, jitter: f32, footprint: f32) -> CloudSample {
     var acc: CloudSample;
     acc.radiance = vec3<f32>(0.0);
     acc.transmittance = 1.0;
     acc.depth_sum = 0.0;
     acc.weight_sum = 0.0;
     // The ground ends every ray that meets it.
-    let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+    let ground = hits.ground;
     var end = far;
     if ground.x <= ground.y && ground.y > ray.near {
         end = min(end, max(ground.x, ray.near));
@@ -421,7 +434,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     // A pixel's width per metre along its ray (the vertical field of view over the rows).
     let footprint = 2.0 * view.camera_shape.w / f32(size.y);
     let jitter = pixel_jitter(pixel);
-    let cloud = march_clouds(ray, far, jitter, footprint);
+    let hits = ray_hits(ray);
+    let cloud = march_clouds(ray, hits, far, jitter, footprint);
     // The clouds' shadows: on the ground behind (before the cloud's own transmittance), and in
     // the air in front of the cloud or of the ray's end (a layer subtracts both through the
     // blend, starting from nothing: `color` is then −ground).
@@ -429,8 +443,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if cloud.weight_sum > 0.0 {
         air_end = cloud.depth_sum / cloud.weight_sum;
     }
-    let air_shade = to_linear_srgb(air_shadow(ray, air_end, jitter));
-    color = vec4<f32>(color.rgb - to_linear_srgb(ground_shadow(ray, far, footprint)), color.a);
+    let air_shade = to_linear_srgb(air_shadow(ray, hits, air_end, jitter));
+    color = vec4<f32>(color.rgb - to_linear_srgb(ground_shadow(ray, hits, far, footprint)), color.a);
     if cloud.weight_sum <= 0.0 {
         // No cloud: the image less the shadows, or a layer that takes them off it.
         var rgb = color.rgb - air_shade;
