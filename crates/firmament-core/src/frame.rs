@@ -4,7 +4,7 @@ use glam::{DQuat, DVec3};
 
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
-use crate::atmosphere::{Atmosphere, Sun};
+use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
 use crate::classic::scene::ObjectLayer;
 use crate::color::LinearRgb;
@@ -59,10 +59,15 @@ pub struct AtmosphereSky {
     /// Cloud layers inside the air, 0 to
     /// [`MAX_CLOUD_LAYERS`](crate::atmosphere::clouds::MAX_CLOUD_LAYERS).
     pub clouds: Vec<CloudLayer>,
+    /// Bodies that can pass in front of the suns (the Moon at a real date), world frame, 0 to
+    /// [`MAX_ECLIPSERS`](crate::atmosphere::eclipse::MAX_ECLIPSERS): where one hides part of a
+    /// sun, the air, the ground and everything lit there get that much less of it
+    /// ([`crate::atmosphere::eclipse`]).
+    pub eclipsers: Vec<Eclipser>,
 }
 
 impl AtmosphereSky {
-    /// Checks the atmosphere, every sun and the number of suns.
+    /// Checks the atmosphere, every sun, every eclipser and their numbers.
     pub fn validate(&self) -> Result<(), crate::error::CoreError> {
         self.atmosphere.validate()?;
         if self.suns.len() > MAX_SUNS {
@@ -73,6 +78,14 @@ impl AtmosphereSky {
             });
         }
         self.suns.iter().try_for_each(Sun::validate)?;
+        if self.eclipsers.len() > crate::atmosphere::eclipse::MAX_ECLIPSERS {
+            return Err(crate::error::CoreError::Invalid {
+                field: "eclipsers",
+                value: format!("{} eclipsers", self.eclipsers.len()),
+                rule: "at most 4 eclipsing bodies",
+            });
+        }
+        self.eclipsers.iter().try_for_each(Eclipser::validate)?;
         crate::atmosphere::clouds::validate_layers(&self.clouds)
     }
 }

@@ -77,6 +77,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/earth-night.toml"),
     },
     Preset {
+        name: "eclipse-2024",
+        summary: "atmosphere: the total solar eclipse of 2024-04-08 from Dallas at mid-totality, a sunset all round",
+        toml: include_str!("presets/eclipse-2024.toml"),
+    },
+    Preset {
         name: "earth-orbit",
         summary: "atmosphere: Earth from 400 km up under a global layer of clouds, looking at the limb",
         toml: include_str!("presets/earth-orbit.toml"),

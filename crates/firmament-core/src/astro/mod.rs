@@ -10,6 +10,7 @@
 //!   eastward from north (0° north, 90° east), as NREL's SPA gives them. The local frame of the
 //!   rest of firmament is East-North-Up; [`horizon_direction`] converts.
 
+pub mod eclipse;
 pub mod moon;
 mod moon_terms;
 pub mod sidereal;

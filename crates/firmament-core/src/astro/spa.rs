@@ -388,12 +388,7 @@ pub fn solar_position(input: &SpaInput) -> SolarPosition {
     let e0 = (sin_phi * delta_prime.sin() + cos_phi * delta_prime.cos() * cos_hp)
         .asin()
         .to_degrees();
-    let refraction = if e0 >= -(SUN_RADIUS_DEG + input.atmos_refraction_deg) {
-        (input.pressure_mbar / 1010.0) * (283.0 / (273.0 + input.temperature_c)) * 1.02
-            / (60.0 * (e0 + 10.3 / (e0 + 5.11)).to_radians().tan())
-    } else {
-        0.0
-    };
+    let refraction = refraction_deg(e0, input);
     let e = e0 + refraction;
 
     // Azimuth (§3.15): the astronomers' azimuth, from the south, turned to the north.
@@ -415,6 +410,19 @@ pub fn solar_position(input: &SpaInput) -> SolarPosition {
         zenith_no_refraction_deg: 90.0 - e0,
         azimuth_deg: azimuth,
         equation_of_time_min: equation_of_time(&input.instant, &geo),
+    }
+}
+
+/// SPA's atmospheric refraction Δe, degrees, of a body at geometric elevation `e0_deg` seen
+/// through `input`'s air (§3.14): Bennett's formula scaled by pressure and temperature, 0 below
+/// −([`SUN_RADIUS_DEG`] + `atmos_refraction_deg`). Used for the Moon too, so that it and the
+/// Sun stand as they do in space (an eclipse needs both lifted alike).
+pub fn refraction_deg(e0_deg: f64, input: &SpaInput) -> f64 {
+    if e0_deg >= -(SUN_RADIUS_DEG + input.atmos_refraction_deg) {
+        (input.pressure_mbar / 1010.0) * (283.0 / (273.0 + input.temperature_c)) * 1.02
+            / (60.0 * (e0_deg + 10.3 / (e0_deg + 5.11)).to_radians().tan())
+    } else {
+        0.0
     }
 }
 

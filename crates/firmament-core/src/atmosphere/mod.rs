@@ -12,6 +12,7 @@
 //! - Geometry is computed in the *planet frame* (see [`planet::Planet`]) in f64.
 
 pub mod clouds;
+pub mod eclipse;
 pub mod empirical;
 pub mod medium;
 pub mod planet;
@@ -20,6 +21,7 @@ pub mod reference;
 pub mod spectrum;
 pub mod star;
 
+pub use eclipse::Eclipser;
 pub use medium::{DensityLayer, DensityProfile, Medium, MiePhase};
 pub use planet::Planet;
 pub use spectrum::{SpectralConversion, Spectrum, Wavelengths};

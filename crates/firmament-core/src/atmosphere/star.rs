@@ -71,6 +71,19 @@ impl Sun {
         self.irradiance / (solid_angle * (1.0 - self.limb_darkening / 3.0))
     }
 
+    /// Radiance of the corona (above the atmosphere) at `angle` radians from the disc's centre,
+    /// W·m⁻²·sr⁻¹·nm⁻¹: [`baumbach_corona`] times the disc's mean radiance (the corona is the
+    /// photosphere's light scattered, so it has the sun's spectrum); zero on the disc and for a
+    /// sun whose disc is not drawn. Only worth drawing in an eclipse: by day the sky near the sun
+    /// is brighter.
+    pub fn corona_radiance(&self, angle: f64) -> Spectrum {
+        if !self.disc {
+            return Spectrum::ZERO;
+        }
+        let solid_angle = 2.0 * PI * (1.0 - self.angular_radius.cos());
+        self.irradiance / solid_angle * baumbach_corona(angle / self.angular_radius)
+    }
+
     /// Radiance of the disc (above the atmosphere) seen at angle `angle` radians from its centre:
     /// zero outside the disc.
     pub fn disc_radiance(&self, angle: f64) -> Spectrum {
@@ -82,6 +95,21 @@ impl Sun {
         self.center_radiance() * (1.0 - self.limb_darkening * (1.0 - mu))
     }
 }
+
+/// Baumbach's fit (1937, "Strahlung, Ergiebigkeit und Elektronendichte der Sonnenkorona",
+/// Astronomische Nachrichten 263) to the white-light corona's radiance `r` solar radii from the
+/// Sun's centre, over the mean radiance of its disc: `10⁻⁶·(0.0532·r^−2.5 + 1.425·r^−7 +
+/// 2.565·r^−17)`, 4·10⁻⁶ at the limb and ~10⁻⁹ at 5 radii; in all ~10⁻⁶ of the Sun's light, about
+/// half the full Moon's. Zero inside the disc and beyond [`CORONA_MAX_RADII`].
+pub fn baumbach_corona(r: f64) -> f64 {
+    if !(1.0..CORONA_MAX_RADII).contains(&r) {
+        return 0.0;
+    }
+    1e-6 * (0.0532 * r.powf(-2.5) + 1.425 * r.powi(-7) + 2.565 * r.powi(-17))
+}
+
+/// How far out the corona is drawn, solar radii (there it is ~10⁻¹¹ of the disc).
+pub const CORONA_MAX_RADII: f64 = 30.0;
 
 /// Relative spectral radiance of a black body at `kelvin`, normalised to 1 at 550 nm (Planck's
 /// law), at the model's wavelengths: the colour of a sun given by its temperature.
@@ -121,6 +149,26 @@ mod tests {
             (sum / sun.irradiance - Spectrum::ONE).abs().max_element() < 1e-5,
             "{sum}"
         );
+    }
+
+    #[test]
+    fn the_corona_holds_a_millionth_of_the_sun_and_fades_outwards() {
+        // ∫ B(r)·2πr dr over the corona, against the disc's π (mean radiance 1): by the
+        // formula's own integrals, 2·10⁻⁶·(0.0532/0.5 + 1.425/5 + 2.565/15) less the part beyond
+        // 30 radii.
+        let n = 200_000;
+        let step = (CORONA_MAX_RADII - 1.0) / n as f64;
+        let sum: f64 = (0..n)
+            .map(|i| {
+                let r = 1.0 + (i as f64 + 0.5) * step;
+                baumbach_corona(r) * 2.0 * PI * r * step
+            })
+            .sum();
+        let beyond = 2.0 * 1e-6 * 0.0532 / 0.5 * CORONA_MAX_RADII.powf(-0.5);
+        let closed = 2e-6 * (0.0532 / 0.5 + 1.425 / 5.0 + 2.565 / 15.0) - beyond;
+        assert!((sum / PI - closed).abs() < 1e-4 * closed, "{} vs {closed}", sum / PI);
+        assert!(baumbach_corona(1.0) > 4e-6 && baumbach_corona(5.0) < 1e-9);
+        assert_eq!(baumbach_corona(0.9), 0.0);
     }
 
     #[test]

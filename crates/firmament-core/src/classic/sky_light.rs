@@ -54,7 +54,7 @@ impl<'a> SkyLight<'a> {
             paths: SKY_IRRADIANCE_PATHS,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
         Self {
             sky,
             beams: reference.clone().with_clouds(&sky.clouds),
@@ -98,16 +98,19 @@ impl<'a> SkyLight<'a> {
         self.beam_colors(&self.reference, point)
     }
 
-    /// `E·T/π` of each sun at `point`, `T` through `medium`'s media.
+    /// `E·T/π` of each sun at `point`, `T` through `medium`'s media, `E` less what an eclipse
+    /// hides there.
     fn beam_colors(&self, medium: &Reference, point: DVec3) -> Vec<DVec4> {
         let planet = &self.sky.atmosphere.planet;
         let at = planet.to_planet_frame(point);
         self.sky
             .suns
             .iter()
-            .map(|sun| {
+            .enumerate()
+            .map(|(i, sun)| {
                 let towards = planet.direction_to_planet_frame(sun.direction.normalize());
-                self.rgb(sun.irradiance * medium.transmittance_to_space(at, towards))
+                let visible = medium.sun_visible_fraction(point, i);
+                self.rgb(sun.irradiance * medium.transmittance_to_space(at, towards) * visible)
             })
             .collect()
     }
@@ -230,6 +233,7 @@ mod tests {
             atmosphere: earth,
             suns: vec![presets::earth_sun(DVec3::new(0.0, 0.5, 1.0).normalize())],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         let lit = sky_lighting(&high, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         let sun = lit.lights[0].light.diffuse;
@@ -250,6 +254,7 @@ mod tests {
             atmosphere: earth,
             suns: vec![presets::earth_sun(DVec3::new(0.0, 1.0, -0.2).normalize())],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         let dark = sky_lighting(&set, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         assert_eq!(dark.lights[0].light.diffuse.truncate(), DVec3::ZERO);
@@ -267,6 +272,7 @@ mod tests {
                 DVec3::new(0.0, 1.0, -(1f64.to_radians().tan())).normalize(),
             )],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         let light = SkyLight::new(&sky);
         let street = light.sun_colors(DVec3::new(0.0, 0.0, 2.0))[0];
@@ -288,6 +294,7 @@ mod tests {
                 atmosphere: earth,
                 suns: vec![presets::earth_sun(DVec3::new(0.0, z.sin(), z.cos()))],
                 clouds,
+                eclipsers: Vec::new(),
             }
         };
         // 1000 m of 0.001 m⁻¹ seen from 2 m: the beam's path through the shell between 1000 and

@@ -6,6 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
+use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
@@ -204,10 +205,14 @@ pub struct AtmosphereViewUniforms {
     /// depth-buffer value `z` lies at view depth `B / (z + A)`; the far plane's depth (0 for
     /// reversed-Z, 1 for standard).
     pub aerial: [f32; 4],
-    /// x = number of suns.
+    /// x = number of suns; y = number of eclipsing bodies; z = 1 when the sky-view LUT spans
+    /// the whole circle of azimuths (there are eclipsers), 0 for half of it.
     pub sun_count: [u32; 4],
     /// The suns; the first `sun_count` are used.
     pub suns: [AtmosphereSunUniform; MAX_SUNS],
+    /// The eclipsing bodies: centre in the planet frame (m), radius (m) in `w`; the first
+    /// `sun_count[1]` are used.
+    pub eclipsers: [[f32; 4]; MAX_ECLIPSERS],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
@@ -261,6 +266,11 @@ impl AtmosphereViewUniforms {
                 irradiance: spectrum_w(sun.irradiance, sun.limb_darkening),
             };
         }
+        let mut eclipsers = [[0.0; 4]; MAX_ECLIPSERS];
+        for (slot, body) in eclipsers.iter_mut().zip(&sky.eclipsers) {
+            *slot = vec3_w(planet.to_planet_frame(body.center), body.radius_m);
+        }
+        let eclipser_count = sky.eclipsers.len().min(MAX_ECLIPSERS);
         Self {
             view_to_planet: shape.view_to_planet,
             camera: vec3_w(o, altitude),
@@ -276,8 +286,14 @@ impl AtmosphereViewUniforms {
                 projection.w_axis.z as f32,
                 0.0,
             ],
-            sun_count: [sky.suns.len().min(MAX_SUNS) as u32, 0, 0, 0],
+            sun_count: [
+                sky.suns.len().min(MAX_SUNS) as u32,
+                eclipser_count as u32,
+                u32::from(eclipser_count > 0),
+                0,
+            ],
             suns,
+            eclipsers,
         }
     }
 }

@@ -125,7 +125,29 @@ pub fn wgsl() -> String {
         }
         text.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
+    text.push_str(&eclipse_quadrature_wgsl());
     text
+}
+
+/// The Gauss–Legendre rule of the eclipse quadrature (`atmosphere/eclipse.wgsl`), from the core's
+/// own ([`firmament_core::atmosphere::eclipse`]), so both integrate alike, and the corona's reach.
+fn eclipse_quadrature_wgsl() -> String {
+    use firmament_core::atmosphere::eclipse::{ECLIPSE_QUADRATURE_POINTS, eclipse_quadrature};
+    use firmament_core::atmosphere::star::CORONA_MAX_RADII;
+    let (nodes, weights) = eclipse_quadrature();
+    let list = |values: &[f32]| values.iter().map(|v| format!("{v:e}")).collect::<Vec<_>>().join(", ");
+    let n = ECLIPSE_QUADRATURE_POINTS;
+    format!(
+        "\n// The eclipse quadrature's Gauss–Legendre nodes on [−1, 1] and their weights\n\
+         // (firmament_core::atmosphere::eclipse).\n\
+         const ECLIPSE_QUADRATURE_POINTS: u32 = {n}u;\n\
+         const ECLIPSE_NODES: array<f32, {n}> = array<f32, {n}>({});\n\
+         const ECLIPSE_WEIGHTS: array<f32, {n}> = array<f32, {n}>({});\n\
+         // How far out a sun's corona is drawn, solar radii (firmament_core::atmosphere::star).\n\
+         const CORONA_MAX_RADII: f32 = {CORONA_MAX_RADII:?};\n",
+        list(&nodes),
+        list(&weights)
+    )
 }
 
 #[cfg(test)]

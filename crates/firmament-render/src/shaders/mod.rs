@@ -47,6 +47,7 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/bindings", include_str!("atmosphere/bindings.wgsl")),
     ("atmosphere/common", include_str!("atmosphere/common.wgsl")),
     ("atmosphere/luts", include_str!("atmosphere/luts.wgsl")),
+    ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),
     ("atmosphere/aerial_lookup", include_str!("atmosphere/aerial_lookup.wgsl")),
@@ -1082,7 +1083,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 to_srgb2,
                 aerial,
                 sun_count,
-                suns
+                suns,
+                eclipsers
             ]
         );
     }

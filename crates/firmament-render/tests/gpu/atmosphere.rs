@@ -75,6 +75,7 @@ fn transmittance_lut_texels_match_the_reference() {
         atmosphere,
         suns: vec![],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());
@@ -173,6 +174,7 @@ fn sky_comparisons_with(
         atmosphere,
         suns: vec![sun],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
     let conversion = atmosphere.spectral_conversion();
@@ -436,6 +438,7 @@ fn several_suns_add_up() {
                 atmosphere,
                 suns,
                 clouds: Vec::new(),
+                eclipsers: Vec::new(),
             },
             view,
             16,
@@ -478,6 +481,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
         atmosphere,
         suns: vec![s],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let bright = render(&mut gpu, &sky(sun), view, 16, 12);
     let dim = render(&mut gpu, &sky(moon), view, 16, 12);
@@ -514,6 +518,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
         atmosphere,
         suns: vec![presets::earth_sun(direction(90.0, 20.0))],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let au = presets::ASTRONOMICAL_UNIT;
     let center = atmosphere.planet.center;
@@ -553,6 +558,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
         atmosphere,
         suns: vec![presets::earth_sun(direction(90.0, 10.0))],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let mean = |image: &Image<f32>| {
         let mut sum = DVec3::ZERO;
@@ -604,6 +610,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         atmosphere,
         suns: vec![sun],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     // Looking at the planet's equator from 3 radii, pole up, so the flattening shows.
     let position = DVec3::new(0.0, -20_000_000.0, 0.0);

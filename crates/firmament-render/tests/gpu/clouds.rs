@@ -95,9 +95,11 @@ fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
             atmosphere: airless(),
             suns: vec![sun],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
+            eclipsers: Vec::new(),
             ..clear.clone()
         };
         // An odd image: its centre pixel looks exactly along the camera, at the sun.
@@ -125,6 +127,7 @@ fn pixels_whose_rays_miss_every_layer_are_left_alone() {
     let sky = crate::support::street_sky(90.0, -3.0);
     let cloudy = AtmosphereSky {
         clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
+        eclipsers: Vec::new(),
         ..sky.clone()
     };
     let camera = camera_at(DVec3::new(0.0, 0.0, 100.0), direction(0.0, -30.0), 20.0);
@@ -153,9 +156,11 @@ fn a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance() {
             atmosphere: airless(),
             suns: vec![presets::earth_sun(direction(90.0, 90.0 - zenith_deg))],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
+            eclipsers: Vec::new(),
             ..clear.clone()
         };
         // The ground 3 m away, 40° down.
@@ -193,6 +198,7 @@ fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
         let clear = crate::support::street_sky(90.0, elevation);
         let cloudy = AtmosphereSky {
             clouds: vec![layer.clone()],
+            eclipsers: Vec::new(),
             ..clear.clone()
         };
         let gpu_lost = centre_radiance(&mut gpu, &clear, eye, view) - centre_radiance(&mut gpu, &cloudy, eye, view);
@@ -282,6 +288,7 @@ fn cloud_radiance_survey() {
         for elevation in [60.0, 30.0, 10.0] {
             let sky = AtmosphereSky {
                 clouds: vec![layer.clone()],
+                eclipsers: Vec::new(),
                 ..crate::support::street_sky(0.0, elevation)
             };
             for (eye, view, what) in [

@@ -48,6 +48,7 @@ fn frame(view: DVec3, far: Option<f64>) -> Frame {
             atmosphere,
             suns: vec![presets::earth_sun(direction(90.0, 25.0))],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         }),
         display: DisplaySettings::default(),
         objects: Default::default(),

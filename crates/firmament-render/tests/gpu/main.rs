@@ -9,6 +9,7 @@ mod atmosphere;
 mod camera;
 mod cloud_density;
 mod clouds;
+mod eclipse;
 mod embed_target;
 mod embedding;
 mod empirical_sky;

@@ -48,6 +48,7 @@ fn tail_errors(atmosphere: Atmosphere) -> [(f64, f64); 2] {
         atmosphere,
         suns: vec![],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());

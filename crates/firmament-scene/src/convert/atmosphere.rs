@@ -46,6 +46,7 @@ pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
         atmosphere,
         suns,
         clouds,
+        eclipsers: Vec::new(),
     };
     sky.validate()
         .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;

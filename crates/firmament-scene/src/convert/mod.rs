@@ -271,6 +271,7 @@ impl Scene {
                         atmosphere::clouds::drift(&mut sky, self.wind_seconds(&moment)?);
                         if let Some(instant) = &moment.instant {
                             night::add_moonlight(self, instant, &camera, &mut sky);
+                            night::add_eclipsing_moon(self, instant, &camera, &mut sky);
                         }
                         Sky::Atmosphere(sky)
                     }

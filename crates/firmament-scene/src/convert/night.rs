@@ -20,9 +20,11 @@ use std::sync::{Arc, Mutex};
 
 use firmament_core::Camera;
 use firmament_core::astro::Instant;
-use firmament_core::astro::moon::moon_view;
+use firmament_core::astro::moon::{MOON_RADIUS_KM, moon_view};
+use firmament_core::astro::spa::refraction_deg;
+use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::atmosphere::{Atmosphere, Sun};
+use firmament_core::atmosphere::{Atmosphere, Eclipser, Sun};
 use firmament_core::frame::{AtmosphereSky, EmpiricalSky, MAX_SUNS, Sky};
 use firmament_core::sky::night::{HORIZON_CUTOFF_DEG, NightLayer};
 use glam::{DMat3, DVec3};
@@ -167,10 +169,53 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
         }
         Sky::Clear(_) => return NightLayer::default(),
     };
-    if !t.moon {
-        layer.moon = None;
+    match &mut layer.moon {
+        Some(moon) if t.moon => moon.direction = refracted(scene, instant, moon.direction),
+        _ => layer.moon = None,
     }
     layer
+}
+
+/// A topocentric East-North-Up direction lifted by the refraction of `[time]`'s air at its
+/// elevation (SPA's formula, as for the sun): the Moon stands against the Sun as it does in
+/// space, and an eclipse's discs line up.
+fn refracted(scene: &Scene, instant: &Instant, direction: DVec3) -> DVec3 {
+    let e0 = direction.z.clamp(-1.0, 1.0).asin();
+    let lift = refraction_deg(e0.to_degrees(), &scene.spa_input(instant)).to_radians();
+    let horizontal = DVec3::new(direction.x, direction.y, 0.0).normalize_or(DVec3::Y);
+    let e = (e0 + lift).min(std::f64::consts::FRAC_PI_2);
+    horizontal * e.cos() + DVec3::Z * e.sin()
+}
+
+/// How far from a sun, beyond the two discs' radii, the Moon seen from the camera can still
+/// eclipse it somewhere in the visible air, radians: its parallax across the ~3500 km of air a
+/// camera sees to the horizon from high up is ~0.5°.
+const ECLIPSE_MARGIN: f64 = 1.5 * std::f64::consts::PI / 180.0;
+
+/// Whether a Moon seen towards `direction` with angular radius `radius` stands within
+/// [`ECLIPSE_MARGIN`] of a sun's disc.
+fn eclipses_a_sun(sky: &AtmosphereSky, direction: DVec3, radius: f64) -> bool {
+    sky.suns
+        .iter()
+        .any(|sun| sun.disc && sun.direction.angle_between(direction) < sun.angular_radius + radius + ECLIPSE_MARGIN)
+}
+
+/// Adds the Moon as a body that can eclipse the suns, when `time.moon` is on and it stands within
+/// [`ECLIPSE_MARGIN`] of a sun's disc: a ball of the Moon's mean radius where the camera sees it
+/// (refracted as the sun is), at its topocentric distance.
+pub(crate) fn add_eclipsing_moon(scene: &Scene, instant: &Instant, camera: &Camera, sky: &mut AtmosphereSky) {
+    if !scene.time.moon || sky.eclipsers.len() >= MAX_ECLIPSERS {
+        return;
+    }
+    let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
+    let view = moon_view(instant, lat, lon, camera.position.z.max(0.0));
+    let direction = refracted(scene, instant, view.direction);
+    if eclipses_a_sun(sky, direction, view.angular_radius) {
+        sky.eclipsers.push(Eclipser {
+            center: camera.position + direction * (view.equatorial.distance_km * 1000.0),
+            radius_m: MOON_RADIUS_KM * 1000.0,
+        });
+    }
 }
 
 /// Adds the Moon to a physical sky's suns as the night's light source, when it is above the
@@ -184,8 +229,11 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
         return;
     }
     let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
-    let view = moon_view(instant, lat, lon, camera.position.z.max(0.0));
-    if view.direction.z < HORIZON_CUTOFF_DEG.to_radians().sin()
+    let mut view = moon_view(instant, lat, lon, camera.position.z.max(0.0));
+    view.direction = refracted(scene, instant, view.direction);
+    // A Moon that eclipses a sun is new: its lit side faces away.
+    if eclipses_a_sun(sky, view.direction, view.angular_radius)
+        || view.direction.z < HORIZON_CUTOFF_DEG.to_radians().sin()
         || view.illuminance_lux.is_nan()
         || view.illuminance_lux <= 0.0
     {
@@ -227,6 +275,7 @@ mod tests {
             atmosphere: firmament_core::atmosphere::presets::earth(),
             suns: vec![],
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         };
         // The world is east-north-up at (0°, 0°) on the ground.
         earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);

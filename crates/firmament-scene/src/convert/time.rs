@@ -180,6 +180,17 @@ impl Scene {
         })
     }
 
+    /// The observer of the real sky at `instant`: `[planet]`'s latitude and longitude, the
+    /// camera's height, air of `time.pressure` and `time.temperature`.
+    pub(crate) fn spa_input(&self, instant: &Instant) -> SpaInput {
+        SpaInput {
+            elevation_m: self.camera.position[2].clamp(0.0, 1.0e7),
+            pressure_mbar: self.time.pressure,
+            temperature_c: self.time.temperature,
+            ..SpaInput::new(*instant, self.planet.latitude_deg, self.planet.longitude_deg)
+        }
+    }
+
     /// The real sun at `instant` over `[planet]`'s latitude and longitude, from the camera's
     /// height, through air of `time.pressure` and `time.temperature`.
     pub(crate) fn real_sun(&self, instant: &Instant) -> Result<SolarPosition, SceneError> {
@@ -189,12 +200,7 @@ impl Scene {
             format!("\"{}\"", self.planet.body.name()),
             "a real date places Earth's sun (NREL SPA); there is no ephemeris for other bodies here",
         )?;
-        let input = SpaInput {
-            elevation_m: self.camera.position[2].clamp(0.0, 1.0e7),
-            pressure_mbar: self.time.pressure,
-            temperature_c: self.time.temperature,
-            ..SpaInput::new(*instant, self.planet.latitude_deg, self.planet.longitude_deg)
-        };
+        let input = self.spa_input(instant);
         input.validate().map_err(|e| match e {
             firmament_core::CoreError::Invalid { field, value, rule } => {
                 let key = match field {

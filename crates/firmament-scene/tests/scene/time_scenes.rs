@@ -265,3 +265,42 @@ fn the_moon_lights_a_physical_night_sky_without_a_flare() {
     assert_eq!(sky.suns.len(), 1);
     assert!(frame.night.moon.is_none());
 }
+
+#[test]
+fn the_moon_eclipses_the_sun_in_dallas_on_2024_04_08() {
+    let scene = load(SceneSource::Preset("eclipse-2024"), None, &[]).expect("valid");
+    let frame = scene.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    // The Sun alone lights the sky: a new Moon gives no moonlight.
+    assert_eq!(sky.suns.len(), 1);
+    let sun = sky.suns[0];
+    assert_eq!(sky.eclipsers.len(), 1, "the Moon");
+    let moon = sky.eclipsers[0];
+    let to_moon = moon.center - frame.camera.position;
+    let moon_radius = (moon.radius_m / to_moon.length()).asin();
+    let separation = to_moon.angle_between(sun.direction);
+    // Totality: the Moon's disc covers the Sun's, both refracted alike.
+    assert!(
+        separation + sun.angular_radius < moon_radius,
+        "{separation} + {} vs {moon_radius}",
+        sun.angular_radius
+    );
+    assert!((3.5e8..4.1e8).contains(&to_moon.length()));
+    // The night sky's Moon stands where the eclipser does.
+    let disc = frame.night.moon.expect("the Moon is up");
+    assert!(disc.direction.angle_between(to_moon) < 1e-9);
+    // A day later the Moon is far from the Sun: no eclipser.
+    let later = load(
+        SceneSource::Preset("eclipse-2024"),
+        None,
+        &["time.date_time=\"2024-04-09T18:42:38Z\"".to_owned()],
+    )
+    .expect("valid");
+    let frame = later.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    assert!(sky.eclipsers.is_empty());
+}

@@ -116,7 +116,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             paths: args.paths as usize,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings);
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
         let conversion = sky.atmosphere.spectral_conversion();
         let radiance: Vec<LinearRgb> = reference
             .image(&frame.camera, width, height)

@@ -143,6 +143,7 @@ fn samples(args: &SkySampleArgs) -> Result<Samples> {
         atmosphere: scene_sky.atmosphere,
         suns: vec![sun],
         clouds: scene_sky.clouds,
+        eclipsers: Vec::new(),
     };
     if !sky.clouds.is_empty() && !args.reference {
         bail!(
@@ -263,7 +264,9 @@ fn reference_sample(
     settings: ReferenceSettings,
     second_order: bool,
 ) -> Sample {
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_clouds(&sky.clouds);
+    let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+        .with_clouds(&sky.clouds)
+        .with_eclipsers(&sky.eclipsers);
     let planet = &sky.atmosphere.planet;
     let ray = Ray {
         origin: eye,

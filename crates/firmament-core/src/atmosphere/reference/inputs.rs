@@ -5,7 +5,7 @@
 
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::spectrum::Spectrum;
-use crate::atmosphere::{Atmosphere, Planet, Sun};
+use crate::atmosphere::{Atmosphere, Eclipser, Planet, Sun};
 use crate::geometry::Ray;
 use crate::occluder::Occluder;
 
@@ -105,4 +105,6 @@ pub struct Reference {
     pub(super) occluders: Vec<Occluder>,
     /// Cloud layers, planet frame ([`Reference::with_clouds`]).
     pub(super) clouds: Vec<CloudLayer>,
+    /// Bodies that eclipse the suns, planet frame ([`Reference::with_eclipsers`]).
+    pub(super) eclipsers: Vec<Eclipser>,
 }

@@ -70,8 +70,9 @@ mod quadrature;
 use glam::DVec3;
 
 use crate::atmosphere::clouds::CloudLayer;
+use crate::atmosphere::eclipse::visible_fraction;
 use crate::atmosphere::spectrum::Spectrum;
-use crate::atmosphere::{Atmosphere, Sun};
+use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::occluder::Occluder;
@@ -143,6 +144,7 @@ impl Reference {
             settings,
             occluders: Vec::new(),
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
         }
     }
 
@@ -178,6 +180,46 @@ impl Reference {
         let planet = self.atmosphere.planet;
         self.occluders = occluders.iter().map(|o| o.to_planet_frame(&planet)).collect();
         self
+    }
+
+    /// Sets the bodies that eclipse the suns (world frame, metres; replacing any set before):
+    /// every sun's light at every point — single scattering, the path tracer's every event, the
+    /// ground's direct light — is scaled by the fraction of its disc they leave visible there
+    /// ([`visible_fraction`]), and a view ray that meets one sees no sun disc behind it. With
+    /// eclipsers the suns' coronae are drawn ([`Sun::corona_radiance`]). Each should pass
+    /// [`Eclipser::validate`].
+    pub fn with_eclipsers(mut self, eclipsers: &[Eclipser]) -> Self {
+        let planet = self.atmosphere.planet;
+        self.eclipsers = eclipsers.iter().map(|e| e.to_planet_frame(&planet)).collect();
+        self
+    }
+
+    /// The fraction of sun `index`'s disc (in the order given to [`Reference::new`]) that the
+    /// eclipsers leave visible from world-frame `point`: 1 without eclipsers.
+    ///
+    /// # Panics
+    /// When there is no sun `index`.
+    pub fn sun_visible_fraction(&self, point: DVec3, index: usize) -> f64 {
+        let p = self.atmosphere.planet.to_planet_frame(point);
+        self.sun_visible(p, &self.suns[index])
+    }
+
+    /// The fraction of `sun`'s disc the eclipsers leave visible from planet-frame point `p`.
+    pub(super) fn sun_visible(&self, p: DVec3, sun: &Sun) -> f64 {
+        if self.eclipsers.is_empty() {
+            1.0
+        } else {
+            visible_fraction(p, sun, &self.eclipsers)
+        }
+    }
+
+    /// Whether a planet-frame ray meets an eclipser (which hides the suns' discs behind it).
+    fn meets_eclipser(&self, ray: &Ray) -> bool {
+        self.eclipsers.iter().any(|e| {
+            let to_center = e.center - ray.origin;
+            let along = to_center.dot(ray.direction);
+            along > 0.0 && to_center.length_squared() - along * along < e.radius_m * e.radius_m
+        })
     }
 
     /// A whole image seen by `camera` (its aspect ratio replaced by `width / height`): the total
@@ -280,14 +322,20 @@ impl Reference {
         let distance = self.view_limit(&ray, distance);
         let (single, ground, transmittance) = self.single_scattering(&ray, distance);
         let multiple = path_tracer::multiple_scattering(self, &ray, 2, self.settings.paths, distance);
-        let sun_discs = if distance.is_finite() {
+        let sun_discs = if distance.is_finite() || self.meets_eclipser(&ray) {
             Spectrum::ZERO
         } else {
             self.suns
                 .iter()
                 .map(|sun| {
                     let angle = ray.direction.dot(sun.direction).clamp(-1.0, 1.0).acos();
-                    sun.disc_radiance(angle) * transmittance
+                    // The corona shows only in an eclipse: drawn only when there are eclipsers.
+                    let corona = if self.eclipsers.is_empty() {
+                        Spectrum::ZERO
+                    } else {
+                        sun.corona_radiance(angle)
+                    };
+                    (sun.disc_radiance(angle) + corona) * transmittance
                 })
                 .sum()
         };
@@ -318,6 +366,7 @@ impl Reference {
         }
         let clear = Self {
             clouds: Vec::new(),
+            eclipsers: Vec::new(),
             ..self.clone()
         };
         order_two::second_order(&clear, &ray, settings)
@@ -440,7 +489,7 @@ impl Reference {
                 let mut in_scattered = Spectrum::ZERO;
                 for (sun, _) in self.suns.iter().zip(&lit).filter(|(_, lit)| **lit) {
                     let nu = ray.direction.dot(sun.direction);
-                    let sun_transmittance = self.transmittance_to_space(p, sun.direction);
+                    let sun_transmittance = self.transmittance_to_space(p, sun.direction) * self.sun_visible(p, sun);
                     let mut scattering = medium.scattering_phase(&coefficients, nu);
                     if inside != 0 {
                         scattering += Spectrum::splat(cloud_media::scattering_phase(&self.clouds, &densities, nu));
@@ -519,7 +568,7 @@ impl Reference {
             .filter(|sun| !self.occluded(from, sun.direction))
             .map(|sun| {
                 let cos = up.dot(sun.direction).max(0.0);
-                sun.irradiance * self.transmittance_to_space(from, sun.direction) * cos
+                sun.irradiance * self.transmittance_to_space(from, sun.direction) * cos * self.sun_visible(from, sun)
             })
             .sum()
     }

@@ -352,7 +352,9 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                 let suns = if along_segment { &[][..] } else { &reference.suns[..] };
                 for sun in suns {
                     let nu = ray.direction.dot(sun.direction);
-                    let light = sun.irradiance * transmittance_to_sun(reference, p, sun.direction, rng);
+                    let light = sun.irradiance
+                        * transmittance_to_sun(reference, p, sun.direction, rng)
+                        * reference.sun_visible(p, sun);
                     let mut scattering = medium.scattering_phase(&coefficients, nu);
                     if cloud_scattering > 0.0 {
                         scattering += Spectrum::splat(cloud_media::scattering_phase(&reference.clouds, &densities, nu));
@@ -450,7 +452,9 @@ fn ground_event(reference: &Reference, p: DVec3, rng: &mut Pcg64Mcg) -> (DVec3, 
     for sun in &reference.suns {
         let cos = up.dot(sun.direction);
         if cos > 0.0 {
-            direct += sun.irradiance * transmittance_to_sun(reference, start, sun.direction, rng) * cos;
+            direct += sun.irradiance
+                * transmittance_to_sun(reference, start, sun.direction, rng)
+                * (cos * reference.sun_visible(start, sun));
         }
     }
     (start, direct * reference.atmosphere.medium.ground_albedo / PI)
@@ -565,7 +569,8 @@ fn line_light(reference: &Reference, ray: &Ray, segment: Segment, rng: &mut Pcg6
         let coefficients = medium.at(planet.approximate_altitude(p));
         for sun in &reference.suns {
             let nu = ray.direction.dot(sun.direction);
-            let light = sun.irradiance * transmittance_to_sun(reference, p, sun.direction, rng);
+            let light =
+                sun.irradiance * transmittance_to_sun(reference, p, sun.direction, rng) * reference.sun_visible(p, sun);
             air += medium.scattering_phase(&coefficients, nu) * light * (-depth_at(t)).exp();
         }
     }

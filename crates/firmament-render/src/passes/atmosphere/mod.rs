@@ -299,6 +299,7 @@ impl AtmospherePass {
                     atmosphere,
                     suns: sky.suns.clone(),
                     clouds: Vec::new(),
+                    eclipsers: Vec::new(),
                 };
                 &live_sky
             }

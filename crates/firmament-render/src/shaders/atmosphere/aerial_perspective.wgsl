@@ -27,6 +27,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 #import atmosphere/view
+#import atmosphere/eclipse
 #import atmosphere/aerial_lookup
 #import shadow/sampling
 #import generated/constants
@@ -156,6 +157,8 @@ fn shadowed_single_scattering(pixel: vec2<f32>, ndc: vec2<f32>, t_end: f32) -> v
         let s = sun.direction.xyz;
         let nu = dot(d, s);
         let mu_s = dot(up, s);
+        // The shadows reach a few kilometres: the eclipse there is the camera's.
+        let irradiance = sun_irradiance_at(view.camera.xyz, i);
         var span = min(t_end, shadow_reach(slot, eye));
         if rise > 0.0 && mu_s > 0.0 {
             // Above the highest caster the air sees every sun above the horizon.
@@ -182,7 +185,7 @@ fn shadowed_single_scattering(pixel: vec2<f32>, ndc: vec2<f32>, t_end: f32) -> v
             let air = coefficients_at(h);
             let shade = 1.0 - air_visibility(cascade, t);
             if shade > 0.0 {
-                let sunlight = sun.irradiance.rgb * transmittance_to_sun(h, mu_s, abs(sun.direction.w));
+                let sunlight = irradiance * transmittance_to_sun(h, mu_s, abs(sun.direction.w));
                 lost += shade * transmittance * scattering_phase(air, nu) * sunlight * dt;
             }
             transmittance *= exp(-air.extinction * dt);

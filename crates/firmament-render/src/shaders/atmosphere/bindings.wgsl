@@ -11,6 +11,8 @@
 
 // How many suns the view uniforms carry (firmament_core::frame::MAX_SUNS).
 const MAX_SUNS: u32 = 8u;
+// How many eclipsing bodies (firmament_core::atmosphere::eclipse::MAX_ECLIPSERS).
+const MAX_ECLIPSERS: u32 = 4u;
 
 struct DensityProfile {
     layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
@@ -58,8 +60,11 @@ struct AtmosphereView {
     // B / (depth + A) for a depth-buffer value); w = the far plane's depth (0 reversed-Z, 1
     // standard)
     aerial: vec4<f32>,
-    sun_count: vec4<u32>,        // x = number of suns; yzw unused
+    // x = number of suns; y = number of eclipsing bodies; z = 1: the sky-view LUT spans the
+    // whole circle of azimuths (with eclipsers), 0: half of it; w unused
+    sun_count: vec4<u32>,
     suns: array<AtmosphereSun, MAX_SUNS>,
+    eclipsers: array<vec4<f32>, MAX_ECLIPSERS>, // xyz centre, planet frame (m); w = radius (m)
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).

@@ -19,6 +19,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 #import atmosphere/view
+#import atmosphere/eclipse
 #import atmosphere/sky_view
 #import generated/constants
 
@@ -67,15 +68,26 @@ fn lut_transmittance(d: vec3<f32>) -> vec3<f32> {
     return transmittance_to_top(r, dot(d, view.local_up.xyz));
 }
 
-// Every sun's limb-darkened disc seen along d, above the atmosphere (zero off the discs).
+// Every sun's limb-darkened disc seen along d, above the atmosphere (zero off the discs and
+// where an eclipsing body stands in front), and, while there are eclipsers, its corona
+// (firmament_core Sun::corona_radiance: Baumbach 1937; by day the sky near the sun outshines it).
 fn sun_discs(d: vec3<f32>) -> vec3<f32> {
     var radiance = vec3<f32>(0.0);
+    if meets_eclipser(d) {
+        return radiance;
+    }
     for (var i = 0u; i < view.sun_count.x; i++) {
         let sun = view.suns[i];
         let s = sun.direction.xyz;
         let alpha = sun.direction.w;
         // atan2 keeps the precision acos loses for small angles.
         let angle = atan2(length(cross(d, s)), dot(d, s));
+        let r = angle / alpha;
+        if view.sun_count.y > 0u && alpha > 0.0 && r >= 1.0 && r < CORONA_MAX_RADII {
+            let half = sin(0.5 * alpha);
+            let mean = sun.irradiance.rgb / (4.0 * PI * half * half);
+            radiance += mean * 1e-6 * (0.0532 * pow(r, -2.5) + 1.425 * pow(r, -7.0) + 2.565 * pow(r, -17.0));
+        }
         if angle < alpha {
             let x = angle / alpha;
             let mu = sqrt(max(1.0 - x * x, 0.0));

@@ -17,6 +17,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 #import atmosphere/view
+#import atmosphere/eclipse
 #import atmosphere/sky_view
 
 const GRID_AZIMUTH: u32 = 256u;
@@ -113,7 +114,8 @@ fn cs_main(@builtin(local_invocation_index) t: u32) {
             let alpha = abs(sun.direction.w);
             let world = normalize((lighting.planet_to_world * vec4<f32>(s, 0.0)).xyz);
             out.direction = vec4<f32>(world, alpha);
-            out.color = vec4<f32>(to_linear_srgb(sun.irradiance.rgb * sun_transmittance(s, alpha)), 0.0);
+            let irradiance = sun_irradiance_at(view.camera.xyz, t);
+            out.color = vec4<f32>(to_linear_srgb(irradiance * sun_transmittance(s, alpha)), 0.0);
         }
         sky_lighting.suns[t] = out;
     }

@@ -11,6 +11,7 @@
 #import atmosphere/bindings
 #import atmosphere/common
 #import atmosphere/luts
+#import atmosphere/eclipse
 
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
 
@@ -22,8 +23,11 @@ const SKY_VIEW_LUT_SIZE: vec2<f32> = vec2<f32>(192.0, 108.0);
 // a dim light (the Moon, a millionth of the Sun) nor a sun far below the horizon (the sky falls
 // ~e^70 per unit of mu_s) lets the half-float LUT's values fall among its subnormals, and the
 // brightest sky (~100 × its mean, towards the sun) stays far below its largest value.
+//
+// An eclipse dims the sky by about the share of the sun the camera still sees; in totality the
+// light comes from the air outside the shadow, ~1/4096 of the uneclipsed sky or more.
 fn sky_view_exponent(i: u32) -> f32 {
-    let e = view.suns[i].irradiance.rgb;
+    let e = view.suns[i].irradiance.rgb * max(sun_visible_fraction(view.camera.xyz, i), 1.0 / 4096.0);
     let mu_s = dot(view.local_up.xyz, view.suns[i].direction.xyz);
     let uv = mu_s_h_to_uv(mu_s, max(view.camera.w, 0.0), MULTISCATTERING_LUT_SIZE);
     let psi = decode_log(textureSampleLevel(multiscattering_lut, lut_sampler, uv, 0, 0.0).rgb);
@@ -64,7 +68,13 @@ fn horizon_zenith_angle() -> vec2<f32> {
 }
 
 // Hillaire 2020's non-linear latitude mapping: v = 0.5 at the horizon, texels crowded there.
-// u = relative azimuth to the sun / π (the sky is mirror-symmetric about the sun's vertical).
+// u = relative azimuth to the sun / π (the sky is mirror-symmetric about the sun's vertical), or,
+// with eclipsing bodies (`view.sun_count.z` = 1: their shadow need not be symmetric), the signed
+// azimuth over the whole circle, (azimuth / π + 1) / 2.
+fn full_circle_azimuth() -> bool {
+    return view.sun_count.z == 1u;
+}
+
 fn sky_view_uv(d: vec3<f32>, frame: SunFrame) -> vec2<f32> {
     let horizon = horizon_zenith_angle();
     let zenith = acos(clamp(dot(d, frame.up), -1.0, 1.0));
@@ -74,8 +84,13 @@ fn sky_view_uv(d: vec3<f32>, frame: SunFrame) -> vec2<f32> {
     } else {
         v = sqrt(clamp((zenith - horizon.x) / horizon.y, 0.0, 1.0)) * 0.5 + 0.5;
     }
-    let azimuth = atan2(abs(dot(d, frame.across)), dot(d, frame.toward));
-    return vec2<f32>(unit_to_texel_coord(azimuth / PI, SKY_VIEW_LUT_SIZE.x), unit_to_texel_coord(v, SKY_VIEW_LUT_SIZE.y));
+    var u: f32;
+    if full_circle_azimuth() {
+        u = 0.5 * (atan2(dot(d, frame.across), dot(d, frame.toward)) / PI + 1.0);
+    } else {
+        u = atan2(abs(dot(d, frame.across)), dot(d, frame.toward)) / PI;
+    }
+    return vec2<f32>(unit_to_texel_coord(u, SKY_VIEW_LUT_SIZE.x), unit_to_texel_coord(v, SKY_VIEW_LUT_SIZE.y));
 }
 
 fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
@@ -90,7 +105,7 @@ fn sky_view_direction(uv: vec2<f32>, frame: SunFrame) -> vec3<f32> {
         let x = 2.0 * v - 1.0;
         zenith = horizon.x + horizon.y * x * x;
     }
-    let azimuth = u * PI;
+    let azimuth = select(u * PI, (2.0 * u - 1.0) * PI, full_circle_azimuth());
     let horizontal = frame.toward * cos(azimuth) + frame.across * sin(azimuth);
     return frame.up * cos(zenith) + horizontal * sin(zenith);
 }
@@ -114,15 +129,16 @@ fn view_ray(ndc: vec2<f32>) -> ViewRay {
     return planet_view_ray(ndc, planet, atmosphere.radii.xyz, top_radii());
 }
 
-// The radiance of the lit ground at p (normal `up`) from suns [first, first + count): direct
-// sunlight and sky light (a Lambertian surface of the ground albedo).
-fn ground_radiance(h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
+// The radiance of the lit ground at p (altitude h, normal `up`) from suns [first, first + count):
+// direct sunlight and sky light (a Lambertian surface of the ground albedo), both dimmed by any
+// eclipse at p.
+fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
     var irradiance = vec3<f32>(0.0);
     for (var i = first; i < first + count; i++) {
         let sun = view.suns[i];
         let mu_s = dot(up, sun.direction.xyz);
         let direct = transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * max(mu_s, 0.0);
-        irradiance += sun.irradiance.rgb * (direct + sky_irradiance(h, mu_s));
+        irradiance += sun_irradiance_at(p, i) * (direct + sky_irradiance(h, mu_s));
     }
     return atmosphere.ground_albedo.rgb / PI * irradiance;
 }
@@ -148,7 +164,9 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
         let s = sun.direction.xyz;
         let mu_s = dot(here.up, s);
         let direct = transmittance_to_sun(here.h, mu_s, abs(sun.direction.w)) * scattering_phase(c, dot(d, s));
-        out.source += sun.irradiance.rgb * (direct + multiple_scattering(c, here.h, here.up, s, d));
+        // An eclipse dims both by the share of the sun seen here (multiple scattering is then
+        // that of an air lit alike all round: docs/ATMOSPHERE.md, "Eclipses").
+        out.source += sun_irradiance_at(p, i) * (direct + multiple_scattering(c, here.h, here.up, s, d));
     }
     return out;
 }
@@ -185,8 +203,9 @@ fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32,
         result.transmittance *= exp(-here.extinction * dt);
     }
     if ground {
-        let here = altitude_up(o + d * t1);
-        result.radiance += diffuse_transmittance * ground_radiance(max(here.h, 0.0), here.up, first, count);
+        let end = o + d * t1;
+        let here = altitude_up(end);
+        result.radiance += diffuse_transmittance * ground_radiance(end, max(here.h, 0.0), here.up, first, count);
     }
     return result;
 }

@@ -39,6 +39,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 #import atmosphere/view
+#import atmosphere/eclipse
 #import atmosphere/aerial_lookup
 #import clouds/density
 #import clouds/extinction
@@ -158,8 +159,9 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         let s = sun.direction.xyz;
         let mu_s = dot(up, s);
         let air = transmittance_to_sun(h, mu_s, abs(sun.direction.w));
-        sky_light += sun.irradiance.rgb * sky_irradiance(h, mu_s);
-        ground_irradiance += sun.irradiance.rgb
+        let irradiance = sun_irradiance_at(p, i);
+        sky_light += irradiance * sky_irradiance(h, mu_s);
+        ground_irradiance += irradiance
             * (transmittance_to_sun(0.0, mu_s, abs(sun.direction.w)) * max(mu_s, 0.0) + sky_irradiance(0.0, mu_s));
         if all(air <= vec3<f32>(0.0)) {
             continue;
@@ -178,7 +180,7 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         let reached = (1.0 - (0.5 - 0.75 * mu) * (1.0 - beam)) / (1.0 + 0.75 * (1.0 - g) * tau * mu);
         let below = 0.75 * (1.0 - g) * tau_below;
         let multiple = mu * (max(reached - beam, 0.0) * (1.0 - beam) + reached * below / (1.0 + below)) / PI;
-        source += sun.irradiance.rgb * air * (single + multiple);
+        source += irradiance * air * (single + multiple);
     }
     // Ambient light, isotropic: the sky's radiance from above (its irradiance over π) through the
     // cloud above, the ground's from below through the cloud below, half a sphere each; the
@@ -241,7 +243,7 @@ fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<
         }
         let shade = 1.0 - exp(-cloud_depth_to_sun(g, s, ground.x * footprint));
         if shade > 0.0 {
-            lost += sun.irradiance.rgb * transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * (mu_s * shade);
+            lost += sun_irradiance_at(g, i) * transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * (mu_s * shade);
         }
     }
     if all(lost <= vec3<f32>(0.0)) {
@@ -296,7 +298,7 @@ fn air_shadow(ray: ViewRay, hits: RayHits, t_end: f32, jitter: f32) -> vec3<f32>
             let s = sun.direction.xyz;
             let shade = 1.0 - exp(-cloud_shadow_depth(p, i, s));
             if shade > 0.0 {
-                let sunlight = sun.irradiance.rgb * transmittance_to_sun(here.h, dot(here.up, s), abs(sun.direction.w));
+                let sunlight = sun_irradiance_at(p, i) * transmittance_to_sun(here.h, dot(here.up, s), abs(sun.direction.w));
                 lost += shade * transmittance * scattering_phase(air, dot(ray.direction, s)) * sunlight * dt;
             }
         }

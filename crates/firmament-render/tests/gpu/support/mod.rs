@@ -86,6 +86,7 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
         atmosphere,
         suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
         clouds: Vec::new(),
+        eclipsers: Vec::new(),
     }
 }
 
