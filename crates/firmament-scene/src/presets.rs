@@ -82,6 +82,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/eclipse-2024.toml"),
     },
     Preset {
+        name: "lunar-eclipse-2025",
+        summary: "atmosphere: the total lunar eclipse of 2025-03-14 from Mexico City, the red Moon in the Earth's shadow",
+        toml: include_str!("presets/lunar-eclipse-2025.toml"),
+    },
+    Preset {
         name: "earth-orbit",
         summary: "atmosphere: Earth from 400 km up under a global layer of clouds, looking at the limb",
         toml: include_str!("presets/earth-orbit.toml"),

@@ -28,6 +28,7 @@
 //! it stays lit, which is what gives the darkened sky its sunset all round the horizon.
 
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 use glam::DVec3;
 
@@ -124,7 +125,8 @@ pub fn hidden_fraction(d: f64, k: f64, u: f64) -> f64 {
     let (a, b) = ((d - k).abs(), (d + k).min(1.0));
     let mut partial = 0.0;
     if b > a && d > 0.0 {
-        let (nodes, weights) = gauss_legendre();
+        static RULE: OnceLock<GaussLegendre> = OnceLock::new();
+        let (nodes, weights) = RULE.get_or_init(gauss_legendre);
         for (x, w) in nodes.iter().zip(weights) {
             // φ over [0, π]: r = a + (b − a)(1 − cos φ)/2, dr = (b − a)/2·sin φ dφ.
             let phi = 0.5 * PI * (x + 1.0);
@@ -138,9 +140,12 @@ pub fn hidden_fraction(d: f64, k: f64, u: f64) -> f64 {
     ((covered + partial) / total).clamp(0.0, 1.0)
 }
 
+/// Nodes and weights of a Gauss–Legendre rule.
+type GaussLegendre = ([f64; ECLIPSE_QUADRATURE_POINTS], [f64; ECLIPSE_QUADRATURE_POINTS]);
+
 /// The nodes and weights of [`ECLIPSE_QUADRATURE_POINTS`]-point Gauss–Legendre on [−1, 1]
 /// (Newton's method on the Legendre polynomial from Tricomi's initial guesses).
-fn gauss_legendre() -> ([f64; ECLIPSE_QUADRATURE_POINTS], [f64; ECLIPSE_QUADRATURE_POINTS]) {
+fn gauss_legendre() -> GaussLegendre {
     let n = ECLIPSE_QUADRATURE_POINTS;
     let mut nodes = [0.0; ECLIPSE_QUADRATURE_POINTS];
     let mut weights = [0.0; ECLIPSE_QUADRATURE_POINTS];

@@ -16,6 +16,7 @@ pub mod eclipse;
 pub mod empirical;
 pub mod medium;
 pub mod planet;
+pub mod planet_shadow;
 pub mod presets;
 pub mod reference;
 pub mod spectrum;

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::reference::{Reference, ReferenceSettings};
-use crate::atmosphere::{Atmosphere, Spectrum, Sun};
+use crate::atmosphere::{Atmosphere, Eclipser, Spectrum, Sun};
 use crate::color::LinearRgb;
 
 /// Rings the disc is cut into, from its centre to its limb.
@@ -53,10 +53,26 @@ pub struct SunAtEye {
     pub disc: Vec<DiscSample>,
 }
 
-/// `sun` of `atmosphere` (with cloud layers `clouds`) seen from world point `eye`, metres.
-pub fn sun_at_eye(atmosphere: &Atmosphere, clouds: &[CloudLayer], sun: &Sun, eye: DVec3) -> SunAtEye {
-    let reference =
-        Reference::new(*atmosphere, std::slice::from_ref(sun), ReferenceSettings::default()).with_clouds(clouds);
+/// `sun` of `atmosphere` (with cloud layers `clouds`, and `eclipsers` that may stand in front of
+/// it) seen from world point `eye`, metres: an eclipser takes the pieces of the disc behind it,
+/// and its share of the sun's light off the irradiance.
+pub fn sun_at_eye(
+    atmosphere: &Atmosphere,
+    clouds: &[CloudLayer],
+    eclipsers: &[Eclipser],
+    sun: &Sun,
+    eye: DVec3,
+) -> SunAtEye {
+    let reference = Reference::new(*atmosphere, std::slice::from_ref(sun), ReferenceSettings::default())
+        .with_clouds(clouds)
+        .with_eclipsers(eclipsers);
+    let hidden = |d: DVec3| {
+        eclipsers.iter().any(|e| {
+            let to_center = e.center - eye;
+            let along = to_center.dot(d);
+            along > 0.0 && to_center.length_squared() - along * along < e.radius_m * e.radius_m
+        })
+    };
     let planet = atmosphere.planet;
     let from = planet.to_planet_frame(eye);
     let transmittance = |direction: DVec3| {
@@ -65,10 +81,11 @@ pub fn sun_at_eye(atmosphere: &Atmosphere, clouds: &[CloudLayer], sun: &Sun, eye
     let direction = sun.direction.normalize();
     let conversion = atmosphere.spectral_conversion();
     let centre = transmittance(direction);
-    let irradiance = sun.irradiance * centre;
+    let irradiance = sun.irradiance * centre * reference.sun_visible_fraction(eye, 0);
     let disc = match sun.disc {
         true => disc_pieces(sun, direction)
             .into_par_iter()
+            .filter(|(d, _)| !hidden(*d))
             .map(|(d, radiance_solid_angle)| DiscSample {
                 direction: d,
                 irradiance: conversion.linear_srgb(radiance_solid_angle * transmittance(d)),
@@ -125,6 +142,7 @@ fn disc_pieces(sun: &Sun, direction: DVec3) -> Vec<(DVec3, Spectrum)> {
 mod tests {
     use super::*;
     use crate::atmosphere::presets;
+    use glam::DQuat;
 
     /// Earth posed so that the world is ENU at 45° N (the world origin on the ground).
     fn earth() -> Atmosphere {
@@ -142,7 +160,7 @@ mod tests {
     fn the_pieces_sum_to_the_irradiance_after_the_air() {
         let atmosphere = earth();
         let sun = presets::earth_sun(direction(120.0, 30.0));
-        let seen = sun_at_eye(&atmosphere, &[], &sun, DVec3::new(0.0, 0.0, 2.0));
+        let seen = sun_at_eye(&atmosphere, &[], &[], &sun, DVec3::new(0.0, 0.0, 2.0));
         assert_eq!(seen.disc.len(), RINGS * SECTORS);
         let sum = seen
             .disc
@@ -164,14 +182,41 @@ mod tests {
     fn a_set_sun_gives_nothing_and_a_disc_less_sun_no_pieces() {
         let atmosphere = earth();
         let set = presets::earth_sun(direction(270.0, -5.0));
-        let seen = sun_at_eye(&atmosphere, &[], &set, DVec3::new(0.0, 0.0, 2.0));
+        let seen = sun_at_eye(&atmosphere, &[], &[], &set, DVec3::new(0.0, 0.0, 2.0));
         assert_eq!(seen.irradiance, Spectrum::ZERO);
         assert!(seen.disc.iter().all(|s| s.irradiance.r == 0.0 && s.irradiance.g == 0.0));
         let moon_light = Sun {
             disc: false,
             ..presets::earth_sun(direction(0.0, 40.0))
         };
-        let seen = sun_at_eye(&atmosphere, &[], &moon_light, DVec3::ZERO);
+        let seen = sun_at_eye(&atmosphere, &[], &[], &moon_light, DVec3::ZERO);
         assert!(seen.disc.is_empty() && seen.irradiance.max_element() > 0.0);
+    }
+
+    #[test]
+    fn an_eclipse_takes_the_pieces_behind_the_moon_and_their_share_of_light() {
+        let atmosphere = earth();
+        let sun = presets::earth_sun(direction(180.0, 50.0));
+        let eye = DVec3::new(0.0, 0.0, 2.0);
+        let clear = sun_at_eye(&atmosphere, &[], &[], &sun, eye);
+        // The Moon 360 000 km out, half a solar radius off the sun's centre.
+        let off = DQuat::from_axis_angle(sun.direction.cross(DVec3::Z).normalize(), 0.5 * sun.angular_radius);
+        let moon = Eclipser {
+            center: eye + off * sun.direction * 3.6e8,
+            radius_m: 1.7374e6,
+        };
+        let eclipsed = sun_at_eye(&atmosphere, &[], &[moon], &sun, eye);
+        let hidden = 1.0 - eclipsed.irradiance.y / clear.irradiance.y;
+        let k = (moon.radius_m / 3.6e8).asin() / sun.angular_radius;
+        let want = crate::atmosphere::eclipse::hidden_fraction(0.5, k, sun.limb_darkening);
+        assert!((hidden - want).abs() < 1e-3, "{hidden} vs {want}");
+        // The pieces left sum to what is seen, within the pieces' own resolution.
+        let sum: f64 = eclipsed.disc.iter().map(|s| s.irradiance.g).sum();
+        assert!(
+            (sum / eclipsed.irradiance_rgb.g - 1.0).abs() < 0.02,
+            "{sum} vs {}",
+            eclipsed.irradiance_rgb.g
+        );
+        assert!(eclipsed.disc.len() < clear.disc.len() / 3);
     }
 }

@@ -32,6 +32,7 @@ use crate::astro::Instant;
 use crate::astro::moon::{MoonView, moon_view};
 use crate::astro::sidereal::j2000_to_horizon_matrix;
 use crate::astro::stars::catalogue;
+use crate::atmosphere::planet_shadow::SHADOW_ENTRIES;
 
 /// Stars and the Moon lower than this elevation, degrees, are left out of a [`NightLayer`]
 /// (the horizon with a margin for refraction, which lifts objects by ~0.6° there, and for a
@@ -62,6 +63,58 @@ pub struct MoonDisc {
     /// transmittance to the camera. A point of the disc shows this times
     /// `2 μ₀ / (μ₀ + μ)` ([`MoonDisc::radiance_along`]).
     pub radiance: DVec3,
+    /// The planet's shadow across the Moon in a lunar eclipse: each point of the disc gets its
+    /// share of the sunlight (`None` outside eclipses).
+    pub shadow: Option<MoonShadow>,
+}
+
+/// The planet's shadow on the Moon in a lunar eclipse: the sunlight's share across it
+/// ([`crate::atmosphere::planet_shadow`]), linear RGB, by the distance from the shadow's axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MoonShadow {
+    /// Unit world direction of the shadow's axis: from the planet away from the Sun.
+    pub axis: DVec3,
+    /// From the axis to the Moon's centre, across the axis, in Moon radii (world frame).
+    pub offset: DVec3,
+    /// Distance from the axis between entries of `light`, Moon radii.
+    pub step: f64,
+    /// The sunlight's share at each entry, linear RGB relative to full sunlight (entry `k` is
+    /// `k · step` from the axis; 1 beyond the last).
+    pub light: [DVec3; SHADOW_ENTRIES],
+}
+
+impl MoonShadow {
+    /// The sunlight's share at the point of the Moon with outward unit normal `normal` (world
+    /// frame).
+    pub fn light_at(&self, normal: DVec3) -> DVec3 {
+        let across = self.offset + normal - self.axis * normal.dot(self.axis);
+        let x = across.length() / self.step;
+        let i = x.floor() as usize;
+        if !x.is_finite() || i + 1 >= SHADOW_ENTRIES {
+            return DVec3::ONE;
+        }
+        self.light[i].lerp(self.light[i + 1], x - i as f64)
+    }
+
+    /// The sunlight's share averaged over the disc an observer towards `direction` (unit, from
+    /// the observer to the Moon) sees: the mean over a 128 × 128 grid of the disc's face.
+    pub fn mean_over_disc(&self, direction: DVec3) -> DVec3 {
+        let (e1, e2) = direction.any_orthonormal_pair();
+        let n = 128;
+        let (mut sum, mut count) = (DVec3::ZERO, 0.0);
+        for j in 0..n {
+            for i in 0..n {
+                let x = (i as f64 + 0.5) / n as f64 * 2.0 - 1.0;
+                let y = (j as f64 + 0.5) / n as f64 * 2.0 - 1.0;
+                let r2 = x * x + y * y;
+                if r2 < 1.0 {
+                    sum += self.light_at(e1 * x + e2 * y - direction * (1.0 - r2).sqrt());
+                    count += 1.0;
+                }
+            }
+        }
+        sum / count
+    }
 }
 
 /// The Lommel–Seeliger law normalised to 1 at normal incidence and emergence: `2 μ₀ / (μ₀ + μ)`
@@ -107,6 +160,7 @@ impl MoonDisc {
             angular_radius: view.angular_radius,
             sun_direction,
             radiance: DVec3::ZERO,
+            shadow: None,
         };
         let per_radiance = disc.solid_angle() * lommel_seeliger_phase(disc.phase_angle()).max(MIN_PHASE_FACTOR);
         disc.radiance = transmittance * (view.illuminance_lux * units_per_lux / per_radiance);
@@ -130,11 +184,13 @@ impl MoonDisc {
         4.0 * std::f64::consts::PI * (0.5 * self.angular_radius).sin().powi(2)
     }
 
-    /// The light the whole disc sends to the observer, `radiance · Ω · Φ(g)`: linear RGB, frame
-    /// units × steradian (the Moon's illuminance × `units_per_lux` × the transmittance for a
-    /// disc made by [`MoonDisc::from_view`], unless capped near new moon).
+    /// The light the whole disc sends to the observer, `radiance · Ω · Φ(g)` (times the shadow's
+    /// mean share in a lunar eclipse): linear RGB, frame units × steradian (the Moon's
+    /// illuminance × `units_per_lux` × the transmittance for a disc made by
+    /// [`MoonDisc::from_view`], unless capped near new moon).
     pub fn illuminance(&self) -> DVec3 {
-        self.radiance * self.solid_angle() * lommel_seeliger_phase(self.phase_angle())
+        let shade = self.shadow.map_or(DVec3::ONE, |s| s.mean_over_disc(self.direction));
+        self.radiance * shade * self.solid_angle() * lommel_seeliger_phase(self.phase_angle())
     }
 
     /// The radiance seen along the unit world-frame view direction `view`: `None` when the ray
@@ -165,7 +221,8 @@ impl MoonDisc {
         // The outward normal where the ray enters the sphere: μ = −n·v = √(1 − b²) exactly.
         let normal = -d * (mu * cos_t + b * sin_t) + w_hat * (b * cos_t - mu * sin_t);
         let mu0 = normal.dot(self.sun_direction.try_normalize()?);
-        Some(self.radiance * lommel_seeliger(mu0, mu))
+        let shade = self.shadow.map_or(DVec3::ONE, |shadow| shadow.light_at(normal));
+        Some(self.radiance * shade * lommel_seeliger(mu0, mu))
     }
 
     /// Whether every field is usable: finite non-zero directions, an angular radius in (0, π/2)
@@ -404,6 +461,7 @@ mod tests {
                 angular_radius: 1e-3,
                 sun_direction: DVec3::new(g.sin(), 0.0, g.cos()),
                 radiance: DVec3::ONE,
+                shadow: None,
             };
             let full = disc.solid_angle();
             let ratio = integrate(&disc, 600).x / full;
@@ -422,6 +480,7 @@ mod tests {
             angular_radius: 0.01,
             sun_direction: DVec3::NEG_Y, // full moon
             radiance: DVec3::splat(2.0),
+            shadow: None,
         };
         // Flat: the same radiance from the centre to near the limb, where the observer's finite
         // distance (the ray is θ ≤ α off the Sun's direction) brightens it a little.

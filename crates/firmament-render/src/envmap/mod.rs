@@ -108,7 +108,7 @@ pub fn suns_at_eye(frame: &Frame) -> Vec<SunAtEye> {
         Sky::Atmosphere(sky) => sky
             .suns
             .iter()
-            .map(|sun| sun_at_eye(&sky.atmosphere, &sky.clouds, sun, frame.camera.position))
+            .map(|sun| sun_at_eye(&sky.atmosphere, &sky.clouds, &sky.eclipsers, sun, frame.camera.position))
             .collect(),
         Sky::Gradient(_) | Sky::Empirical(_) | Sky::Clear(_) => Vec::new(),
     }

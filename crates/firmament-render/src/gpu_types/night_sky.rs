@@ -9,7 +9,8 @@
 
 use bytemuck::{Pod, Zeroable};
 use firmament_core::Camera;
-use firmament_core::sky::night::{MoonDisc, StarPoint};
+use firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES;
+use firmament_core::sky::night::{MoonDisc, MoonShadow, StarPoint};
 use glam::{DMat4, DVec3};
 
 /// Standard deviation of a star's Gaussian footprint, pixels.
@@ -69,6 +70,29 @@ pub struct NightSkyUniforms {
     pub moon_sun: [f32; 4],
     /// Radiance at normal incidence and emergence, linear RGB (frame units); `w` unused.
     pub moon_radiance: [f32; 4],
+    /// In a lunar eclipse, the shadow's axis in the (`e1`, `e2`, `d`) basis; `w` = the distance
+    /// between entries of `moon_shadow`, Moon radii (0: no eclipse).
+    pub moon_shadow_axis: [f32; 4],
+    /// From the axis to the Moon's centre across it, Moon radii, in the same basis; `w` unused.
+    pub moon_shadow_offset: [f32; 4],
+    /// The sunlight's share by distance from the axis, linear RGB ([`MoonShadow::light`]).
+    pub moon_shadow: [[f32; 4]; SHADOW_ENTRIES],
+}
+
+/// The shadow's fields in the Moon's (`e1`, `e2`, `d`) basis: the axis with the step, the offset,
+/// the table; zero without an eclipse.
+fn shadow_fields(shadow: Option<&MoonShadow>, basis: [DVec3; 3]) -> ([f32; 4], [f32; 4], [[f32; 4]; SHADOW_ENTRIES]) {
+    let Some(shadow) = shadow else {
+        return ([0.0; 4], [0.0; 4], [[0.0; 4]; SHADOW_ENTRIES]);
+    };
+    let local = |v: DVec3| [v.dot(basis[0]), v.dot(basis[1]), v.dot(basis[2])].map(|x| x as f32);
+    let [ax, ay, az] = local(shadow.axis);
+    let [ox, oy, oz] = local(shadow.offset);
+    (
+        [ax, ay, az, shadow.step as f32],
+        [ox, oy, oz, 0.0],
+        shadow.light.map(|c| [c.x as f32, c.y as f32, c.z as f32, 0.0]),
+    )
 }
 
 /// One star; mirrors `StarIn` in `shaders/night_sky.wgsl` (vertex attributes).
@@ -163,6 +187,10 @@ impl NightSkyUniforms {
             }
         };
         let [moon_center, moon_e1, moon_e2, moon_sun, moon_radiance] = fields.unwrap_or_default();
+        let basis = |v: [f32; 4]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
+        let shadow = moon.and_then(|m| m.shadow.as_ref()).filter(|_| draw == MoonDraw::Disc);
+        let (moon_shadow_axis, moon_shadow_offset, moon_shadow) =
+            shadow_fields(shadow, [basis(moon_e1), basis(moon_e2), basis(moon_center)]);
         (
             Self {
                 view_proj: view_proj.as_mat4().to_cols_array_2d(),
@@ -173,6 +201,9 @@ impl NightSkyUniforms {
                 moon_e2,
                 moon_sun,
                 moon_radiance,
+                moon_shadow_axis,
+                moon_shadow_offset,
+                moon_shadow,
             },
             draw,
         )
@@ -222,6 +253,7 @@ mod tests {
             angular_radius: 0.0045,
             sun_direction: DVec3::X,
             radiance: DVec3::ONE,
+            shadow: None,
         };
         // 0.26° is ~4.6 px of a 60° view 1080 px high, ~0.04 px of one 9 px high.
         assert_eq!(

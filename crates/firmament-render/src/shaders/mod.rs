@@ -648,7 +648,10 @@ mod tests {
                 moon_e1,
                 moon_e2,
                 moon_sun,
-                moon_radiance
+                moon_radiance,
+                moon_shadow_axis,
+                moon_shadow_offset,
+                moon_shadow
             ]
         );
         assert_layout!(night, "StarIn", StarInstance, [direction, color]);

@@ -31,7 +31,8 @@
 // Moon 8 pixels or more in radius, up to 16 for a smaller one; for n = 4 the offsets are ±1/8 and
 // ±3/8 of a pixel), taken through the uv derivatives, so the rim and the terminator are
 // antialiased and the disc's light is kept. (A Moon under two pixels in radius is drawn as a star
-// instead.)
+// instead.) In a lunar eclipse each point's radiance is also times its share of the sunlight,
+// read from a table by its distance from the planet's shadow axis (firmament_core MoonShadow).
 
 const HDR_MAX: f32 = 65504.0;
 // The far plane's clip depth: 0 for reversed-Z (firmament's), overridden with 1 for a
@@ -55,6 +56,32 @@ struct NightSky {
     moon_sun: vec4<f32>,
     // rgb = radiance at normal incidence and emergence.
     moon_radiance: vec4<f32>,
+    // In a lunar eclipse: xyz = the planet's shadow axis in the (e1, e2, d) basis, w = the
+    // distance between entries of `moon_shadow` in Moon radii (0: no eclipse).
+    moon_shadow_axis: vec4<f32>,
+    // xyz = from the axis to the Moon's centre across it, Moon radii, same basis.
+    moon_shadow_offset: vec4<f32>,
+    // rgb = the sunlight's share k·step from the axis (1 beyond the last entry).
+    moon_shadow: array<vec4<f32>, MOON_SHADOW_ENTRIES>,
+}
+
+// Entries of the shadow table (firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES).
+const MOON_SHADOW_ENTRIES: u32 = 64u;
+
+// The sunlight's share at the point of the Moon with normal n (in the (e1, e2, d) basis).
+fn moon_shadow_light(n: vec3<f32>) -> vec3<f32> {
+    let step = night.moon_shadow_axis.w;
+    if step <= 0.0 {
+        return vec3<f32>(1.0);
+    }
+    let axis = night.moon_shadow_axis.xyz;
+    let across = night.moon_shadow_offset.xyz + n - axis * dot(n, axis);
+    let x = length(across) / step;
+    let i = u32(floor(x));
+    if i + 1u >= MOON_SHADOW_ENTRIES {
+        return vec3<f32>(1.0);
+    }
+    return mix(night.moon_shadow[i].rgb, night.moon_shadow[i + 1u].rgb, x - f32(i));
 }
 
 @group(0) @binding(0) var<uniform> night: NightSky;
@@ -183,7 +210,8 @@ fn moon_radiance_at(uv: vec2<f32>) -> vec3<f32> {
     if mu0 <= 0.0 {
         return vec3<f32>(0.0);
     }
-    return night.moon_radiance.rgb * (2.0 * mu0 / (mu0 + mu));
+    let shade = moon_shadow_light(vec3<f32>(w_hat * n_across, n_along));
+    return night.moon_radiance.rgb * shade * (2.0 * mu0 / (mu0 + mu));
 }
 
 @fragment

@@ -121,7 +121,7 @@ fn the_disc_carries_the_suns_irradiance_and_lands_where_the_sun_is() {
     let without = renderer
         .render_equirect(ctx, &frame, 128, SunDiscs::Omitted)
         .expect("render");
-    let sun = sun_at_eye(&sky.atmosphere, &[], &sky.suns[0], frame.camera.position);
+    let sun = sun_at_eye(&sky.atmosphere, &[], &[], &sky.suns[0], frame.camera.position);
     let want = DVec3::new(sun.irradiance_rgb.r, sun.irradiance_rgb.g, sun.irradiance_rgb.b);
     let got = total_irradiance(&with) - total_irradiance(&without);
     let error = relative(got, want);
@@ -476,7 +476,7 @@ fn the_gpu_disc_carries_the_suns_irradiance() {
         read_layer(ctx, &target, 0)
     };
     let (with, without) = (map(SunDiscs::Included), map(SunDiscs::Omitted));
-    let sun = sun_at_eye(&sky.atmosphere, &[], &sky.suns[0], frame.camera.position);
+    let sun = sun_at_eye(&sky.atmosphere, &[], &[], &sky.suns[0], frame.camera.position);
     let want = DVec3::new(sun.irradiance_rgb.r, sun.irradiance_rgb.g, sun.irradiance_rgb.b);
     let got = total_irradiance(&with) - total_irradiance(&without);
     let error = relative(got, want);

@@ -3,7 +3,7 @@
 //! centroid against the core's projection; stars behind an object or behind the camera draw
 //! nothing; the Moon at first quarter pixel by pixel against the f64 Lommel–Seeliger radiance
 //! along each pixel's view ray, lit on the side of the Sun, over the illuminated fraction of the
-//! disc; and the whole sky of a real night.
+//! disc; the Moon in the Earth's shadow likewise; and the whole sky of a real night.
 
 use crate::support;
 
@@ -11,6 +11,8 @@ use std::sync::Arc;
 
 use firmament_core::astro::moon::{moon_view, next_phase};
 use firmament_core::astro::{CivilDateTime, Instant};
+use firmament_core::atmosphere::planet_shadow::{PlanetShadow, ShadowSettings};
+use firmament_core::atmosphere::presets;
 use firmament_core::camera::viewport::{Viewport, project_zero_to_one};
 use firmament_core::classic::lighting::Material;
 use firmament_core::classic::mesh::Mesh;
@@ -18,7 +20,7 @@ use firmament_core::classic::scene::{ObjectLayer, SceneObject};
 use firmament_core::color::LinearRgb;
 use firmament_core::display::{DisplaySettings, Exposure, ToneCurve};
 use firmament_core::frame::Sky;
-use firmament_core::sky::night::{MoonDisc, NightLayer, StarPoint};
+use firmament_core::sky::night::{MoonDisc, MoonShadow, NightLayer, StarPoint};
 use firmament_core::{Camera, Frame};
 use firmament_render::FrameTargets;
 use firmament_render::gpu_types::MoonDraw;
@@ -356,6 +358,58 @@ fn the_quarter_moon_matches_lommel_seeliger_pixel_by_pixel() {
     assert!(interior > 1000, "{interior}");
     assert!((share - k).abs() < 0.03, "{share} vs {k}");
     assert!(angle.abs() < 3.0, "{angle}°");
+    assert!(energy_error < 0.01, "{energy} vs {light}");
+}
+
+/// A full Moon 1.5 of its radii from the axis of the Earth's shadow (the core's profile through
+/// Earth's air, 390 000 km behind it): every pixel within 1 % of the f64 average of its 16 rays
+/// (1e-3 of the peak added: the shadow's light spans three decades), and the disc's light within
+/// 1 % of the Moon's illuminance with the shadow's mean over its face.
+#[test]
+fn an_eclipsed_moon_matches_its_shadow_pixel_by_pixel() {
+    let view = moon_view(&utc(2025, 3, 14, 6, 59), 19.43, -99.13, 2240.0);
+    let mut moon = MoonDisc::from_view(&view, DMat3::IDENTITY, 1.0, DVec3::ONE);
+    let profile = PlanetShadow::new(
+        &presets::earth(),
+        &presets::earth_sun(DVec3::Z),
+        3.9e8,
+        &ShadowSettings::default(),
+    );
+    let axis = -moon.sun_direction;
+    moon.shadow = Some(MoonShadow {
+        axis,
+        offset: axis.any_orthonormal_vector() * 1.5,
+        step: profile.step_m / 1.7374e6,
+        light: std::array::from_fn(|k| profile.light[k]),
+    });
+    let camera = moon_camera(&moon, 4.0);
+    let image = render(&frame(camera, moon_layer(moon), vec![]));
+    let peak = (0..HEIGHT)
+        .flat_map(|y| (0..WIDTH).map(move |x| (x, y)))
+        .map(|(x, y)| moon_pixel_average(&camera, &moon, x, y).max_element())
+        .fold(0.0, f64::max);
+    let mut energy = DVec3::ZERO;
+    let mut worst: f64 = 0.0;
+    for y in 0..HEIGHT {
+        for x in 0..WIDTH {
+            let got = rgb(&image, x, y);
+            energy += got * pixel_solid_angle(&camera, x, y);
+            let want = moon_pixel_average(&camera, &moon, x, y);
+            let error = ((got - want).abs() / (want.abs() + DVec3::splat(1e-3 * peak))).max_element();
+            worst = worst.max(error);
+            assert!(error < 0.01, "({x}, {y}): {got} vs the f64 average {want}");
+        }
+    }
+    let light = moon.illuminance();
+    let energy_error = ((energy - light) / light).abs().max_element();
+    println!(
+        "eclipsed Moon: every pixel within {:.3} %, Σ L·Ω within {:.3} %",
+        worst * 100.0,
+        energy_error * 100.0
+    );
+    // Dim and red: the sunlight's share there is 10⁻⁵ to 10⁻³.
+    let full = MoonDisc { shadow: None, ..moon }.illuminance();
+    assert!(light.y < 1e-3 * full.y && light.x > 2.0 * light.z, "{light} of {full}");
     assert!(energy_error < 0.01, "{energy} vs {light}");
 }
 

@@ -11,6 +11,7 @@
 
 pub(crate) mod atmosphere;
 pub(crate) mod flare;
+mod lunar_eclipse;
 mod night;
 pub(crate) mod objects;
 pub(crate) mod time;

@@ -24,11 +24,12 @@ use firmament_core::astro::moon::{MOON_RADIUS_KM, moon_view};
 use firmament_core::astro::spa::refraction_deg;
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::atmosphere::{Atmosphere, Eclipser, Sun};
+use firmament_core::atmosphere::{Atmosphere, Eclipser, Spectrum, Sun, presets};
 use firmament_core::frame::{AtmosphereSky, EmpiricalSky, MAX_SUNS, Sky};
 use firmament_core::sky::night::{HORIZON_CUTOFF_DEG, NightLayer};
 use glam::{DMat3, DVec3};
 
+use super::lunar_eclipse::{LunarEclipse, lunar_eclipse};
 use crate::model::Scene;
 
 /// Face-on radiance of the lit Moon in display units for the gradient and seed skies: bright,
@@ -170,10 +171,24 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
         Sky::Clear(_) => return NightLayer::default(),
     };
     match &mut layer.moon {
-        Some(moon) if t.moon => moon.direction = refracted(scene, instant, moon.direction),
+        Some(moon) if t.moon => {
+            moon.direction = refracted(scene, instant, moon.direction);
+            moon.shadow = earth_shadow(scene, instant, height, sky).map(|e| e.shadow);
+        }
         _ => layer.moon = None,
     }
     layer
+}
+
+/// The Earth's shadow on the Moon at `instant` (see [`lunar_eclipse`]), through the physical
+/// sky's air and by its first sun when the sky is physical, else through Earth's own.
+fn earth_shadow(scene: &Scene, instant: &Instant, height_m: f64, sky: &Sky) -> Option<LunarEclipse> {
+    let sun_direction = scene.real_sun(instant).ok()?.direction_enu(false);
+    let (atmosphere, sun) = match sky {
+        Sky::Atmosphere(sky) => (sky.atmosphere, sky.suns.iter().find(|s| s.disc).copied()?),
+        _ => (presets::earth(), presets::earth_sun(sun_direction)),
+    };
+    lunar_eclipse(scene, instant, height_m, sun_direction, &atmosphere, &sun)
 }
 
 /// A topocentric East-North-Up direction lifted by the refraction of `[time]`'s air at its
@@ -245,10 +260,24 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
     if sun_lux.is_nan() || sun_lux <= 0.0 {
         return;
     }
+    // In a lunar eclipse the Moon passes on only the sunlight the Earth's shadow leaves it.
+    let height = camera.position.z.max(0.0);
+    let shade = match (scene.real_sun(instant), sky.suns.iter().find(|s| s.disc)) {
+        (Ok(position), Some(sun)) => lunar_eclipse(
+            scene,
+            instant,
+            height,
+            position.direction_enu(false),
+            &sky.atmosphere,
+            sun,
+        )
+        .map_or(Spectrum::ONE, |e| e.mean),
+        _ => Spectrum::ONE,
+    };
     sky.suns.push(Sun {
         direction: view.direction,
         angular_radius: view.angular_radius,
-        irradiance: sunlight * (view.illuminance_lux / sun_lux),
+        irradiance: sunlight * shade * (view.illuminance_lux / sun_lux),
         limb_darkening: 0.0,
         disc: false,
     });

@@ -304,3 +304,44 @@ fn the_moon_eclipses_the_sun_in_dallas_on_2024_04_08() {
     };
     assert!(sky.eclipsers.is_empty());
 }
+
+#[test]
+fn the_moon_goes_red_in_the_earth_s_shadow_on_2025_03_14() {
+    let scene = load(SceneSource::Preset("lunar-eclipse-2025"), None, &[]).expect("valid");
+    let frame = scene.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    let moon = frame.night.moon.expect("the Moon is up");
+    let shadow = moon.shadow.expect("in the Earth's shadow");
+    // NASA's umbral magnitude at greatest eclipse, 1.1784, puts the Moon's centre
+    // ρ_u + R − 2·R·1.1784 from the axis, ρ_u = 1.02·(π_moon − s_sun + π_sun)·D the umbra's
+    // radius (Danjon's enlargement; π the parallaxes, D the Moon's distance from the Earth's
+    // centre, here from its angular radius).
+    let moon_radius_km = 1737.4;
+    let distance_km = moon_radius_km / moon.angular_radius.sin();
+    let parallax = (6378.137 / distance_km).asin();
+    let umbra_km = 1.02 * (parallax - sky.suns[0].angular_radius + 8.794f64.to_radians() / 3600.0) * distance_km;
+    let nasa = umbra_km / moon_radius_km + 1.0 - 2.0 * 1.1784;
+    let offset = shadow.offset.length();
+    println!("the Moon's centre {offset:.3} Moon radii from the axis, NASA's {nasa:.3}");
+    assert!(
+        (offset - nasa).abs() < 0.15,
+        "{offset} Moon radii from the axis, NASA's {nasa}"
+    );
+    let centre = shadow.light_at(-moon.direction);
+    assert!(centre.y < 1e-3 && centre.x > 2.0 * centre.z, "{centre}");
+    // The moonlight is as dim: a full moon's is ~2e-6 of sunlight, this ~1000× less.
+    assert_eq!(sky.suns.len(), 2, "the Sun and the Moon");
+    let ratio = sky.suns[1].irradiance.y / sky.suns[0].irradiance.y;
+    assert!(ratio < 5e-9, "{ratio}");
+    // Four hours later the Moon has left the shadow.
+    let later = load(
+        SceneSource::Preset("lunar-eclipse-2025"),
+        None,
+        &["time.date_time=\"2025-03-14T10:30:00Z\"".to_owned()],
+    )
+    .expect("valid");
+    let frame = later.frame_at(None).expect("frame");
+    assert!(frame.night.moon.is_none_or(|m| m.shadow.is_none()));
+}

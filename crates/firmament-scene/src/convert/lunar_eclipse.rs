@@ -1,0 +1,125 @@
+//! Lunar eclipses at a real date: where the Moon stands in the Earth's shadow, and the shadow's
+//! light across it ([`firmament_core::atmosphere::planet_shadow`]), for the night sky's Moon and
+//! the moonlight.
+//!
+//! Positions are geometric (no refraction), in the observer's East-North-Up frame, kilometres:
+//! the Moon from Meeus ch. 47 (topocentric), the Earth's centre from the observer's geocentric
+//! position (Meeus ch. 11), the shadow's axis away from the Sun (NREL's SPA; the Sun's parallax
+//! moves the axis by ~16 km at the Moon).
+
+use std::sync::Mutex;
+
+use firmament_core::astro::Instant;
+use firmament_core::astro::moon::{MOON_RADIUS_KM, moon_view, observer_geocentric_km};
+use firmament_core::astro::sidereal::{
+    Nutation, equatorial_to_horizon_matrix, greenwich_apparent_sidereal_time, local_sidereal_time,
+};
+use firmament_core::atmosphere::planet_shadow::{PlanetShadow, SHADOW_ENTRIES, ShadowSettings};
+use firmament_core::atmosphere::{Atmosphere, Spectrum, Sun};
+use firmament_core::sky::night::MoonShadow;
+use glam::DVec3;
+
+use crate::model::Scene;
+
+/// The Earth's shadow on the Moon at one instant.
+pub(crate) struct LunarEclipse {
+    /// The shadow across the Moon, linear RGB shares (for the night sky's disc).
+    pub(crate) shadow: MoonShadow,
+    /// The sunlight's share averaged over the Moon's face, per model wavelength (for moonlight).
+    pub(crate) mean: Spectrum,
+}
+
+/// The last shadow profile computed: the atmosphere, the sun, the distance (m, rounded) and the
+/// profile. The moonlight and the night sky of one frame ask for the same one; each frame of a
+/// time-lapse, whose Moon has moved, computes its own (~0.1 s).
+#[allow(
+    clippy::type_complexity,
+    reason = "a one-entry cache; a named type would say no more"
+)]
+static LAST_PROFILE: Mutex<Option<(Atmosphere, Sun, i64, PlanetShadow)>> = Mutex::new(None);
+
+fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow {
+    let key = distance_m.round() as i64;
+    let mut last = LAST_PROFILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some((a, s, k, shadow)) = &*last
+        && a == atmosphere
+        && s == sun
+        && *k == key
+    {
+        return shadow.clone();
+    }
+    let shadow = PlanetShadow::new(atmosphere, sun, distance_m, &ShadowSettings::default());
+    *last = Some((*atmosphere, *sun, key, shadow.clone()));
+    shadow
+}
+
+/// The Earth's shadow on the Moon at `instant` seen from `[planet]`'s place at `height_m`, with the
+/// Earth's air `atmosphere` and its sun `sun` (size and limb darkening), or `None` when the Moon
+/// is clear of the penumbra. `sun_direction` is the Sun's geometric East-North-Up direction.
+pub(crate) fn lunar_eclipse(
+    scene: &Scene,
+    instant: &Instant,
+    height_m: f64,
+    sun_direction: DVec3,
+    atmosphere: &Atmosphere,
+    sun: &Sun,
+) -> Option<LunarEclipse> {
+    let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
+    let nutation = Nutation::low_precision(instant);
+    let lst = local_sidereal_time(greenwich_apparent_sidereal_time(instant, &nutation), lon.to_radians());
+    let to_enu = equatorial_to_horizon_matrix(lst, lat.to_radians());
+    let earth = -(to_enu * observer_geocentric_km(lat.to_radians(), height_m, lst));
+    let view = moon_view(instant, lat, lon, height_m);
+    let moon = view.direction * view.equatorial.distance_km;
+    let axis = -sun_direction.normalize();
+    let from_earth = moon - earth;
+    let distance_km = from_earth.dot(axis);
+    if distance_km <= 0.0 {
+        return None;
+    }
+    let across = from_earth - axis * distance_km;
+    let distance_m = distance_km * 1000.0;
+    // Cheap test first: the penumbra's reach is the planet's radius plus the sun's image.
+    let reach_km = (atmosphere.planet.radii.max_element() + atmosphere.planet.atmosphere_height) / 1000.0
+        + distance_km * sun.angular_radius;
+    if across.length() > reach_km + 1.05 * MOON_RADIUS_KM {
+        return None;
+    }
+    let profile = profile(atmosphere, sun, distance_m);
+    let moon_radius_m = MOON_RADIUS_KM * 1000.0;
+    let conversion = atmosphere.spectral_conversion();
+    let white = conversion.linear_srgb(sun.irradiance);
+    let light = std::array::from_fn::<_, SHADOW_ENTRIES, _>(|k| {
+        let c = conversion.linear_srgb(sun.irradiance * profile.light[k]);
+        let share = |a: f64, b: f64| if b > 0.0 { (a / b).max(0.0) } else { 0.0 };
+        DVec3::new(share(c.r, white.r), share(c.g, white.g), share(c.b, white.b))
+    });
+    let shadow = MoonShadow {
+        axis,
+        offset: across / MOON_RADIUS_KM,
+        step: profile.step_m / moon_radius_m,
+        light,
+    };
+    // The spectral mean over the face the observer sees, on the same grid as the disc's.
+    let direction = view.direction;
+    let (e1, e2) = direction.any_orthonormal_pair();
+    let n = 128;
+    let (mut sum, mut count) = (Spectrum::ZERO, 0.0);
+    for j in 0..n {
+        for i in 0..n {
+            let x = (f64::from(i) + 0.5) / f64::from(n) * 2.0 - 1.0;
+            let y = (f64::from(j) + 0.5) / f64::from(n) * 2.0 - 1.0;
+            let r2 = x * x + y * y;
+            if r2 < 1.0 {
+                let normal = e1 * x + e2 * y - direction * (1.0 - r2).sqrt();
+                let point = shadow.offset + normal - axis * normal.dot(axis);
+                sum += profile.at(point.length() * moon_radius_m);
+                count += 1.0;
+            }
+        }
+    }
+    Some(LunarEclipse {
+        shadow,
+        mean: sum / count,
+    })
+}
