@@ -1,8 +1,10 @@
-//! `firmament sun`: the sun's position by NREL's SPA for a date, time and place, and that day's
-//! sunrise, solar noon and sunset.
+//! `firmament sun`: the sun's position by NREL's SPA for a date, time and place, that day's
+//! sunrise, solar noon and sunset, and a solar eclipse seen there within three hours of the time
+//! (its local circumstances: `firmament_core::astro::eclipse`).
 
 use anyhow::{Context, Result};
 use firmament_core::astro::Instant;
+use firmament_core::astro::eclipse::{LocalCircumstances, local_circumstances};
 use firmament_core::astro::spa::{self, RiseSet, SpaInput};
 use firmament_core::astro::time::format_offset;
 
@@ -15,11 +17,27 @@ fn format_hours(hours: f64) -> String {
     format!("{:02}:{:02}:{:02}", seconds / 3600, seconds / 60 % 60, seconds % 60)
 }
 
-/// The sun's position and the day's events for `args`.
+/// An instant's time of day on the clock `offset_hours` from UT, `HH:MM:SS.S`.
+fn format_clock(instant: &Instant, offset_hours: f64) -> String {
+    let seconds = ((instant.jd + 0.5 + offset_hours / 24.0).fract() * 86_400.0).clamp(0.0, 86_399.9);
+    let whole = seconds.floor() as u32;
+    format!(
+        "{:02}:{:02}:{:04.1}",
+        whole / 3600,
+        whole / 60 % 60,
+        seconds - f64::from(whole / 60 * 60)
+    )
+}
+
+/// How far from `--time` a solar eclipse's maximum is looked for, hours.
+const ECLIPSE_SEARCH_HOURS: f64 = 3.0;
+
+/// The sun's position, the day's events and any solar eclipse for `args`.
 struct Report {
     instant: Instant,
     position: spa::SolarPosition,
     times: spa::SunTimes,
+    eclipse: Option<LocalCircumstances>,
 }
 
 impl Report {
@@ -36,6 +54,7 @@ impl Report {
             instant,
             position: spa::solar_position(&input),
             times: spa::sun_times(&input, args.time.offset_hours),
+            eclipse: local_circumstances(&instant, ECLIPSE_SEARCH_HOURS, args.lat, args.lon, args.elevation),
         })
     }
 }
@@ -46,7 +65,21 @@ pub(crate) fn report_json(args: &SunArgs) -> Result<serde_json::Value> {
         instant,
         position: p,
         times,
+        eclipse,
     } = Report::of(args)?;
+    let clock = |i: &Instant| format_clock(i, args.time.offset_hours);
+    let eclipse = eclipse.map(|e| {
+        serde_json::json!({
+            "kind": eclipse_kind(&e),
+            "magnitude": e.at_maximum.magnitude(),
+            "first_contact": clock(&e.first_contact),
+            "second_contact": e.second_contact.as_ref().map(clock),
+            "maximum": clock(&e.maximum),
+            "third_contact": e.third_contact.as_ref().map(clock),
+            "fourth_contact": clock(&e.fourth_contact),
+            "central_duration_s": central_duration(&e),
+        })
+    });
     let day = match times.rise_set {
         RiseSet::RiseAndSet { .. } => "rise_and_set",
         RiseSet::PolarDay => "polar_day",
@@ -79,7 +112,22 @@ pub(crate) fn report_json(args: &SunArgs) -> Result<serde_json::Value> {
         "solar_noon_h": times.transit_h,
         "sunset_h": times.sunset_h(),
         "solar_noon_elevation_deg": times.transit_elevation_deg,
+        "solar_eclipse": eclipse,
     }))
+}
+
+/// "total", "annular" or "partial".
+fn eclipse_kind(e: &LocalCircumstances) -> &'static str {
+    match e.second_contact {
+        None => "partial",
+        Some(_) if e.at_maximum.moon_radius_umbral > e.at_maximum.sun_radius => "total",
+        Some(_) => "annular",
+    }
+}
+
+/// Seconds from second to third contact, if the eclipse is central here.
+fn central_duration(e: &LocalCircumstances) -> Option<f64> {
+    Some((e.third_contact?.jd - e.second_contact?.jd) * 86_400.0)
 }
 
 /// Computes and prints the sun's position and the day's events.
@@ -92,6 +140,7 @@ pub(crate) fn run(args: &SunArgs) -> Result<()> {
         instant,
         position: p,
         times,
+        eclipse,
     } = Report::of(args)?;
     let time = args.time.to_string();
     let zone = match format_offset(args.time.offset_hours).as_str() {
@@ -130,6 +179,31 @@ pub(crate) fn run(args: &SunArgs) -> Result<()> {
     println!(
         "sunrise, solar noon and sunset on the clock of --time ({zone}); as in NREL's SPA, those of the UT day of its date"
     );
+    if let Some(e) = eclipse {
+        let clock = |i: &Instant| format_clock(i, args.time.offset_hours);
+        println!(
+            "solar eclipse here, {}: magnitude {:.4} at {} (geometric contacts, NASA's radii)",
+            eclipse_kind(&e),
+            e.at_maximum.magnitude(),
+            clock(&e.maximum)
+        );
+        println!("  partial begins    {}", clock(&e.first_contact));
+        if let (Some(second), Some(third), Some(seconds)) = (e.second_contact, e.third_contact, central_duration(&e)) {
+            println!(
+                "  {} {} to {}  ({} min {:.1} s)",
+                if eclipse_kind(&e) == "total" {
+                    "totality        "
+                } else {
+                    "annularity      "
+                },
+                clock(&second),
+                clock(&third),
+                (seconds / 60.0).floor(),
+                seconds % 60.0
+            );
+        }
+        println!("  partial ends      {}", clock(&e.fourth_contact));
+    }
     Ok(())
 }
 

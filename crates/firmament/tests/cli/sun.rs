@@ -220,3 +220,47 @@ fn every_bad_argument_names_the_flag_and_the_rule() {
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--time <ISO8601>"), "{}", stderr(&out));
 }
+
+/// Dallas City Hall on 2024-04-08: the total eclipse's local circumstances on the clock of
+/// `--time`, against NASA's (totality 13:40:43 to 13:44:34 CDT, partial 12:23 to 15:02).
+#[test]
+fn a_solar_eclipse_prints_its_local_circumstances() {
+    let args = [
+        "sun",
+        "--time",
+        "2024-04-08T13:42:00-05:00",
+        "--lat",
+        "32.7763",
+        "--lon",
+        "-96.7969",
+        "--elevation",
+        "140",
+    ];
+    let out = firmament(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("solar eclipse here, total"), "{text}");
+    assert!(text.contains("totality         13:40:4"), "{text}");
+    assert!(text.contains("to 13:44:3"), "{text}");
+    let report = json(&args);
+    let eclipse = &report["solar_eclipse"];
+    assert_eq!(eclipse["kind"], "total");
+    let duration = eclipse["central_duration_s"].as_f64().expect("a duration");
+    assert!((duration - 231.0).abs() < 5.0, "{duration}");
+    assert!(
+        eclipse["first_contact"]
+            .as_str()
+            .is_some_and(|t| t.starts_with("12:23"))
+    );
+    // A week later, none.
+    let later = json(&[
+        "sun",
+        "--time",
+        "2024-04-15T13:42:00-05:00",
+        "--lat",
+        "32.7763",
+        "--lon",
+        "-96.7969",
+    ]);
+    assert!(later["solar_eclipse"].is_null());
+}
