@@ -4,6 +4,7 @@ use glam::{DQuat, DVec3};
 
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
+use crate::atmosphere::rings::Rings;
 use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
 use crate::classic::scene::ObjectLayer;
@@ -64,6 +65,9 @@ pub struct AtmosphereSky {
     /// sun, the air, the ground and everything lit there get that much less of it
     /// ([`crate::atmosphere::eclipse`]).
     pub eclipsers: Vec<Eclipser>,
+    /// The planet's rings, if it has any ([`crate::atmosphere::rings`]): drawn lit by the suns,
+    /// dimming what lies behind them and shadowing the globe.
+    pub rings: Option<Rings>,
 }
 
 impl AtmosphereSky {
@@ -86,6 +90,9 @@ impl AtmosphereSky {
             });
         }
         self.eclipsers.iter().try_for_each(Eclipser::validate)?;
+        if let Some(rings) = &self.rings {
+            rings.validate(&self.atmosphere.planet)?;
+        }
         crate::atmosphere::clouds::validate_layers(&self.clouds)
     }
 }

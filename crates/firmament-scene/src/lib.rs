@@ -88,7 +88,7 @@ pub use error::SceneError;
 pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, CloudEntry, DisplaySection, EmpiricalSection,
     ExposureModeName, GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection,
-    RenderSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
+    RenderSection, RingBandEntry, RingsSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

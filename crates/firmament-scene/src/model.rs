@@ -8,6 +8,7 @@ mod atmosphere;
 mod clouds;
 mod flare;
 mod objects;
+mod rings;
 mod shadows;
 
 use serde::Deserialize;
@@ -22,6 +23,7 @@ pub use self::objects::{
     LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,
     TextureEntry, TransformEntry,
 };
+pub use self::rings::{RingBandEntry, RingsSection};
 pub use self::shadows::{GroundSection, ShadowsSection};
 use crate::color::SceneColor;
 use crate::error::{SceneError, did_you_mean};
@@ -58,6 +60,9 @@ pub struct Scene {
     /// scene). Like every array, a layer's list replaces the one below it as a whole.
     #[serde(default)]
     pub clouds: Vec<CloudEntry>,
+    /// The planet's rings (drawn by the physical atmosphere).
+    #[serde(default)]
+    pub rings: RingsSection,
     /// How objects are lit.
     pub lighting: LightingSection,
     /// The lights of classic lighting, 0 to 8, `glLight` style. A layer's list replaces the one

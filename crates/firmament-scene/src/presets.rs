@@ -107,6 +107,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/saturn-orbit.toml"),
     },
     Preset {
+        name: "saturn-rings",
+        summary: "atmosphere: Saturn and its main rings from 400 000 km, the globe's shadow on the rings and theirs on it",
+        toml: include_str!("presets/saturn-rings.toml"),
+    },
+    Preset {
         name: "seed-earth",
         summary: "the seed's own model: its Earth from 12 000 km, the blue-veiled globe and its glowing limb",
         toml: include_str!("presets/seed-earth.toml"),

@@ -19,6 +19,7 @@ pub mod planet;
 pub mod planet_shadow;
 pub mod presets;
 pub mod reference;
+pub mod rings;
 pub mod spectrum;
 pub mod star;
 

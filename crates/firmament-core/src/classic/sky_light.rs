@@ -54,7 +54,9 @@ impl<'a> SkyLight<'a> {
             paths: SKY_IRRADIANCE_PATHS,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+            .with_eclipsers(&sky.eclipsers)
+            .with_rings(sky.rings.as_ref());
         Self {
             sky,
             beams: reference.clone().with_clouds(&sky.clouds),
@@ -234,6 +236,7 @@ mod tests {
             suns: vec![presets::earth_sun(DVec3::new(0.0, 0.5, 1.0).normalize())],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let lit = sky_lighting(&high, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         let sun = lit.lights[0].light.diffuse;
@@ -255,6 +258,7 @@ mod tests {
             suns: vec![presets::earth_sun(DVec3::new(0.0, 1.0, -0.2).normalize())],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let dark = sky_lighting(&set, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         assert_eq!(dark.lights[0].light.diffuse.truncate(), DVec3::ZERO);
@@ -273,6 +277,7 @@ mod tests {
             )],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let light = SkyLight::new(&sky);
         let street = light.sun_colors(DVec3::new(0.0, 0.0, 2.0))[0];
@@ -295,6 +300,7 @@ mod tests {
                 suns: vec![presets::earth_sun(DVec3::new(0.0, z.sin(), z.cos()))],
                 clouds,
                 eclipsers: Vec::new(),
+                rings: None,
             }
         };
         // 1000 m of 0.001 m⁻¹ seen from 2 m: the beam's path through the shell between 1000 and

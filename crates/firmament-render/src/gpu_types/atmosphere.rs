@@ -7,6 +7,7 @@
 use bytemuck::{Pod, Zeroable};
 use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
+use firmament_core::atmosphere::rings::{RING_TABLE_ENTRIES, Rings};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
@@ -213,11 +214,38 @@ pub struct AtmosphereViewUniforms {
     /// The eclipsing bodies: centre in the planet frame (m), radius (m) in `w`; the first
     /// `sun_count[1]` are used.
     pub eclipsers: [[f32; 4]; MAX_ECLIPSERS],
+    /// The planet's rings: inner and outer radius (m), Henyey–Greenstein `g`, 1 with rings (0
+    /// without).
+    pub rings: [f32; 4],
+    /// The rings' single-scattering albedo per model wavelength; `w` unused.
+    pub ring_albedo: [f32; 4],
+    /// The rings' normal optical depth at `inner + k·(outer − inner)/(N − 1)`, four to a vector
+    /// ([`Rings::optical_depth_table`]).
+    pub ring_depth: [[f32; 4]; RING_TABLE_ENTRIES / 4],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
     let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
+}
+
+/// The rings' part of [`AtmosphereViewUniforms`]: radii, `g` and the flag; albedo; the optical
+/// depth table (all zero without rings).
+fn ring_fields(rings: Option<&Rings>) -> ([f32; 4], [f32; 4], [[f32; 4]; RING_TABLE_ENTRIES / 4]) {
+    let Some(rings) = rings else {
+        return ([0.0; 4], [0.0; 4], [[0.0; 4]; RING_TABLE_ENTRIES / 4]);
+    };
+    let table = rings.optical_depth_table();
+    (
+        [
+            rings.inner_m() as f32,
+            rings.outer_m() as f32,
+            rings.phase_g as f32,
+            1.0,
+        ],
+        spectrum_w(rings.albedo, 0.0),
+        std::array::from_fn(|k| std::array::from_fn(|j| table[4 * k + j] as f32)),
+    )
 }
 
 impl AtmosphereViewUniforms {
@@ -271,6 +299,7 @@ impl AtmosphereViewUniforms {
             *slot = vec3_w(planet.to_planet_frame(body.center), body.radius_m);
         }
         let eclipser_count = sky.eclipsers.len().min(MAX_ECLIPSERS);
+        let (rings, ring_albedo, ring_depth) = ring_fields(sky.rings.as_ref());
         Self {
             view_to_planet: shape.view_to_planet,
             camera: vec3_w(o, altitude),
@@ -294,6 +323,9 @@ impl AtmosphereViewUniforms {
             ],
             suns,
             eclipsers,
+            rings,
+            ring_albedo,
+            ring_depth,
         }
     }
 }

@@ -47,6 +47,7 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/bindings", include_str!("atmosphere/bindings.wgsl")),
     ("atmosphere/common", include_str!("atmosphere/common.wgsl")),
     ("atmosphere/luts", include_str!("atmosphere/luts.wgsl")),
+    ("atmosphere/rings", include_str!("atmosphere/rings.wgsl")),
     ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),
@@ -1087,7 +1088,10 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 aerial,
                 sun_count,
                 suns,
-                eclipsers
+                eclipsers,
+                rings,
+                ring_albedo,
+                ring_depth
             ]
         );
     }

@@ -76,6 +76,7 @@ fn transmittance_lut_texels_match_the_reference() {
         suns: vec![],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());
@@ -175,6 +176,7 @@ fn sky_comparisons_with(
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let reference = Reference::new(atmosphere, &[sun], settings);
     let conversion = atmosphere.spectral_conversion();
@@ -439,6 +441,7 @@ fn several_suns_add_up() {
                 suns,
                 clouds: Vec::new(),
                 eclipsers: Vec::new(),
+                rings: None,
             },
             view,
             16,
@@ -482,6 +485,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
         suns: vec![s],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let bright = render(&mut gpu, &sky(sun), view, 16, 12);
     let dim = render(&mut gpu, &sky(moon), view, 16, 12);
@@ -519,6 +523,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
         suns: vec![presets::earth_sun(direction(90.0, 20.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let au = presets::ASTRONOMICAL_UNIT;
     let center = atmosphere.planet.center;
@@ -559,6 +564,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
         suns: vec![presets::earth_sun(direction(90.0, 10.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let mean = |image: &Image<f32>| {
         let mut sum = DVec3::ZERO;
@@ -611,6 +617,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     // Looking at the planet's equator from 3 radii, pole up, so the flattening shows.
     let position = DVec3::new(0.0, -20_000_000.0, 0.0);

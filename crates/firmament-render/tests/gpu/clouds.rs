@@ -96,10 +96,12 @@ fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
             suns: vec![sun],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
+            rings: None,
             ..clear.clone()
         };
         // An odd image: its centre pixel looks exactly along the camera, at the sun.
@@ -128,6 +130,7 @@ fn pixels_whose_rays_miss_every_layer_are_left_alone() {
     let cloudy = AtmosphereSky {
         clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
         eclipsers: Vec::new(),
+        rings: None,
         ..sky.clone()
     };
     let camera = camera_at(DVec3::new(0.0, 0.0, 100.0), direction(0.0, -30.0), 20.0);
@@ -157,10 +160,12 @@ fn a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance() {
             suns: vec![presets::earth_sun(direction(90.0, 90.0 - zenith_deg))],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
+            rings: None,
             ..clear.clone()
         };
         // The ground 3 m away, 40° down.
@@ -199,6 +204,7 @@ fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
         let cloudy = AtmosphereSky {
             clouds: vec![layer.clone()],
             eclipsers: Vec::new(),
+            rings: None,
             ..clear.clone()
         };
         let gpu_lost = centre_radiance(&mut gpu, &clear, eye, view) - centre_radiance(&mut gpu, &cloudy, eye, view);
@@ -289,6 +295,7 @@ fn cloud_radiance_survey() {
             let sky = AtmosphereSky {
                 clouds: vec![layer.clone()],
                 eclipsers: Vec::new(),
+                rings: None,
                 ..crate::support::street_sky(0.0, elevation)
             };
             for (eye, view, what) in [

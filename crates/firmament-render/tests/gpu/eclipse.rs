@@ -2,13 +2,12 @@
 //! fraction itself, and the sky under a partial and a total eclipse against the reference
 //! integrator, whose path tracer lights every scattering event by the sun its own point sees.
 
-use crate::support::{Gpu, direction, gpu, street_sky};
+use crate::support::{Gpu, centre_radiance, direction, gpu, street_sky};
 
 use firmament_core::atmosphere::Eclipser;
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-use firmament_core::frame::{AtmosphereSky, Sky};
+use firmament_core::frame::AtmosphereSky;
 use firmament_core::geometry::Ray;
-use firmament_core::{Camera, Frame};
 use glam::{DQuat, DVec3};
 
 /// The Moon's mean radius, m.
@@ -29,21 +28,6 @@ fn eclipsed_sky(offset: f64) -> AtmosphereSky {
     sky
 }
 
-fn radiance_gpu(gpu: &mut Gpu, sky: &AtmosphereSky, view: DVec3) -> DVec3 {
-    let camera = Camera::looking_at(EYE, EYE + view, DVec3::Z).expect("a view direction");
-    let frame = Frame::new(
-        Camera {
-            fov_y: 1f64.to_radians(),
-            ..camera
-        },
-        Sky::Atmosphere(sky.clone()),
-    );
-    let Gpu { ctx, renderer } = gpu;
-    let image = renderer.render_hdr(ctx, &frame, 1, 1).expect("render");
-    let p = image.pixel(0, 0).expect("inside");
-    DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
-}
-
 /// The GPU against the reference (`paths` paths) for views at each (azimuth, elevation): the
 /// relative errors of the largest channel.
 fn compare(gpu: &mut Gpu, sky: &AtmosphereSky, views: &[(f64, f64)], paths: usize) -> Vec<f64> {
@@ -57,7 +41,7 @@ fn compare(gpu: &mut Gpu, sky: &AtmosphereSky, views: &[(f64, f64)], paths: usiz
         .iter()
         .map(|&(azimuth, elevation)| {
             let view = direction(azimuth, elevation);
-            let g = radiance_gpu(gpu, sky, view);
+            let g = centre_radiance(gpu, sky, EYE, view);
             let parts = reference.radiance(&Ray {
                 origin: EYE,
                 direction: view,
@@ -96,8 +80,8 @@ fn a_partial_eclipse_dims_the_sky_as_the_reference_does() {
         .sun_visible_fraction(EYE, 0);
     assert!((0.4..0.7).contains(&visible), "{visible}");
     let zenith = direction(0.0, 90.0);
-    let clear = radiance_gpu(&mut gpu, &street_sky(180.0, 60.0), zenith);
-    let eclipsed = radiance_gpu(&mut gpu, &sky, zenith);
+    let clear = centre_radiance(&mut gpu, &street_sky(180.0, 60.0), EYE, zenith);
+    let eclipsed = centre_radiance(&mut gpu, &sky, EYE, zenith);
     let ratio = eclipsed.z / clear.z;
     assert!(
         (ratio - visible).abs() < 0.05,
@@ -119,7 +103,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
     let mut gpu = gpu();
     let sky = eclipsed_sky(0.0);
     let zenith = direction(0.0, 90.0);
-    let clear = radiance_gpu(&mut gpu, &street_sky(180.0, 60.0), zenith);
+    let clear = centre_radiance(&mut gpu, &street_sky(180.0, 60.0), EYE, zenith);
     let settings = ReferenceSettings {
         paths: 4096,
         ..ReferenceSettings::default()
@@ -133,7 +117,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
     let conversion = sky.atmosphere.spectral_conversion();
     for (azimuth, elevation) in [(0.0, 90.0), (180.0, 40.0)] {
         let view = direction(azimuth, elevation);
-        let g = radiance_gpu(&mut gpu, &sky, view);
+        let g = centre_radiance(&mut gpu, &sky, EYE, view);
         let parts = reference.radiance(&Ray {
             origin: EYE,
             direction: view,
@@ -147,7 +131,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
         assert!(g.z <= r, "the GPU {} above the reference {r}", g.z);
     }
     // The sun's disc is gone: looking at it shows the dark sky.
-    let at_sun = radiance_gpu(&mut gpu, &sky, sky.suns[0].direction);
+    let at_sun = centre_radiance(&mut gpu, &sky, EYE, sky.suns[0].direction);
     assert!(at_sun.max_element() < 1e-3 * clear.z, "{at_sun}");
     // The corona through the air, against the reference's (Baumbach's law, the disc term there):
     // the GPU's is within 1 %, what is left the sky the GPU leaves out in the shadow.
@@ -155,7 +139,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
     let axis = sun.direction.cross(DVec3::Z).normalize();
     for radii in [1.5, 2.0, 4.0] {
         let view = DQuat::from_axis_angle(axis, radii * sun.angular_radius) * sun.direction;
-        let g = radiance_gpu(&mut gpu, &sky, view);
+        let g = centre_radiance(&mut gpu, &sky, EYE, view);
         let parts = reference.radiance(&Ray {
             origin: EYE,
             direction: view,

@@ -20,6 +20,7 @@ mod multiscattering;
 mod night_sky;
 mod objects;
 mod pass_timing;
+mod rings;
 mod shadows;
 mod sky;
 mod sky_lighting;

@@ -49,6 +49,7 @@ fn tail_errors(atmosphere: Atmosphere) -> [(f64, f64); 2] {
         suns: vec![],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());

@@ -105,6 +105,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
             }],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let got = lighting(&gpu.ctx, &mut pass, &sky, &camera).sky_irradiance(DVec3::Z);
         let conversion = atmosphere.spectral_conversion();
@@ -170,6 +171,7 @@ fn sun_colors_match_the_reference() {
             suns: vec![sun(120.0, elevation), sun(250.0, 40.0)],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let got = lighting(ctx, &mut pass, &sky, &camera);
         assert_eq!(got.sun_count(), 2);
@@ -296,6 +298,7 @@ fn the_projection_matches_the_sky_the_gpu_draws() {
             suns,
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         let got = lighting(&gpu.ctx, &mut pass, &sky, &camera(position, DVec3::Y)).sky_sh();
         let want = project(&render_cube(&mut gpu, &sky, position));
@@ -334,6 +337,7 @@ fn a_user_shader_reads_the_lighting() {
         suns: vec![sun(120.0, 25.0), sun(250.0, 8.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let expected = lighting(ctx, &mut pass, &sky, &street_camera());
     let normals = normals();
@@ -478,6 +482,7 @@ fn no_suns_give_no_light() {
         suns: vec![sun(0.0, 30.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let camera = street_camera();
     assert_eq!(lighting(ctx, &mut pass, &lit, &camera).sun_count(), 1);
@@ -500,6 +505,7 @@ fn a_far_camera_gets_sunlight_only() {
         suns: vec![sun(90.0, 30.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     };
     let au = 1.495_978_707e11;
     let got = lighting(ctx, &mut pass, &sky, &camera(DVec3::new(0.0, 0.0, au), DVec3::Y));

@@ -15,12 +15,13 @@ pub use empirical::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
 pub(crate) use empirical::{empirical_planet, empirical_sky};
 
 use firmament_core::CoreError;
+use firmament_core::atmosphere::rings::{RingBand, Rings};
 use firmament_core::atmosphere::{Atmosphere, Planet};
 use firmament_core::frame::AtmosphereSky;
 use glam::DVec3;
 
 use crate::error::SceneError;
-use crate::model::Scene;
+use crate::model::{Body, Scene};
 
 /// How far below the surface the camera may be and still count as on it, metres (rounding in
 /// posing the planet is far smaller).
@@ -47,10 +48,54 @@ pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
         suns,
         clouds,
         eclipsers: Vec::new(),
+        rings: rings(scene)?,
     };
     sky.validate()
         .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;
     Ok(sky)
+}
+
+/// `[rings]` as the core's rings: the body's with the scene's overrides, or `None` when they are
+/// off. Their rules are checked with the sky's (`AtmosphereSky::validate`).
+fn rings(scene: &Scene) -> Result<Option<Rings>, SceneError> {
+    let section = &scene.rings;
+    if !section.enabled {
+        return Ok(None);
+    }
+    let mut rings = match (scene.planet.body, &section.bands) {
+        (Body::Saturn, _) => Rings::saturn(),
+        (_, Some(_)) => Rings {
+            bands: Vec::new(),
+            ..Rings::saturn()
+        },
+        (body, None) => {
+            return Err(SceneError::invalid(
+                "rings.bands",
+                "(none)",
+                format!(
+                    "must be given for planet.body = \"{}\": only saturn has rings of its own",
+                    body.name()
+                ),
+            ));
+        }
+    };
+    if let Some(bands) = &section.bands {
+        rings.bands = bands
+            .iter()
+            .map(|b| RingBand {
+                inner_m: b.inner_radius,
+                outer_m: b.outer_radius,
+                optical_depth: b.optical_depth,
+            })
+            .collect();
+    }
+    if let Some(albedo) = section.albedo {
+        rings.albedo = albedo.spectrum();
+    }
+    if let Some(g) = section.g {
+        rings.phase_g = g;
+    }
+    Ok(Some(rings))
 }
 
 /// Checks that the camera is not inside the planet: its geodetic altitude must be >= 0.

@@ -305,6 +305,7 @@ mod tests {
             suns: vec![],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         };
         // The world is east-north-up at (0°, 0°) on the ground.
         earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);

@@ -391,3 +391,58 @@ fn sets_append_a_sun_one_past_the_end() {
     let msg = message(preset("earth-sunset", &["suns.5.azimuth=250"]));
     assert!(msg.contains("index 5 is past the end of an array of 1"), "{msg}");
 }
+
+#[test]
+fn saturn_s_rings_come_from_the_preset_and_bad_rings_name_the_key() {
+    let rings = sky_of(&preset("saturn-rings", &[]).expect("valid"))
+        .rings
+        .expect("rings");
+    assert_eq!(rings, firmament_core::atmosphere::rings::Rings::saturn());
+    assert!(sky_of(&preset("saturn-orbit", &[]).expect("valid")).rings.is_none());
+    // Overrides of Saturn's.
+    let dusty = sky_of(&preset("saturn-rings", &["rings.g=0.7", "rings.albedo=0.9"]).expect("valid"));
+    let dusty = dusty.rings.expect("rings");
+    assert_eq!(dusty.phase_g, 0.7);
+    assert_eq!(dusty.albedo, DVec3::splat(0.9));
+    // Another body needs its bands.
+    let earth = message(preset("earth-orbit", &["rings.enabled=true"]));
+    assert!(
+        earth.contains("rings.bands") && earth.contains("only saturn"),
+        "{earth}"
+    );
+    let own = sky_of(
+        &preset(
+            "earth-orbit",
+            &[
+                "rings.enabled=true",
+                "rings.bands=[{ inner_radius = 1.0e7, outer_radius = 1.5e7, optical_depth = 0.3 }]",
+            ],
+        )
+        .expect("valid"),
+    );
+    assert_eq!(own.rings.expect("rings").bands.len(), 1);
+    for (set, key) in [
+        (
+            "rings.bands=[{ inner_radius = 5.0e7, outer_radius = 9.0e7, optical_depth = 0.3 }]",
+            "rings.bands[0].inner_radius",
+        ),
+        (
+            "rings.bands=[{ inner_radius = 9.0e7, outer_radius = 8.0e7, optical_depth = 0.3 }]",
+            "rings.bands[0].outer_radius",
+        ),
+        (
+            "rings.bands=[{ inner_radius = 8.0e7, outer_radius = 9.0e7, optical_depth = 0.3 }, { inner_radius = 8.5e7, outer_radius = 9.5e7, optical_depth = 0.3 }]",
+            "rings.bands[1].inner_radius",
+        ),
+        (
+            "rings.bands=[{ inner_radius = 8.0e7, outer_radius = 9.0e7, optical_depth = -1.0 }]",
+            "rings.bands[0].optical_depth",
+        ),
+        ("rings.bands=[]", "rings.bands"),
+        ("rings.albedo=1.5", "rings.albedo"),
+        ("rings.g=-1.0", "rings.g"),
+    ] {
+        let text = message(preset("saturn-rings", &[set]));
+        assert!(text.contains(key), "{set}: {text}");
+    }
+}

@@ -116,7 +116,9 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             paths: args.paths as usize,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
+        let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+            .with_eclipsers(&sky.eclipsers)
+            .with_rings(sky.rings.as_ref());
         let conversion = sky.atmosphere.spectral_conversion();
         let radiance: Vec<LinearRgb> = reference
             .image(&frame.camera, width, height)

@@ -144,6 +144,7 @@ fn samples(args: &SkySampleArgs) -> Result<Samples> {
         suns: vec![sun],
         clouds: scene_sky.clouds,
         eclipsers: Vec::new(),
+        rings: None,
     };
     if !sky.clouds.is_empty() && !args.reference {
         bail!(
@@ -266,7 +267,8 @@ fn reference_sample(
 ) -> Sample {
     let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
         .with_clouds(&sky.clouds)
-        .with_eclipsers(&sky.eclipsers);
+        .with_eclipsers(&sky.eclipsers)
+        .with_rings(sky.rings.as_ref());
     let planet = &sky.atmosphere.planet;
     let ray = Ray {
         origin: eye,

@@ -4,6 +4,7 @@
 //! The integrator's methods are in `mod.rs`.
 
 use crate::atmosphere::clouds::CloudLayer;
+use crate::atmosphere::rings::Rings;
 use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Eclipser, Planet, Sun};
 use crate::geometry::Ray;
@@ -107,4 +108,6 @@ pub struct Reference {
     pub(super) clouds: Vec<CloudLayer>,
     /// Bodies that eclipse the suns, planet frame ([`Reference::with_eclipsers`]).
     pub(super) eclipsers: Vec<Eclipser>,
+    /// The planet's rings, whose shadow dims the suns ([`Reference::with_rings`]).
+    pub(super) rings: Option<Rings>,
 }

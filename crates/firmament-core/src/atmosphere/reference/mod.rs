@@ -71,6 +71,7 @@ use glam::DVec3;
 
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::eclipse::visible_fraction;
+use crate::atmosphere::rings::Rings;
 use crate::atmosphere::spectrum::Spectrum;
 use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
@@ -145,6 +146,7 @@ impl Reference {
             occluders: Vec::new(),
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
         }
     }
 
@@ -194,8 +196,17 @@ impl Reference {
         self
     }
 
+    /// Sets the planet's rings (planet frame, as [`Rings`] are given): every sun's light at every
+    /// point is times the rings' transmittance along the ray from it towards the sun — their
+    /// shadow on the globe and the air. The rings' own light is [`Rings::radiance`]; a view ray
+    /// here does not see them. They should pass [`Rings::validate`].
+    pub fn with_rings(mut self, rings: Option<&Rings>) -> Self {
+        self.rings = rings.cloned();
+        self
+    }
+
     /// The fraction of sun `index`'s disc (in the order given to [`Reference::new`]) that the
-    /// eclipsers leave visible from world-frame `point`: 1 without eclipsers.
+    /// eclipsers and the rings leave visible from world-frame `point`: 1 without either.
     ///
     /// # Panics
     /// When there is no sun `index`.
@@ -204,12 +215,13 @@ impl Reference {
         self.sun_visible(p, &self.suns[index])
     }
 
-    /// The fraction of `sun`'s disc the eclipsers leave visible from planet-frame point `p`.
+    /// The fraction of `sun`'s light the eclipsers and the rings leave at planet-frame point `p`.
     pub(super) fn sun_visible(&self, p: DVec3, sun: &Sun) -> f64 {
+        let rings = self.rings.as_ref().map_or(1.0, |r| r.transmittance(p, sun.direction));
         if self.eclipsers.is_empty() {
-            1.0
+            rings
         } else {
-            visible_fraction(p, sun, &self.eclipsers)
+            rings * visible_fraction(p, sun, &self.eclipsers)
         }
     }
 
@@ -367,6 +379,7 @@ impl Reference {
         let clear = Self {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            rings: None,
             ..self.clone()
         };
         order_two::second_order(&clear, &ray, settings)

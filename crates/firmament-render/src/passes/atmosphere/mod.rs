@@ -300,6 +300,7 @@ impl AtmospherePass {
                     suns: sky.suns.clone(),
                     clouds: Vec::new(),
                     eclipsers: Vec::new(),
+                    rings: None,
                 };
                 &live_sky
             }

@@ -13,6 +13,10 @@
 const MAX_SUNS: u32 = 8u;
 // How many eclipsing bodies (firmament_core::atmosphere::eclipse::MAX_ECLIPSERS).
 const MAX_ECLIPSERS: u32 = 4u;
+// The rings' optical depth table: entries (firmament_core::atmosphere::rings::RING_TABLE_ENTRIES)
+// and the vectors that hold them.
+const RING_TABLE_ENTRIES: u32 = 128u;
+const RING_TABLE_VECTORS: u32 = 32u;
 
 struct DensityProfile {
     layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
@@ -65,6 +69,12 @@ struct AtmosphereView {
     sun_count: vec4<u32>,
     suns: array<AtmosphereSun, MAX_SUNS>,
     eclipsers: array<vec4<f32>, MAX_ECLIPSERS>, // xyz centre, planet frame (m); w = radius (m)
+    // The planet's rings (atmosphere/rings.wgsl): x, y = inner and outer radius (m), z = their
+    // particles' Henyey–Greenstein g, w = 1 with rings, 0 without
+    rings: vec4<f32>,
+    ring_albedo: vec4<f32>,      // rgb single-scattering albedo
+    // normal optical depth at inner + k·(outer − inner)/(RING_TABLE_ENTRIES − 1), four to a vector
+    ring_depth: array<vec4<f32>, RING_TABLE_VECTORS>,
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).

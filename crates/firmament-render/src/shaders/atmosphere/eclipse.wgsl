@@ -1,5 +1,5 @@
 // atmosphere/eclipse.wgsl — how much of each sun the eclipsing bodies (the Moon at a real date)
-// leave visible from a point: the GPU twin of firmament_core::atmosphere::eclipse, whose docs
+// and the rings' shadow leave at a point: the GPU twin of firmament_core::atmosphere::eclipse, whose docs
 // give the model (two flat discs, the sun limb-darkened, the partly covered rings by
 // Gauss–Legendre after r = a + (b − a)(1 − cos φ)/2).
 //
@@ -9,6 +9,7 @@
 
 #import atmosphere/bindings
 #import atmosphere/common
+#import atmosphere/rings
 #import generated/constants
 
 // The fraction of a limb-darkened disc (radius 1, linear limb darkening u) hidden by a disc of
@@ -65,12 +66,13 @@ fn sun_visible_fraction(p: vec3<f32>, i: u32) -> f32 {
 }
 
 // Sun i's spectral irradiance at the top of the atmosphere above p, after the eclipsing bodies
-// (W·m⁻²·nm⁻¹).
+// and through the planet's rings (their shadow) (W·m⁻²·nm⁻¹).
 fn sun_irradiance_at(p: vec3<f32>, i: u32) -> vec3<f32> {
+    let rings = ring_transmittance(p, view.suns[i].direction.xyz);
     if view.sun_count.y == 0u {
-        return view.suns[i].irradiance.rgb;
+        return view.suns[i].irradiance.rgb * rings;
     }
-    return view.suns[i].irradiance.rgb * sun_visible_fraction(p, i);
+    return view.suns[i].irradiance.rgb * (rings * sun_visible_fraction(p, i));
 }
 
 // Whether the view ray from the camera along d meets an eclipsing body (which hides the suns'

@@ -20,6 +20,7 @@
 #import atmosphere/luts
 #import atmosphere/view
 #import atmosphere/eclipse
+#import atmosphere/rings
 #import atmosphere/sky_view
 #import generated/constants
 
@@ -119,28 +120,52 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(sky_out, id.xy, sky_color(pixel_ndc(id.xy, size)));
 }
 
-// The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`.
+// The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`: the air
+// (and lit ground), and behind it the suns' discs; the rings in front of the air or between it and
+// the discs (atmosphere/rings.wgsl).
 fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
     let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
     let on_a_disc = any(discs > vec3<f32>(0.0));
+    let rings = ring_sample(ray.origin, ray.direction, ray.near);
+    let behind_air = rings.hit || on_a_disc;
     var radiance: vec3<f32>;
+    // The air's transmittance along the ray, where something lies behind it.
+    var through = vec3<f32>(0.0);
+    var hits_ground = false;
     if SKY_MODE == SKY_MODE_LUT {
         radiance = lut_radiance(ray.direction);
-        // The transmittance only matters on a disc: most pixels skip its lookups.
-        if on_a_disc {
-            radiance += discs * lut_transmittance(ray.direction);
+        // The transmittance only matters behind the air: most pixels skip its lookups.
+        if behind_air {
+            through = lut_transmittance(ray.direction);
         }
     } else if SKY_MODE == SKY_MODE_MARCH {
         let marched = marched_sky(ray);
-        radiance = marched.radiance + discs * marched.transmittance;
+        radiance = marched.radiance;
+        through = marched.transmittance;
     } else {
         let blend = view.local_up.w;
         let marched = marched_sky(ray);
         radiance = mix(lut_radiance(ray.direction), marched.radiance, blend);
-        if on_a_disc {
-            radiance += discs * mix(lut_transmittance(ray.direction), marched.transmittance, blend);
+        if behind_air {
+            through = mix(lut_transmittance(ray.direction), marched.transmittance, blend);
         }
+    }
+    if rings.hit {
+        let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
+        let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+        let blocked = ground.x <= ground.y && ground.x > ray.near && ground.x < rings.t;
+        let in_front = top.x > top.y || rings.t < top.x;
+        if in_front {
+            // The rings first, the air (and the ground, or the discs) behind them.
+            radiance = rings.radiance + rings.transmittance * (radiance + discs * through);
+        } else if !blocked {
+            radiance += through * (rings.radiance + rings.transmittance * discs);
+        } else {
+            radiance += discs * through;
+        }
+    } else {
+        radiance += discs * through;
     }
     // The half-float HDR target ends at 65504; a sun disc in cd/m² is far beyond.
     return vec4<f32>(min(to_linear_srgb(radiance), vec3<f32>(HDR_MAX)), 1.0);

@@ -87,6 +87,7 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
         suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        rings: None,
     }
 }
 
@@ -117,4 +118,29 @@ pub(crate) fn origin_camera_45(width: u32, height: u32) -> firmament_core::Camer
         near: 0.5,
         far: Some(1000.0),
     }
+}
+
+/// The GPU's linear sRGB (cd/m²) along the centre of a 1×1 image of `sky` from `eye` towards
+/// `view` (world frame), with a 1° field of view.
+pub(crate) fn centre_radiance(
+    gpu: &mut Gpu,
+    sky: &firmament_core::frame::AtmosphereSky,
+    eye: glam::DVec3,
+    view: glam::DVec3,
+) -> glam::DVec3 {
+    use firmament_core::Camera;
+    let camera = Camera::looking_at(eye, eye + view, glam::DVec3::Z)
+        .or_else(|| Camera::looking_at(eye, eye + view, glam::DVec3::X))
+        .expect("a view direction");
+    let frame = firmament_core::Frame::new(
+        Camera {
+            fov_y: 1f64.to_radians(),
+            ..camera
+        },
+        firmament_core::frame::Sky::Atmosphere(sky.clone()),
+    );
+    let Gpu { ctx, renderer } = gpu;
+    let image = renderer.render_hdr(ctx, &frame, 1, 1).expect("render");
+    let p = image.pixel(0, 0).expect("inside");
+    glam::DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
 }
