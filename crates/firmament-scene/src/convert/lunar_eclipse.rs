@@ -29,9 +29,14 @@ pub(crate) struct LunarEclipse {
     pub(crate) mean: Spectrum,
 }
 
-/// The last shadow profile computed: the atmosphere, the sun, the distance (m, rounded) and the
-/// profile. The moonlight and the night sky of one frame ask for the same one; each frame of a
-/// time-lapse, whose Moon has moved, computes its own (~0.1 s).
+/// How finely the cache tells the Moon's distances apart, metres: a profile for 10 km nearer or
+/// farther differs by about one part in 10⁵ (the shadow scales with the distance), and the
+/// Moon's distance changes by 10 km in some minutes — so the viewer and a time-lapse reuse one
+/// profile for as long.
+const DISTANCE_BIN_M: f64 = 10_000.0;
+
+/// The last shadow profile computed: the atmosphere, the sun, the distance bin and the profile
+/// (72 ms to build: docs/PERFORMANCE.md).
 #[allow(
     clippy::type_complexity,
     reason = "a one-entry cache; a named type would say no more"
@@ -39,7 +44,7 @@ pub(crate) struct LunarEclipse {
 static LAST_PROFILE: Mutex<Option<(Atmosphere, Sun, i64, PlanetShadow)>> = Mutex::new(None);
 
 fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow {
-    let key = distance_m.round() as i64;
+    let key = (distance_m / DISTANCE_BIN_M).round() as i64;
     let mut last = LAST_PROFILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     if let Some((a, s, k, shadow)) = &*last
         && a == atmosphere
@@ -48,7 +53,8 @@ fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow 
     {
         return shadow.clone();
     }
-    let shadow = PlanetShadow::new(atmosphere, sun, distance_m, &ShadowSettings::default());
+    let binned = key as f64 * DISTANCE_BIN_M;
+    let shadow = PlanetShadow::new(atmosphere, sun, binned, &ShadowSettings::default());
     *last = Some((*atmosphere, *sun, key, shadow.clone()));
     shadow
 }
