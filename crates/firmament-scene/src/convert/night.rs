@@ -173,20 +173,29 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
     match &mut layer.moon {
         Some(moon) if t.moon => {
             moon.direction = refracted(scene, instant, moon.direction);
-            moon.shadow = earth_shadow(scene, instant, height, sky).map(|e| e.shadow);
+            let air = match sky {
+                Sky::Atmosphere(sky) => sky.suns.iter().find(|s| s.disc).map(|sun| (&sky.atmosphere, sun)),
+                _ => None,
+            };
+            moon.shadow = earth_shadow(scene, instant, height, air).map(|e| e.shadow);
         }
         _ => layer.moon = None,
     }
     layer
 }
 
-/// The Earth's shadow on the Moon at `instant` (see [`lunar_eclipse`]), through the physical
-/// sky's air and by its first sun when the sky is physical, else through Earth's own.
-fn earth_shadow(scene: &Scene, instant: &Instant, height_m: f64, sky: &Sky) -> Option<LunarEclipse> {
+/// The Earth's shadow on the Moon at `instant` (see [`lunar_eclipse`]), through `air` (the
+/// physical sky's atmosphere and its first sun with a disc) or else Earth's own.
+fn earth_shadow(
+    scene: &Scene,
+    instant: &Instant,
+    height_m: f64,
+    air: Option<(&Atmosphere, &Sun)>,
+) -> Option<LunarEclipse> {
     let sun_direction = scene.real_sun(instant).ok()?.direction_enu(false);
-    let (atmosphere, sun) = match sky {
-        Sky::Atmosphere(sky) => (sky.atmosphere, sky.suns.iter().find(|s| s.disc).copied()?),
-        _ => (presets::earth(), presets::earth_sun(sun_direction)),
+    let (atmosphere, sun) = match air {
+        Some((atmosphere, sun)) => (*atmosphere, *sun),
+        None => (presets::earth(), presets::earth_sun(sun_direction)),
     };
     lunar_eclipse(scene, instant, height_m, sun_direction, &atmosphere, &sun)
 }
@@ -262,18 +271,12 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
     }
     // In a lunar eclipse the Moon passes on only the sunlight the Earth's shadow leaves it.
     let height = camera.position.z.max(0.0);
-    let shade = match (scene.real_sun(instant), sky.suns.iter().find(|s| s.disc)) {
-        (Ok(position), Some(sun)) => lunar_eclipse(
-            scene,
-            instant,
-            height,
-            position.direction_enu(false),
-            &sky.atmosphere,
-            sun,
-        )
-        .map_or(Spectrum::ONE, |e| e.mean),
-        _ => Spectrum::ONE,
-    };
+    let shade = sky
+        .suns
+        .iter()
+        .find(|s| s.disc)
+        .and_then(|sun| earth_shadow(scene, instant, height, Some((&sky.atmosphere, sun))))
+        .map_or(Spectrum::ONE, |e| e.mean);
     sky.suns.push(Sun {
         direction: view.direction,
         angular_radius: view.angular_radius,
