@@ -57,9 +57,9 @@ pub struct ShadowSettings {
 }
 
 impl Default for ShadowSettings {
-    /// Earth's: its refractivity, cloud tops at 10 km (García Muñoz & Pallé's reference case)
-    /// over two thirds of the limb (a clear fraction of 0.35: ISCCP's global cloud amount, Rossow
-    /// & Schiffer 1999), 600 altitudes, 400 steps.
+    /// Earth's: its refractivity; cloud tops at 10 km (this model's choice: a typical height of
+    /// deep clouds' tops) over two thirds of the limb (a clear fraction of 0.35, after ISCCP's
+    /// global cloud amount of about two thirds, Rossow & Schiffer 1999); 600 altitudes, 400 steps.
     fn default() -> Self {
         Self {
             refractivity: EARTH_REFRACTIVITY,
