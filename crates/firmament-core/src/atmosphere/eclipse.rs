@@ -79,6 +79,14 @@ impl Eclipser {
         }
     }
 
+    /// Whether the ray from `origin` along unit `direction` (in this body's frame) meets the body
+    /// ahead of it: a sun's disc behind it is hidden there.
+    pub fn hides(&self, origin: DVec3, direction: DVec3) -> bool {
+        let to_center = self.center - origin;
+        let along = to_center.dot(direction);
+        along > 0.0 && to_center.length_squared() - along * along < self.radius_m * self.radius_m
+    }
+
     /// The fraction of `sun`'s light (its `direction` in the frame of `p` and this body) that
     /// reaches point `p` past this body: 1 in full sunlight, 0 inside the umbra or the body.
     pub fn visible_fraction(&self, p: DVec3, sun: &Sun) -> f64 {

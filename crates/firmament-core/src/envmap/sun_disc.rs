@@ -66,13 +66,7 @@ pub fn sun_at_eye(
     let reference = Reference::new(*atmosphere, std::slice::from_ref(sun), ReferenceSettings::default())
         .with_clouds(clouds)
         .with_eclipsers(eclipsers);
-    let hidden = |d: DVec3| {
-        eclipsers.iter().any(|e| {
-            let to_center = e.center - eye;
-            let along = to_center.dot(d);
-            along > 0.0 && to_center.length_squared() - along * along < e.radius_m * e.radius_m
-        })
-    };
+    let hidden = |d: DVec3| eclipsers.iter().any(|e| e.hides(eye, d));
     let planet = atmosphere.planet;
     let from = planet.to_planet_frame(eye);
     let transmittance = |direction: DVec3| {

@@ -97,24 +97,31 @@ impl MoonShadow {
     }
 
     /// The sunlight's share averaged over the disc an observer towards `direction` (unit, from
-    /// the observer to the Moon) sees: the mean over a 128 × 128 grid of the disc's face.
+    /// the observer to the Moon) sees ([`mean_over_face`]).
     pub fn mean_over_disc(&self, direction: DVec3) -> DVec3 {
-        let (e1, e2) = direction.any_orthonormal_pair();
-        let n = 128;
-        let (mut sum, mut count) = (DVec3::ZERO, 0.0);
-        for j in 0..n {
-            for i in 0..n {
-                let x = (i as f64 + 0.5) / n as f64 * 2.0 - 1.0;
-                let y = (j as f64 + 0.5) / n as f64 * 2.0 - 1.0;
-                let r2 = x * x + y * y;
-                if r2 < 1.0 {
-                    sum += self.light_at(e1 * x + e2 * y - direction * (1.0 - r2).sqrt());
-                    count += 1.0;
-                }
+        mean_over_face(direction, |normal| self.light_at(normal))
+    }
+}
+
+/// The mean of `value` (of the outward unit normal) over the face of a sphere an observer towards
+/// `direction` (unit, from the observer to its centre) sees: a 128 × 128 grid over the disc, equal
+/// areas of the disc (equal solid angles) weighted alike.
+pub fn mean_over_face(direction: DVec3, value: impl Fn(DVec3) -> DVec3) -> DVec3 {
+    let (e1, e2) = direction.any_orthonormal_pair();
+    let n = 128;
+    let (mut sum, mut count) = (DVec3::ZERO, 0.0);
+    for j in 0..n {
+        for i in 0..n {
+            let x = (f64::from(i) + 0.5) / f64::from(n) * 2.0 - 1.0;
+            let y = (f64::from(j) + 0.5) / f64::from(n) * 2.0 - 1.0;
+            let r2 = x * x + y * y;
+            if r2 < 1.0 {
+                sum += value(e1 * x + e2 * y - direction * (1.0 - r2).sqrt());
+                count += 1.0;
             }
         }
-        sum / count
     }
+    sum / count
 }
 
 /// The Lommel–Seeliger law normalised to 1 at normal incidence and emergence: `2 μ₀ / (μ₀ + μ)`

@@ -16,7 +16,7 @@ use firmament_core::astro::sidereal::{
 };
 use firmament_core::atmosphere::planet_shadow::{PlanetShadow, SHADOW_ENTRIES, ShadowSettings};
 use firmament_core::atmosphere::{Atmosphere, Spectrum, Sun};
-use firmament_core::sky::night::MoonShadow;
+use firmament_core::sky::night::{MoonShadow, mean_over_face};
 use glam::DVec3;
 
 use crate::model::Scene;
@@ -25,8 +25,23 @@ use crate::model::Scene;
 pub(crate) struct LunarEclipse {
     /// The shadow across the Moon, linear RGB shares (for the night sky's disc).
     pub(crate) shadow: MoonShadow,
-    /// The sunlight's share averaged over the Moon's face, per model wavelength (for moonlight).
-    pub(crate) mean: Spectrum,
+    /// The shadow's profile, per model wavelength.
+    profile: PlanetShadow,
+    /// Unit East-North-Up direction from the observer to the Moon.
+    direction: DVec3,
+}
+
+impl LunarEclipse {
+    /// The sunlight's share averaged over the Moon's face the observer sees, per model
+    /// wavelength (for the moonlight).
+    pub(crate) fn mean(&self) -> Spectrum {
+        let (axis, offset) = (self.shadow.axis, self.shadow.offset);
+        let moon_radius_m = MOON_RADIUS_KM * 1000.0;
+        mean_over_face(self.direction, |normal| {
+            let across = offset + normal - axis * normal.dot(axis);
+            self.profile.at(across.length() * moon_radius_m)
+        })
+    }
 }
 
 /// How finely the cache tells the Moon's distances apart, metres: a profile for 10 km nearer or
@@ -106,26 +121,9 @@ pub(crate) fn lunar_eclipse(
         step: profile.step_m / moon_radius_m,
         light,
     };
-    // The spectral mean over the face the observer sees, on the same grid as the disc's.
-    let direction = view.direction;
-    let (e1, e2) = direction.any_orthonormal_pair();
-    let n = 128;
-    let (mut sum, mut count) = (Spectrum::ZERO, 0.0);
-    for j in 0..n {
-        for i in 0..n {
-            let x = (f64::from(i) + 0.5) / f64::from(n) * 2.0 - 1.0;
-            let y = (f64::from(j) + 0.5) / f64::from(n) * 2.0 - 1.0;
-            let r2 = x * x + y * y;
-            if r2 < 1.0 {
-                let normal = e1 * x + e2 * y - direction * (1.0 - r2).sqrt();
-                let point = shadow.offset + normal - axis * normal.dot(axis);
-                sum += profile.at(point.length() * moon_radius_m);
-                count += 1.0;
-            }
-        }
-    }
     Some(LunarEclipse {
         shadow,
-        mean: sum / count,
+        profile,
+        direction: view.direction,
     })
 }

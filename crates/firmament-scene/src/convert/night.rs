@@ -276,7 +276,7 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
         .iter()
         .find(|s| s.disc)
         .and_then(|sun| earth_shadow(scene, instant, height, Some((&sky.atmosphere, sun))))
-        .map_or(Spectrum::ONE, |e| e.mean);
+        .map_or(Spectrum::ONE, |e| e.mean());
     sky.suns.push(Sun {
         direction: view.direction,
         angular_radius: view.angular_radius,

@@ -19,6 +19,23 @@ fn load_scene(text: &str, sets: &[&str]) -> Result<Scene, SceneError> {
     )
 }
 
+/// The frame's physical sky.
+fn atmosphere_of(frame: &firmament_core::Frame) -> &firmament_core::frame::AtmosphereSky {
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("atmosphere")
+    };
+    sky
+}
+
+/// The frame of preset `name` with `sets`, at the scene's own moment.
+fn preset_frame(name: &str, sets: &[&str]) -> firmament_core::Frame {
+    let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();
+    load(SceneSource::Preset(name), None, &sets)
+        .expect("valid")
+        .frame_at(None)
+        .expect("frame")
+}
+
 fn gradient_sun(scene: &Scene, time: Option<TimeOfDay>) -> DVec3 {
     match scene.frame_at(time).expect("frame").sky {
         Sky::Gradient(state) => state.sun.direction,
@@ -235,9 +252,7 @@ fn the_moon_lights_a_physical_night_sky_without_a_flare() {
     let text = "[time]\ndate_time = \"2025-03-13T23:30:00Z\"\n[flare]\nenabled = true\n";
     let scene = load_scene(text, &["sky.model=atmosphere"]).expect("valid");
     let frame = scene.frame_at(None).expect("frame");
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        panic!("atmosphere")
-    };
+    let sky = atmosphere_of(&frame);
     assert_eq!(sky.suns.len(), 2, "the Sun and the Moon");
     let (sun, moon) = (sky.suns[0], sky.suns[1]);
     assert!(sun.disc && !moon.disc);
@@ -259,20 +274,15 @@ fn the_moon_lights_a_physical_night_sky_without_a_flare() {
     // Switched off: no Moon light, no disc.
     let dark = load_scene(text, &["sky.model=atmosphere", "time.moon=false"]).expect("valid");
     let frame = dark.frame_at(None).expect("frame");
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        panic!("atmosphere")
-    };
+    let sky = atmosphere_of(&frame);
     assert_eq!(sky.suns.len(), 1);
     assert!(frame.night.moon.is_none());
 }
 
 #[test]
 fn the_moon_eclipses_the_sun_in_dallas_on_2024_04_08() {
-    let scene = load(SceneSource::Preset("eclipse-2024"), None, &[]).expect("valid");
-    let frame = scene.frame_at(None).expect("frame");
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        panic!("atmosphere")
-    };
+    let frame = preset_frame("eclipse-2024", &[]);
+    let sky = atmosphere_of(&frame);
     // The Sun alone lights the sky: a new Moon gives no moonlight.
     assert_eq!(sky.suns.len(), 1);
     let sun = sky.suns[0];
@@ -292,26 +302,14 @@ fn the_moon_eclipses_the_sun_in_dallas_on_2024_04_08() {
     let disc = frame.night.moon.expect("the Moon is up");
     assert!(disc.direction.angle_between(to_moon) < 1e-9);
     // A day later the Moon is far from the Sun: no eclipser.
-    let later = load(
-        SceneSource::Preset("eclipse-2024"),
-        None,
-        &["time.date_time=\"2024-04-09T18:42:38Z\"".to_owned()],
-    )
-    .expect("valid");
-    let frame = later.frame_at(None).expect("frame");
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        panic!("atmosphere")
-    };
-    assert!(sky.eclipsers.is_empty());
+    let later = preset_frame("eclipse-2024", &["time.date_time=\"2024-04-09T18:42:38Z\""]);
+    assert!(atmosphere_of(&later).eclipsers.is_empty());
 }
 
 #[test]
 fn the_moon_goes_red_in_the_earth_s_shadow_on_2025_03_14() {
-    let scene = load(SceneSource::Preset("lunar-eclipse-2025"), None, &[]).expect("valid");
-    let frame = scene.frame_at(None).expect("frame");
-    let Sky::Atmosphere(sky) = &frame.sky else {
-        panic!("atmosphere")
-    };
+    let frame = preset_frame("lunar-eclipse-2025", &[]);
+    let sky = atmosphere_of(&frame);
     let moon = frame.night.moon.expect("the Moon is up");
     let shadow = moon.shadow.expect("in the Earth's shadow");
     // NASA's umbral magnitude at greatest eclipse, 1.1784, puts the Moon's centre
@@ -336,12 +334,6 @@ fn the_moon_goes_red_in_the_earth_s_shadow_on_2025_03_14() {
     let ratio = sky.suns[1].irradiance.y / sky.suns[0].irradiance.y;
     assert!(ratio < 5e-9, "{ratio}");
     // Four hours later the Moon has left the shadow.
-    let later = load(
-        SceneSource::Preset("lunar-eclipse-2025"),
-        None,
-        &["time.date_time=\"2025-03-14T10:30:00Z\"".to_owned()],
-    )
-    .expect("valid");
-    let frame = later.frame_at(None).expect("frame");
-    assert!(frame.night.moon.is_none_or(|m| m.shadow.is_none()));
+    let later = preset_frame("lunar-eclipse-2025", &["time.date_time=\"2025-03-14T10:30:00Z\""]);
+    assert!(later.night.moon.is_none_or(|m| m.shadow.is_none()));
 }

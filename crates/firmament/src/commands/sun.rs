@@ -181,21 +181,17 @@ pub(crate) fn run(args: &SunArgs) -> Result<()> {
     );
     if let Some(e) = eclipse {
         let clock = |i: &Instant| format_clock(i, args.time.offset_hours);
+        let kind = eclipse_kind(&e);
         println!(
-            "solar eclipse here, {}: magnitude {:.4} at {} (geometric contacts, NASA's radii)",
-            eclipse_kind(&e),
+            "solar eclipse here, {kind}: magnitude {:.4} at {} (geometric contacts, NASA's radii)",
             e.at_maximum.magnitude(),
             clock(&e.maximum)
         );
         println!("  partial begins    {}", clock(&e.first_contact));
         if let (Some(second), Some(third), Some(seconds)) = (e.second_contact, e.third_contact, central_duration(&e)) {
+            let phase = if kind == "total" { "totality" } else { "annularity" };
             println!(
-                "  {} {} to {}  ({} min {:.1} s)",
-                if eclipse_kind(&e) == "total" {
-                    "totality        "
-                } else {
-                    "annularity      "
-                },
+                "  {phase:<16} {} to {}  ({} min {:.1} s)",
                 clock(&second),
                 clock(&third),
                 (seconds / 60.0).floor(),

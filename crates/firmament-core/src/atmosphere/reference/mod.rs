@@ -227,11 +227,7 @@ impl Reference {
 
     /// Whether a planet-frame ray meets an eclipser (which hides the suns' discs behind it).
     fn meets_eclipser(&self, ray: &Ray) -> bool {
-        self.eclipsers.iter().any(|e| {
-            let to_center = e.center - ray.origin;
-            let along = to_center.dot(ray.direction);
-            along > 0.0 && to_center.length_squared() - along * along < e.radius_m * e.radius_m
-        })
+        self.eclipsers.iter().any(|e| e.hides(ray.origin, ray.direction))
     }
 
     /// A whole image seen by `camera` (its aspect ratio replaced by `width / height`): the total
