@@ -16,10 +16,6 @@ use crate::sky::night::NightLayer;
 
 /// The sky model drawn behind everything.
 #[derive(Debug, Clone, PartialEq)]
-#[expect(
-    clippy::large_enum_variant,
-    reason = "both variants are a few hundred bytes and a frame is built once per frame"
-)]
 pub enum Sky {
     /// The keyframed gradient sky of seed 002.
     Gradient(GradientSkyState),

@@ -534,23 +534,22 @@ fn effective_value(scene: &Scene, path: &str) -> Option<toml::Value> {
         });
     }
     let triple = |v: firmament_core::atmosphere::Spectrum| toml::Value::Array(v.to_array().map(float).to_vec());
-    let scale_height = |profile: &firmament_core::atmosphere::DensityProfile| {
-        let rate = profile.layers[1].exp_scale;
-        (rate < 0.0).then(|| float(-1.0 / rate))
-    };
     let atmosphere = scene.atmosphere_sky().ok()?.atmosphere;
     let (planet, medium) = (&atmosphere.planet, &atmosphere.medium);
+    // The shorthand keys read the three constituents; a medium of free-form terms has none.
+    let air = medium.constituents();
+    let scale_height = |profile: &firmament_core::atmosphere::DensityProfile| profile.scale_height().map(float);
     Some(match path {
         "planet.equatorial_radius" | "planet.radius" => float(planet.radii.x),
         "planet.polar_radius" => float(planet.radii.z),
         "planet.atmosphere_height" => float(planet.atmosphere_height),
-        "atmosphere.rayleigh_scattering" => triple(medium.rayleigh.scattering),
-        "atmosphere.rayleigh_scale_height" => scale_height(&medium.rayleigh.density)?,
-        "atmosphere.mie_scattering" => triple(medium.mie.scattering),
-        "atmosphere.mie_extinction" => triple(medium.mie.extinction),
-        "atmosphere.mie_scale_height" => scale_height(&medium.mie.density)?,
-        "atmosphere.mie_g" => float(medium.mie.phase.g()),
-        "atmosphere.ozone_absorption" => triple(medium.absorber.absorption),
+        "atmosphere.rayleigh_scattering" => triple(air?.rayleigh.scattering),
+        "atmosphere.rayleigh_scale_height" => scale_height(&air?.rayleigh.density)?,
+        "atmosphere.mie_scattering" => triple(air?.mie.scattering),
+        "atmosphere.mie_extinction" => triple(air?.mie.extinction),
+        "atmosphere.mie_scale_height" => scale_height(&air?.mie.density)?,
+        "atmosphere.mie_g" => float(air?.mie.phase.g()),
+        "atmosphere.ozone_absorption" => triple(air?.absorber.absorption),
         "atmosphere.ground_albedo" => triple(medium.ground_albedo),
         "atmosphere.wavelengths" => toml::Value::Array(atmosphere.wavelengths.0.map(float).to_vec()),
         _ => return None,

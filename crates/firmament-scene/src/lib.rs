@@ -95,6 +95,7 @@ pub use model::{
     FogModeName, FogSection, GlColor, LightEntry, LightSpaceName, LightingModelName, LightingSection, MaterialEntry,
     MeshEntry, ObjectEntry, ShadingName, ShadowsSection, SpecularName, SpinEntry, TextureEntry, TransformEntry,
 };
+pub use model::{LayerEntry, PhaseName, ProfileName, TermEntry};
 pub use presets::{PRESETS, Preset};
 pub use spectrum::SceneSpectrum;
 pub use validate::{MAX_CAMERA_DISTANCE, MAX_IMAGE_SIDE};

@@ -7,6 +7,7 @@
 mod atmosphere;
 mod clouds;
 mod flare;
+mod medium_terms;
 mod objects;
 mod rings;
 mod shadows;
@@ -18,6 +19,7 @@ pub use self::atmosphere::{
 };
 pub use self::clouds::CloudEntry;
 pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
+pub use self::medium_terms::{LayerEntry, PhaseName, ProfileName, TermEntry};
 pub use self::objects::{
     CheckerboardEntry, FilterName, FogCoordinateName, FogModeName, FogSection, GlColor, LightEntry, LightSpaceName,
     LightingModelName, LightingSection, MaterialEntry, MeshEntry, ObjectEntry, ShadingName, SpecularName, SpinEntry,

@@ -24,7 +24,7 @@ pub mod spectrum;
 pub mod star;
 
 pub use eclipse::Eclipser;
-pub use medium::{DensityLayer, DensityProfile, Medium, MiePhase};
+pub use medium::{DensityLayer, DensityProfile, Medium, MediumTerm, Phase};
 pub use planet::Planet;
 pub use spectrum::{SpectralConversion, Spectrum, Wavelengths};
 pub use star::Sun;
@@ -32,7 +32,7 @@ pub use star::Sun;
 use crate::error::CoreError;
 
 /// A planet with its atmosphere: everything but the lights.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Atmosphere {
     /// The planet's shape and pose, and the atmosphere's height.
     pub planet: Planet,

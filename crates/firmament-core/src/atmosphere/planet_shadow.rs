@@ -98,10 +98,10 @@ impl Rays {
         let height = planet.atmosphere_height;
         let sphere = Atmosphere {
             planet: Planet::sphere(radius, height),
-            ..*atmosphere
+            ..atmosphere.clone()
         };
         let reference = Reference::new(sphere, &[], ReferenceSettings::default());
-        let density = |h: f64| atmosphere.medium.rayleigh.density.density(h);
+        let density = |h: f64| atmosphere.medium.molecular_density(h);
         let n = settings.altitudes.max(2);
         // Through clear sky down to the ground where clouds let any through, else from their tops.
         let bottom = if settings.clear_fraction > 0.0 {

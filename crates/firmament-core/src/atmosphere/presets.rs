@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::atmosphere::medium::{Absorber, DensityLayer, DensityProfile, Medium, Mie, MiePhase, Rayleigh};
+use crate::atmosphere::medium::{Absorber, Constituents, DensityLayer, DensityProfile, Medium, Mie, Phase, Rayleigh};
 use crate::atmosphere::spectrum::{Spectrum, Wavelengths};
 use crate::atmosphere::{Atmosphere, Planet, Sun};
 
@@ -26,23 +26,25 @@ pub const ASTRONOMICAL_UNIT: f64 = 149_597_870_700.0;
 pub fn earth() -> Atmosphere {
     Atmosphere {
         planet: Planet::spheroid(WGS84_EQUATORIAL_RADIUS, WGS84_POLAR_RADIUS, 60_000.0),
-        medium: Medium {
-            rayleigh: Rayleigh {
-                scattering: Spectrum::new(5.802e-6, 13.558e-6, 33.100e-6),
-                density: DensityProfile::single(DensityLayer::exponential(8_000.0)),
+        medium: Medium::from_constituents(
+            &Constituents {
+                rayleigh: Rayleigh {
+                    scattering: Spectrum::new(5.802e-6, 13.558e-6, 33.100e-6),
+                    density: DensityProfile::single(DensityLayer::exponential(8_000.0)),
+                },
+                mie: Mie {
+                    scattering: Spectrum::splat(3.996e-6),
+                    extinction: Spectrum::splat(4.440e-6),
+                    density: DensityProfile::single(DensityLayer::exponential(1_200.0)),
+                    phase: Phase::CornetteShanks { g: 0.8 },
+                },
+                absorber: Absorber {
+                    absorption: Spectrum::new(0.650e-6, 1.881e-6, 0.085e-6),
+                    density: DensityProfile::tent(10_000.0, 25_000.0, 40_000.0),
+                },
             },
-            mie: Mie {
-                scattering: Spectrum::splat(3.996e-6),
-                extinction: Spectrum::splat(4.440e-6),
-                density: DensityProfile::single(DensityLayer::exponential(1_200.0)),
-                phase: MiePhase::CornetteShanks { g: 0.8 },
-            },
-            absorber: Absorber {
-                absorption: Spectrum::new(0.650e-6, 1.881e-6, 0.085e-6),
-                density: DensityProfile::tent(10_000.0, 25_000.0, 40_000.0),
-            },
-            ground_albedo: Spectrum::splat(0.1),
-        },
+            Spectrum::splat(0.1),
+        ),
         wavelengths: Wavelengths::default(),
     }
 }
@@ -84,23 +86,25 @@ pub fn mars() -> Atmosphere {
     let albedo = Spectrum::new(0.974, 0.954, 0.887);
     Atmosphere {
         planet: Planet::spheroid(3_396_190.0, 3_376_200.0, 80_000.0),
-        medium: Medium {
-            rayleigh: Rayleigh {
-                scattering: rayleigh,
-                density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
+        medium: Medium::from_constituents(
+            &Constituents {
+                rayleigh: Rayleigh {
+                    scattering: rayleigh,
+                    density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
+                },
+                mie: Mie {
+                    scattering: albedo * dust_extinction,
+                    extinction: Spectrum::splat(dust_extinction),
+                    density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
+                    phase: Phase::HenyeyGreenstein { g: 0.63 },
+                },
+                absorber: Absorber {
+                    absorption: Spectrum::ZERO,
+                    density: DensityProfile::single(DensityLayer::EMPTY),
+                },
             },
-            mie: Mie {
-                scattering: albedo * dust_extinction,
-                extinction: Spectrum::splat(dust_extinction),
-                density: DensityProfile::single(DensityLayer::exponential(11_100.0)),
-                phase: MiePhase::HenyeyGreenstein { g: 0.63 },
-            },
-            absorber: Absorber {
-                absorption: Spectrum::ZERO,
-                density: DensityProfile::single(DensityLayer::EMPTY),
-            },
-            ground_albedo: Spectrum::splat(0.25),
-        },
+            Spectrum::splat(0.25),
+        ),
         wavelengths: Wavelengths::default(),
     }
 }
@@ -158,23 +162,25 @@ pub fn saturn() -> Atmosphere {
     );
     Atmosphere {
         planet: Planet::spheroid(60_268_000.0, 54_364_000.0, 600_000.0),
-        medium: Medium {
-            rayleigh: Rayleigh {
-                scattering: rayleigh,
-                density: DensityProfile::single(DensityLayer::exponential(59_500.0)),
+        medium: Medium::from_constituents(
+            &Constituents {
+                rayleigh: Rayleigh {
+                    scattering: rayleigh,
+                    density: DensityProfile::single(DensityLayer::exponential(59_500.0)),
+                },
+                mie: Mie {
+                    scattering: Spectrum::ZERO,
+                    extinction: Spectrum::ZERO,
+                    density: DensityProfile::single(DensityLayer::EMPTY),
+                    phase: Phase::HenyeyGreenstein { g: 0.0 },
+                },
+                absorber: Absorber {
+                    absorption: Spectrum::ZERO,
+                    density: DensityProfile::single(DensityLayer::EMPTY),
+                },
             },
-            mie: Mie {
-                scattering: Spectrum::ZERO,
-                extinction: Spectrum::ZERO,
-                density: DensityProfile::single(DensityLayer::EMPTY),
-                phase: MiePhase::HenyeyGreenstein { g: 0.0 },
-            },
-            absorber: Absorber {
-                absorption: Spectrum::ZERO,
-                density: DensityProfile::single(DensityLayer::EMPTY),
-            },
-            ground_albedo: Spectrum::new(0.55, 0.45, 0.30),
-        },
+            Spectrum::new(0.55, 0.45, 0.30),
+        ),
         wavelengths,
     }
 }
@@ -213,7 +219,7 @@ mod tests {
         // H₂ cross-section at 550 nm from Dalgarno & Williams, worked by hand: 9.38e-32 m².
         assert!((h2_rayleigh_cross_section(550.0) / 9.377e-32 - 1.0).abs() < 1e-3);
         // Rayleigh coefficients as documented, and blue-heavy like any Rayleigh atmosphere.
-        let rayleigh = saturn.medium.rayleigh.scattering;
+        let rayleigh = saturn.medium.terms[0].scattering;
         for (got, want) in rayleigh.to_array().into_iter().zip([2.051e-6, 4.881e-6, 12.28e-6]) {
             assert!((got / want - 1.0).abs() < 5e-3, "{rayleigh}");
         }

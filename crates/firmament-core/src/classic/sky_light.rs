@@ -54,7 +54,7 @@ impl<'a> SkyLight<'a> {
             paths: SKY_IRRADIANCE_PATHS,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+        let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
             .with_eclipsers(&sky.eclipsers)
             .with_rings(sky.rings.as_ref());
         Self {
@@ -232,7 +232,7 @@ mod tests {
         // The world frame East-North-Up on the surface at 45° N.
         earth.planet = earth.planet.posed_at(45f64.to_radians(), 0.0);
         let high = AtmosphereSky {
-            atmosphere: earth,
+            atmosphere: earth.clone(),
             suns: vec![presets::earth_sun(DVec3::new(0.0, 0.5, 1.0).normalize())],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
@@ -296,7 +296,7 @@ mod tests {
         let sky = |zenith_deg: f64, clouds: Vec<CloudLayer>| {
             let z = zenith_deg.to_radians();
             AtmosphereSky {
-                atmosphere: earth,
+                atmosphere: earth.clone(),
                 suns: vec![presets::earth_sun(DVec3::new(0.0, z.sin(), z.cos()))],
                 clouds,
                 eclipsers: Vec::new(),

@@ -63,9 +63,13 @@ pub fn sun_at_eye(
     sun: &Sun,
     eye: DVec3,
 ) -> SunAtEye {
-    let reference = Reference::new(*atmosphere, std::slice::from_ref(sun), ReferenceSettings::default())
-        .with_clouds(clouds)
-        .with_eclipsers(eclipsers);
+    let reference = Reference::new(
+        atmosphere.clone(),
+        std::slice::from_ref(sun),
+        ReferenceSettings::default(),
+    )
+    .with_clouds(clouds)
+    .with_eclipsers(eclipsers);
     let hidden = |d: DVec3| eclipsers.iter().any(|e| e.hides(eye, d));
     let planet = atmosphere.planet;
     let from = planet.to_planet_frame(eye);

@@ -5,7 +5,7 @@
 //! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::atmosphere::{Atmosphere, DensityLayer, DensityProfile, MiePhase, Spectrum};
+use firmament_core::atmosphere::{Atmosphere, Spectrum};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::rings::{RING_TABLE_ENTRIES, Rings};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
@@ -13,7 +13,7 @@ use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
-use super::codes;
+use super::medium::{DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, MediumGpu, MediumTermUniform, PHASE_TABLE_SAMPLES};
 use super::planet_view::PlanetView;
 use super::pack::vec3_w;
 
@@ -30,79 +30,29 @@ fn spectrum_w(s: Spectrum, w: f64) -> [f32; 4] {
     [s.x as f32, s.y as f32, s.z as f32, w as f32]
 }
 
-/// Mirrors `DensityProfile` in `shaders/atmosphere/bindings.wgsl`.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
-pub struct DensityProfileUniform {
-    /// Layer 0: exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term.
-    pub layer0: [f32; 4],
-    /// Layer 1, the same terms.
-    pub layer1: [f32; 4],
-    /// x = top of layer 0, metres.
-    pub width: [f32; 4],
-}
-
-impl DensityProfileUniform {
-    fn new(profile: &DensityProfile) -> Self {
-        let terms = |l: &DensityLayer| {
-            [
-                l.exp_term as f32,
-                l.exp_scale as f32,
-                l.linear_term as f32,
-                l.constant_term as f32,
-            ]
-        };
-        Self {
-            layer0: terms(&profile.layers[0]),
-            layer1: terms(&profile.layers[1]),
-            width: [profile.layers[0].width as f32, 0.0, 0.0, 0.0],
-        }
-    }
-}
-
 /// Mirrors `AtmosphereParams` in `shaders/atmosphere/bindings.wgsl`: everything the LUTs depend on.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct AtmosphereParamsUniforms {
     /// Ellipsoid semi-axes (m); `w` = atmosphere height (m).
     pub radii: [f32; 4],
-    /// Bottom and top radius of the LUT sphere (m), Mie g, Mie phase (a `MIE_PHASE_*` of
-    /// [`codes`]).
+    /// Bottom and top radius of the LUT sphere (m); the number of terms; unused.
     pub lut: [f32; 4],
-    /// Rayleigh scattering at density 1, m⁻¹.
-    pub rayleigh_scattering: [f32; 4],
-    /// Mie scattering at density 1, m⁻¹.
-    pub mie_scattering: [f32; 4],
-    /// Mie extinction at density 1, m⁻¹.
-    pub mie_extinction: [f32; 4],
-    /// Absorber (ozone) absorption at density 1, m⁻¹.
-    pub absorption: [f32; 4],
     /// Ground albedo.
     pub ground_albedo: [f32; 4],
-    /// The Mie phase function's Legendre coefficients a₁…a₄ (`MiePhase::legendre_coefficient`).
-    pub mie_legendre: [f32; 4],
-    /// `x` = the share f of Mie scattering that multiple scattering treats as going straight on
-    /// (a₅, at most [`MIE_FORWARD_PEAK_MAX`], 0 when a₅ < 0; see `Coefficients` in
-    /// `atmosphere/common.wgsl`); `yzw` unused.
-    pub mie_forward_peak: [f32; 4],
-    /// Rayleigh density profile.
-    pub rayleigh_density: DensityProfileUniform,
-    /// Mie density profile.
-    pub mie_density: DensityProfileUniform,
-    /// Absorber density profile.
-    pub absorber_density: DensityProfileUniform,
+    /// The medium's terms (the first `lut.z`).
+    pub terms: [MediumTermUniform; MAX_MEDIUM_TERMS],
+    /// x: how many terms have a density table, y: a phase table; zw unused.
+    pub table_counts: [u32; 4],
+    /// The indices of the terms with a density table, four to a vector.
+    pub density_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],
+    /// The indices of the terms with a phase table.
+    pub phase_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],
+    /// The density tables, [`DENSITY_TABLE_SAMPLES`] values per term, four to a vector.
+    pub density_tables: [[f32; 4]; MAX_MEDIUM_TERMS * DENSITY_TABLE_SAMPLES / 4],
+    /// The phase tables, [`PHASE_TABLE_SAMPLES`] values per term, four to a vector.
+    pub phase_tables: [[f32; 4]; MAX_MEDIUM_TERMS * PHASE_TABLE_SAMPLES / 4],
 }
-
-/// The largest share f of Mie scattering that multiple scattering sends straight on: the delta-M
-/// forward peak (Wiscombe 1977) is a₅, the first Legendre coefficient past the four bands the
-/// LUTs hold, but no more than this.
-///
-/// Delta-M assumes the light the peak scatters hardly changes over the peak's width. That holds
-/// for Mars's dust, whose sky is smooth, but not for Earth's haze near the horizon, where a view
-/// gets its forward-scattered light from half a lobe of bright sky and half a lobe of dark
-/// ground; capping f at about half of Earth's a₅ keeps both within budget. The measurements and
-/// what no single cap fits: docs/ATMOSPHERE.md, "Mie's forward peak (delta-M)" and "Not yet done".
-pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
 /// planet's mean radius `(a·b·c)^⅓` (the radius itself for a sphere).
@@ -115,39 +65,23 @@ impl AtmosphereParamsUniforms {
     /// The medium and shape of `atmosphere`.
     pub fn new(atmosphere: &Atmosphere) -> Self {
         let planet = &atmosphere.planet;
-        let medium = &atmosphere.medium;
+        let medium = MediumGpu::new(&atmosphere.medium, planet.atmosphere_height);
         let bottom = lut_bottom_radius(atmosphere);
-        let (g, phase) = match medium.mie.phase {
-            MiePhase::CornetteShanks { g } => (g, codes::MIE_PHASE_CORNETTE_SHANKS),
-            MiePhase::HenyeyGreenstein { g } => (g, codes::MIE_PHASE_HENYEY_GREENSTEIN),
-        };
         Self {
             radii: vec3_w(planet.radii, planet.atmosphere_height),
             lut: [
                 bottom as f32,
                 (bottom + planet.atmosphere_height) as f32,
-                g as f32,
-                phase as f32,
-            ],
-            rayleigh_scattering: spectrum_w(medium.rayleigh.scattering, 0.0),
-            mie_scattering: spectrum_w(medium.mie.scattering, 0.0),
-            mie_extinction: spectrum_w(medium.mie.extinction, 0.0),
-            absorption: spectrum_w(medium.absorber.absorption, 0.0),
-            ground_albedo: spectrum_w(medium.ground_albedo, 0.0),
-            mie_legendre: [1, 2, 3, 4].map(|l| medium.mie.phase.legendre_coefficient(l) as f32),
-            mie_forward_peak: [
-                medium
-                    .mie
-                    .phase
-                    .legendre_coefficient(5)
-                    .clamp(0.0, MIE_FORWARD_PEAK_MAX) as f32,
-                0.0,
-                0.0,
+                medium.count as f32,
                 0.0,
             ],
-            rayleigh_density: DensityProfileUniform::new(&medium.rayleigh.density),
-            mie_density: DensityProfileUniform::new(&medium.mie.density),
-            absorber_density: DensityProfileUniform::new(&medium.absorber.density),
+            ground_albedo: spectrum_w(atmosphere.medium.ground_albedo, 0.0),
+            terms: medium.terms,
+            table_counts: medium.table_counts,
+            density_table_terms: medium.density_table_terms,
+            phase_table_terms: medium.phase_table_terms,
+            density_tables: medium.density_tables,
+            phase_tables: medium.phase_tables,
         }
     }
 }

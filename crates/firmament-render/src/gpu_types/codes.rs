@@ -81,10 +81,20 @@ codes! {
     /// Depth convention: standard, near 0 and far 1.
     DEPTH_STANDARD = 1;
 
-    /// Mie phase function (`AtmosphereParamsUniforms::lut.w`, in an `f32`): Cornette–Shanks.
-    MIE_PHASE_CORNETTE_SHANKS = 0;
-    /// Mie phase function: Henyey–Greenstein.
-    MIE_PHASE_HENYEY_GREENSTEIN = 1;
+    /// A medium term's phase function (`MediumTermUniform::scattering.w`, in an `f32`): Rayleigh.
+    PHASE_RAYLEIGH = 0;
+    /// Phase function: Cornette–Shanks.
+    PHASE_CORNETTE_SHANKS = 1;
+    /// Phase function: Henyey–Greenstein.
+    PHASE_HENYEY_GREENSTEIN = 2;
+    /// Phase function: two Henyey–Greenstein lobes.
+    PHASE_DUAL_HENYEY_GREENSTEIN = 3;
+    /// Phase function: the term's row of the phase tables.
+    PHASE_TABLE = 4;
+    /// A medium term's density (`MediumTermUniform::extinction.w`, in an `f32`): its profile.
+    DENSITY_PROFILE = 0;
+    /// Density: the term's row of the density tables.
+    DENSITY_TABLE = 1;
     /// Sky pass variant (`SKY_MODE` of `atmosphere/sky.wgsl`): the sky-view LUT only.
     SKY_MODE_LUT = 0;
     /// Sky pass variant: a ray march per pixel only.

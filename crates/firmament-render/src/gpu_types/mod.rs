@@ -23,13 +23,15 @@ pub mod codes;
 pub mod empirical_sky;
 pub mod envmap;
 pub mod flare;
+pub mod medium;
 pub mod night_sky;
 mod pack;
 mod planet_view;
 pub mod shadow;
 pub mod sky_lighting;
 
-pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, DensityProfileUniform};
+pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms};
+pub use medium::{DensityProfileUniform, MediumTermUniform};
 pub(crate) use atmosphere::OrderSumsGpu;
 pub use camera::{ExposureStateGpu, MeteringUniforms};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};

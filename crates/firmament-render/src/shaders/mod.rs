@@ -388,7 +388,7 @@ mod tests {
     use std::collections::BTreeSet;
     use crate::gpu_types::{
         AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms, ClassicFrameUniforms,
-        ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, FlareFrameUniforms,
+        ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms, DensityProfileUniform, FlareFrameUniforms, MediumTermUniform,
         FlareInstance, FlareSourceGpu, GradientSkyUniforms, ShadowCascadeGpu, ShadowCasterUniform, ShadowFrameUniforms,
         TonemapUniforms,
     };
@@ -1043,23 +1043,40 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
         );
         assert_layout!(
             atmosphere,
+            "MediumTerm",
+            MediumTermUniform,
+            [extinction, scattering, phase, legendre, profile]
+        );
+        assert_layout!(
+            atmosphere,
             "AtmosphereParams",
             AtmosphereParamsUniforms,
             [
                 radii,
                 lut,
-                rayleigh_scattering,
-                mie_scattering,
-                mie_extinction,
-                absorption,
                 ground_albedo,
-                mie_legendre,
-                mie_forward_peak,
-                rayleigh_density,
-                mie_density,
-                absorber_density
+                terms,
+                table_counts,
+                density_table_terms,
+                phase_table_terms,
+                density_tables,
+                phase_tables
             ]
         );
+        let literal = |name: &str| {
+            let (_, c) = atmosphere.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name)).expect(name);
+            atmosphere.global_expressions[c.init].clone()
+        };
+        {
+            use crate::gpu_types::medium::{DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, PHASE_TABLE_SAMPLES};
+            for (name, value) in [
+                ("MAX_MEDIUM_TERMS", MAX_MEDIUM_TERMS),
+                ("DENSITY_TABLE_SAMPLES", DENSITY_TABLE_SAMPLES),
+                ("PHASE_TABLE_SAMPLES", PHASE_TABLE_SAMPLES),
+            ] {
+                assert_eq!(literal(name), naga::Expression::Literal(naga::Literal::U32(value as u32)), "{name}");
+            }
+        }
         assert_layout!(
             atmosphere,
             "AtmosphereSun",

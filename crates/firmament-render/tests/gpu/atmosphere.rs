@@ -72,7 +72,7 @@ fn transmittance_lut_texels_match_the_reference() {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0);
     let sky = AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
@@ -90,7 +90,7 @@ fn transmittance_lut_texels_match_the_reference() {
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect();
-    let reference = Reference::new(atmosphere, &[], ReferenceSettings::default());
+    let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
     let (width, height) = (256, 64);
     let (bottom, top) = (6_360_000.0_f64, 6_420_000.0_f64);
     let big_h = (top * top - bottom * bottom).sqrt();
@@ -172,13 +172,13 @@ fn sky_comparisons_with(
     settings: ReferenceSettings,
 ) -> Vec<Comparison> {
     let sky = AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
     };
-    let reference = Reference::new(atmosphere, &[sun], settings);
+    let reference = Reference::new(atmosphere.clone(), &[sun], settings);
     let conversion = atmosphere.spectral_conversion();
     let srgb = |spectrum| {
         let rgb = conversion.linear_srgb(spectrum);
@@ -437,7 +437,7 @@ fn several_suns_add_up() {
         render(
             gpu,
             &AtmosphereSky {
-                atmosphere,
+                atmosphere: atmosphere.clone(),
                 suns,
                 clouds: Vec::new(),
                 eclipsers: Vec::new(),
@@ -481,7 +481,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
     };
     let view = camera(DVec3::new(0.0, 0.0, 100.0), direction(120.0, 5.0), 100f64.to_radians());
     let sky = |s: Sun| AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![s],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
@@ -502,7 +502,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
         paths: STREET_PATHS,
         ..ReferenceSettings::default()
     };
-    let reference = Reference::new(atmosphere, &[moon], settings);
+    let reference = Reference::new(atmosphere.clone(), &[moon], settings);
     let at = moon.direction;
     let (g, r) = (
         gpu_radiance(&mut gpu, &sky(moon), position, at),
@@ -519,7 +519,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
     let mut gpu = gpu();
     let atmosphere = earth_sphere();
     let sky = AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![presets::earth_sun(direction(90.0, 20.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
@@ -560,7 +560,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
     let mut gpu = gpu();
     let atmosphere = earth_sphere();
     let sky = AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![presets::earth_sun(direction(90.0, 10.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
@@ -613,7 +613,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
     atmosphere.planet = Planet::spheroid(6_400_000.0, 5_760_000.0, 60_000.0);
     let sun = presets::earth_sun(DVec3::new(1.0, 0.0, 0.3).normalize());
     let sky = AtmosphereSky {
-        atmosphere,
+        atmosphere: atmosphere.clone(),
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
@@ -632,7 +632,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         paths: 8192,
         ..ReferenceSettings::default()
     };
-    let reference = Reference::new(atmosphere, &[sun], settings);
+    let reference = Reference::new(atmosphere.clone(), &[sun], settings);
     let camera = Camera { aspect: 1.0, ..view };
     let mut errors = Vec::new();
     // A row across the equator and a column over the pole: limbs, terminator, night side.

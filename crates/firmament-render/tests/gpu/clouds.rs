@@ -15,10 +15,10 @@ use crate::support::{Gpu, direction, gpu};
 fn airless() -> Atmosphere {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
-    atmosphere.medium.rayleigh.scattering = Spectrum::ZERO;
-    atmosphere.medium.mie.scattering = Spectrum::ZERO;
-    atmosphere.medium.mie.extinction = Spectrum::ZERO;
-    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[0].scattering = Spectrum::ZERO;
+    atmosphere.medium.terms[1].scattering = Spectrum::ZERO;
+    atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
     atmosphere
 }
 
@@ -213,7 +213,7 @@ fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
                 paths: 1,
                 ..Default::default()
             };
-            let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_clouds(&sky.clouds);
+            let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings).with_clouds(&sky.clouds);
             let parts = reference.radiance(&Ray {
                 origin: eye,
                 direction: view,
@@ -262,7 +262,7 @@ fn reference_radiance(sky: &AtmosphereSky, paths: usize, eye: DVec3, view: DVec3
     use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
     use firmament_core::geometry::Ray;
     let reference = Reference::new(
-        sky.atmosphere,
+        sky.atmosphere.clone(),
         &sky.suns,
         ReferenceSettings {
             paths,

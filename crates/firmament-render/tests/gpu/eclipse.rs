@@ -35,7 +35,7 @@ fn compare(gpu: &mut Gpu, sky: &AtmosphereSky, views: &[(f64, f64)], paths: usiz
         paths,
         ..ReferenceSettings::default()
     };
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
+    let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings).with_eclipsers(&sky.eclipsers);
     let conversion = sky.atmosphere.spectral_conversion();
     views
         .iter()
@@ -75,7 +75,7 @@ const VIEWS: [(f64, f64); 8] = [
 fn a_partial_eclipse_dims_the_sky_as_the_reference_does() {
     let mut gpu = gpu();
     let sky = eclipsed_sky(0.0045);
-    let visible = Reference::new(sky.atmosphere, &sky.suns, ReferenceSettings::default())
+    let visible = Reference::new(sky.atmosphere.clone(), &sky.suns, ReferenceSettings::default())
         .with_eclipsers(&sky.eclipsers)
         .sun_visible_fraction(EYE, 0);
     assert!((0.4..0.7).contains(&visible), "{visible}");
@@ -108,7 +108,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
         paths: 4096,
         ..ReferenceSettings::default()
     };
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings).with_eclipsers(&sky.eclipsers);
+    let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings).with_eclipsers(&sky.eclipsers);
     assert_eq!(reference.sun_visible_fraction(EYE, 0), 0.0);
     let horizon: Vec<(f64, f64)> = VIEWS.iter().copied().filter(|v| v.1 == 3.0).collect();
     let errors = compare(&mut gpu, &sky, &horizon, 4096);

@@ -297,7 +297,7 @@ fn reference_air(sky: &AtmosphereSky, ray: &Ray, distance: f64) -> (DVec3, DVec3
         paths: 4096,
         ..Default::default()
     };
-    let want = Reference::new(sky.atmosphere, &sky.suns, settings).radiance_before(ray, distance);
+    let want = Reference::new(sky.atmosphere.clone(), &sky.suns, settings).radiance_before(ray, distance);
     let s = sky.atmosphere.spectral_conversion().linear_srgb(want.scattered());
     let t = want.transmittance;
     (DVec3::new(s.r, s.g, s.b), DVec3::new(t.x, t.y, t.z))
@@ -1125,7 +1125,7 @@ fn the_clouds_shadow_the_air_in_front_of_the_users_geometry_as_the_reference_doe
             unreachable!("an atmosphere frame")
         };
         let reference =
-            Reference::new(sky.atmosphere, &sky.suns, ReferenceSettings::default()).with_clouds(&sky.clouds);
+            Reference::new(sky.atmosphere.clone(), &sky.suns, ReferenceSettings::default()).with_clouds(&sky.clouds);
         let ray = Ray {
             origin: frame.camera.position,
             direction: view,

@@ -85,7 +85,8 @@ fn the_maps_sky_irradiance_matches_the_reference() {
                 seed,
                 ..ReferenceSettings::default()
             };
-            let e = Reference::new(sky.atmosphere, &sky.suns, settings).ground_irradiance(frame.camera.position);
+            let e =
+                Reference::new(sky.atmosphere.clone(), &sky.suns, settings).ground_irradiance(frame.camera.position);
             let c = conversion.linear_srgb(e.sky);
             DVec3::new(c.r, c.g, c.b)
         };

@@ -29,7 +29,7 @@ fn sky_of(frame: &mut Frame) -> &mut firmament_core::frame::AtmosphereSky {
 
 /// The preset's frame with twice its Rayleigh scattering (a change of medium).
 fn thicker_air(mut frame: Frame) -> Frame {
-    let rayleigh = &mut sky_of(&mut frame).atmosphere.medium.rayleigh;
+    let rayleigh = &mut sky_of(&mut frame).atmosphere.medium.terms[0];
     rayleigh.scattering *= 2.0;
     frame
 }

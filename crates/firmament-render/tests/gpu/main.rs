@@ -16,6 +16,7 @@ mod empirical_sky;
 mod envmap;
 mod flare;
 mod lut_rebuild;
+mod medium_terms;
 mod multiscattering;
 mod night_sky;
 mod objects;

@@ -93,8 +93,8 @@ fn the_tail_matches_marching_every_order_on_earth() {
 fn the_tail_matches_marching_every_order_in_thick_haze_and_dust() {
     let mut haze = presets::earth();
     haze.planet = Planet::sphere(6_360_000.0, 60_000.0);
-    haze.medium.mie.scattering *= 10.0;
-    haze.medium.mie.extinction *= 10.0;
+    haze.medium.terms[1].scattering *= 10.0;
+    haze.medium.terms[1].absorption *= 10.0;
     haze.medium.ground_albedo = Spectrum::splat(0.3);
     check("earth, haze ×10, albedo 0.3", haze, [0.005, 0.03, 0.1]);
     check("mars", presets::mars(), [0.006, 0.06, 0.4]);

@@ -299,8 +299,8 @@ fn light_shafts_take_away_the_single_scattering_the_reference_s_occluders_do() {
     // same walls as occluders: single scattering along the ray, without less with. Black
     // surfaces leave nothing else to differ.
     let mut sky = support::street_sky(270.0, 10.0);
-    sky.atmosphere.medium.mie.scattering *= 25.0;
-    sky.atmosphere.medium.mie.extinction *= 25.0;
+    sky.atmosphere.medium.terms[1].scattering *= 25.0;
+    sky.atmosphere.medium.terms[1].absorption *= 25.0;
     sky.atmosphere.medium.ground_albedo = DVec3::ZERO;
     let camera = Camera {
         aspect: f64::from(SIZE.0) / f64::from(SIZE.1),
@@ -347,7 +347,7 @@ fn light_shafts_take_away_the_single_scattering_the_reference_s_occluders_do() {
         paths: 1,
         ..Default::default()
     };
-    let plain = firmament_core::atmosphere::reference::Reference::new(sky.atmosphere, &sky.suns, settings);
+    let plain = firmament_core::atmosphere::reference::Reference::new(sky.atmosphere.clone(), &sky.suns, settings);
     let occluded = plain.clone().with_occluders(&occluders);
     let luminance = |c: DVec3| 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
     let mut errors = Vec::new();

@@ -98,7 +98,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
     for elevation in [60.0, 20.0, 3.0] {
         let atmosphere = earth_sphere(0.0, 0.0);
         let sky = AtmosphereSky {
-            atmosphere,
+            atmosphere: atmosphere.clone(),
             suns: vec![Sun {
                 disc: false,
                 ..sun(90.0, elevation)
@@ -115,7 +115,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
                 seed,
                 ..ReferenceSettings::default()
             };
-            let irradiance = Reference::new(atmosphere, &sky.suns, settings).ground_irradiance(camera.position);
+            let irradiance = Reference::new(atmosphere.clone(), &sky.suns, settings).ground_irradiance(camera.position);
             rgb(conversion.linear_srgb(irradiance.sky))
         };
         let (a, b) = (reference(ReferenceSettings::default().seed), reference(7));
@@ -294,7 +294,7 @@ fn the_projection_matches_the_sky_the_gpu_draws() {
     let mut worst: f64 = 0.0;
     for (name, atmosphere, suns, position) in cases {
         let sky = AtmosphereSky {
-            atmosphere,
+            atmosphere: atmosphere.clone(),
             suns,
             clouds: Vec::new(),
             eclipsers: Vec::new(),

@@ -10,6 +10,7 @@ mod empirical;
 mod medium;
 mod planet;
 mod suns;
+mod terms;
 
 pub use empirical::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
 pub(crate) use empirical::{empirical_planet, empirical_sky};

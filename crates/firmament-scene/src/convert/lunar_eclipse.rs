@@ -70,7 +70,7 @@ fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow 
     }
     let binned = key as f64 * DISTANCE_BIN_M;
     let shadow = PlanetShadow::new(atmosphere, sun, binned, &ShadowSettings::default());
-    *last = Some((*atmosphere, *sun, key, shadow.clone()));
+    *last = Some((atmosphere.clone(), *sun, key, shadow.clone()));
     shadow
 }
 

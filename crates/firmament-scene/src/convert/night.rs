@@ -82,7 +82,7 @@ fn atmosphere_transmittance(sky: &AtmosphereSky, eye: DVec3) -> impl Fn(DVec3) -
     let ys = match &*last {
         Some((medium, place, ys)) if medium == atmosphere && *place == at => Arc::clone(ys),
         _ => {
-            let reference = Reference::new(*atmosphere, &[], ReferenceSettings::default());
+            let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
             let conversion = atmosphere.spectral_conversion();
             let sunlight = firmament_core::atmosphere::presets::earth_sun(DVec3::Z).irradiance;
             let space = conversion.linear_srgb(sunlight);
@@ -95,7 +95,7 @@ fn atmosphere_transmittance(sky: &AtmosphereSky, eye: DVec3) -> impl Fn(DVec3) -
                     DVec3::new(seen.r / space.r, seen.g / space.g, seen.b / space.b).max(DVec3::ZERO)
                 })
                 .collect();
-            *last = Some((*atmosphere, at, Arc::clone(&ys)));
+            *last = Some((atmosphere.clone(), at, Arc::clone(&ys)));
             ys
         }
     };
@@ -194,7 +194,7 @@ fn earth_shadow(
 ) -> Option<LunarEclipse> {
     let sun_direction = scene.real_sun(instant).ok()?.direction_enu(false);
     let (atmosphere, sun) = match air {
-        Some((atmosphere, sun)) => (*atmosphere, *sun),
+        Some((atmosphere, sun)) => (atmosphere.clone(), *sun),
         None => (presets::earth(), presets::earth_sun(sun_direction)),
     };
     lunar_eclipse(scene, instant, height_m, sun_direction, &atmosphere, &sun)
@@ -313,8 +313,8 @@ mod tests {
         // The world is east-north-up at (0°, 0°) on the ground.
         earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);
         let mut hazy = earth.clone();
-        hazy.atmosphere.medium.mie.scattering *= 4.0;
-        hazy.atmosphere.medium.mie.extinction *= 4.0;
+        hazy.atmosphere.medium.terms[1].scattering *= 4.0;
+        hazy.atmosphere.medium.terms[1].absorption *= 4.0;
         let eye = DVec3::new(0.0, 0.0, 2.0);
         let towards = DVec3::new(0.3, 0.2, 0.4);
         let clear = atmosphere_transmittance(&earth, eye)(towards);

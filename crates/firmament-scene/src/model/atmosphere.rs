@@ -7,6 +7,7 @@ use glam::DVec3;
 use serde::Deserialize;
 
 use crate::color::SceneColor;
+use crate::model::TermEntry;
 use crate::spectrum::SceneSpectrum;
 
 /// The bodies whose planet, atmosphere and sun the core has presets for.
@@ -180,6 +181,10 @@ pub struct AtmosphereSection {
     /// The three model wavelengths, nanometres, distinct, in [360, 830] (default 680, 550, 440).
     #[serde(default)]
     pub wavelengths: Option<[f64; 3]>,
+    /// `[[atmosphere.terms]]`: the whole medium as 1 to 8 terms, in place of the body's medium
+    /// and the shorthand keys above (`rayleigh_*`, `mie_*`, `ozone_*`).
+    #[serde(default)]
+    pub terms: Option<Vec<TermEntry>>,
 }
 
 /// One `[[suns]]` entry: a distant star lighting the atmosphere. Its direction is given either

@@ -2,7 +2,7 @@
 //! core's `AtmosphereSky`, and every rule they break naming the key.
 
 use firmament_core::atmosphere::star::blackbody_spectrum;
-use firmament_core::atmosphere::{MiePhase, Wavelengths, presets};
+use firmament_core::atmosphere::{Phase, Wavelengths, presets};
 use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_scene::{Body, Scene, SceneError, SceneSource, load};
 use glam::DVec3;
@@ -113,26 +113,26 @@ fn overrides_reach_the_core_values() {
     // Posed at 30° S: the world's up is the surface normal there, whose planet-frame z is −sin 30°.
     let up = a.planet.direction_to_planet_frame(DVec3::Z);
     assert!((up.z + 0.5).abs() < 1e-12, "{up}");
-    let m = a.medium;
+    let m = a.medium.constituents().expect("the shorthand's three terms");
     assert_eq!(m.rayleigh.scattering.to_array(), [1e-6, 2e-6, 3e-6]);
     assert!(close(m.rayleigh.density.density(7_000.0), (-1.0_f64).exp()));
     assert_eq!(m.mie.scattering.to_array(), [2e-6; 3]);
     assert_eq!(m.mie.extinction.to_array(), [3e-6, 3e-6, 4e-6]);
     assert!(close(m.mie.density.density(900.0), (-1.0_f64).exp()));
-    assert_eq!(m.mie.phase, MiePhase::HenyeyGreenstein { g: 0.7 });
+    assert_eq!(m.mie.phase, Phase::HenyeyGreenstein { g: 0.7 });
     assert_eq!(m.absorber.absorption.to_array(), [1e-6; 3]);
     // Earth's tent with the peak moved: 0 at 10 km, 1 at 30 km, 0 at 40 km.
     assert!(m.absorber.density.density(10_000.0).abs() < 1e-12);
     assert!((m.absorber.density.density(30_000.0) - 1.0).abs() < 1e-12);
     assert!((m.absorber.density.density(20_000.0) - 0.5).abs() < 1e-12);
     assert!(m.absorber.density.density(40_000.0).abs() < 1e-12);
-    assert_eq!(m.ground_albedo.to_array(), [0.3, 0.2, 0.1]);
+    assert_eq!(a.medium.ground_albedo.to_array(), [0.3, 0.2, 0.1]);
     assert_eq!(a.wavelengths, Wavelengths([700.0, 546.0, 435.0]));
     // Untouched: the phase of the Mie keeps Earth's kind unless told; here it was told.
     let untouched = sky_of(&preset("earth-noon", &["atmosphere.mie_g=0.5"]).expect("valid"));
     assert_eq!(
-        untouched.atmosphere.medium.mie.phase,
-        MiePhase::CornetteShanks { g: 0.5 }
+        untouched.atmosphere.medium.terms[1].phase,
+        Phase::CornetteShanks { g: 0.5 }
     );
 }
 
@@ -353,8 +353,8 @@ fn mars_has_no_ozone_tent_to_take_corners_from() {
         ],
     )
     .expect("valid");
-    let density = sky_of(&scene).atmosphere.medium.absorber.density;
-    assert!((density.density(2_000.0) - 1.0).abs() < 1e-12);
+    let density = sky_of(&scene).atmosphere.medium.terms[2].density.clone();
+    assert!((density.at(2_000.0) - 1.0).abs() < 1e-12);
 }
 
 #[test]

@@ -9,6 +9,7 @@ mod cloud_scenes;
 mod document;
 mod empirical_scenes;
 mod flare_scenes;
+mod medium_terms_scenes;
 mod object_scenes;
 mod scene_files;
 mod shadow_scenes;

@@ -116,7 +116,7 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
             paths: args.paths as usize,
             ..ReferenceSettings::default()
         };
-        let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+        let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
             .with_eclipsers(&sky.eclipsers)
             .with_rings(sky.rings.as_ref());
         let conversion = sky.atmosphere.spectral_conversion();

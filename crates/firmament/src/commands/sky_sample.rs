@@ -265,7 +265,7 @@ fn reference_sample(
     settings: ReferenceSettings,
     second_order: bool,
 ) -> Sample {
-    let reference = Reference::new(sky.atmosphere, &sky.suns, settings)
+    let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
         .with_clouds(&sky.clouds)
         .with_eclipsers(&sky.eclipsers)
         .with_rings(sky.rings.as_ref());

@@ -19,10 +19,10 @@ fn relative(a: Spectrum, b: Spectrum) -> f64 {
 fn vacuum(planet: Planet) -> Atmosphere {
     let mut atmosphere = presets::earth();
     atmosphere.planet = planet;
-    atmosphere.medium.rayleigh.scattering = Spectrum::ZERO;
-    atmosphere.medium.mie.scattering = Spectrum::ZERO;
-    atmosphere.medium.mie.extinction = Spectrum::ZERO;
-    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[0].scattering = Spectrum::ZERO;
+    atmosphere.medium.terms[1].scattering = Spectrum::ZERO;
+    atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
     atmosphere.medium.ground_albedo = Spectrum::ZERO;
     atmosphere
 }
@@ -81,8 +81,11 @@ fn a_uniform_layer_dims_by_its_path_length() {
     let sphere = Planet::sphere(earth.planet.radii.x, earth.planet.atmosphere_height);
     let mut worst_flat: f64 = 0.0;
     for (planet, latitude) in [(sphere, 0.0f64), (earth.planet, 45.0)] {
-        let atmosphere = Atmosphere { planet, ..earth };
-        let clear = Reference::new(atmosphere, &[], ReferenceSettings::default());
+        let atmosphere = Atmosphere {
+            planet,
+            ..earth.clone()
+        };
+        let clear = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
         let cloudy = clear.clone().with_clouds(std::slice::from_ref(&layer));
         let ground = planet.surface_point(latitude.to_radians(), 0.3);
         let up = planet.up(ground);
@@ -124,7 +127,7 @@ fn an_opaque_slab_ends_the_view() {
         ..Default::default()
     };
     let sun = presets::earth_sun(direction(30.0, 0.0));
-    let clear = Reference::new(atmosphere, &[sun], settings);
+    let clear = Reference::new(atmosphere.clone(), &[sun], settings);
     let cloudy = clear.clone().with_clouds(&[layer]);
     let eye = DVec3::new(0.0, 0.0, 6_371_000.0 + 5_000.0);
     let view = Ray::new(eye, direction(150.0, 180.0)).unwrap();
@@ -163,7 +166,7 @@ fn single_scattering_in_a_thin_slab_matches_the_closed_forms() {
     let ground = DVec3::new(0.0, 0.0, radius);
     for (sun_zenith, view_zenith, azimuth) in [(30.0f64, 0.0f64, 0.0f64), (60.0, 40.0, 180.0), (20.0, 70.0, 0.0)] {
         let sun = presets::earth_sun(direction(sun_zenith, 0.0));
-        let reference = Reference::new(atmosphere, &[sun], settings).with_clouds(std::slice::from_ref(&layer));
+        let reference = Reference::new(atmosphere.clone(), &[sun], settings).with_clouds(std::slice::from_ref(&layer));
         let mu0 = sun_zenith.to_radians().cos();
         let mu = view_zenith.to_radians().cos();
         // From below, looking up.
@@ -317,11 +320,11 @@ fn a_sunlit_thick_slab_reflects_as_delta_eddington_and_conserves_energy() {
 fn a_grey_white_furnace_with_clouds_conserves_energy_exactly() {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(6_371_000.0, 60_000.0);
-    atmosphere.medium.mie.extinction = atmosphere.medium.mie.scattering;
-    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
     atmosphere.medium.ground_albedo = Spectrum::ONE;
-    atmosphere.medium.rayleigh.scattering = Spectrum::splat(atmosphere.medium.rayleigh.scattering.y);
-    atmosphere.medium.mie.phase = crate::atmosphere::MiePhase::HenyeyGreenstein { g: 0.8 };
+    atmosphere.medium.terms[0].scattering = Spectrum::splat(atmosphere.medium.terms[0].scattering.y);
+    atmosphere.medium.terms[1].phase = crate::atmosphere::Phase::HenyeyGreenstein { g: 0.8 };
     let background = Spectrum::new(1.0, 2.0, 3.0);
     let settings = ReferenceSettings {
         paths: 200,
@@ -332,7 +335,7 @@ fn a_grey_white_furnace_with_clouds_conserves_energy_exactly() {
         CloudLayer::new(1_000.0, 1_800.0, 1.0, 0.01, CloudKind::Uniform),
         CloudLayer::new(1_500.0, 3_000.0, 0.5, 0.002, CloudKind::Stratocumulus),
     ];
-    let reference = Reference::new(atmosphere, &[], settings).with_clouds(&layers);
+    let reference = Reference::new(atmosphere.clone(), &[], settings).with_clouds(&layers);
     let ground = 6_371_000.0;
     for (origin, view) in [
         (DVec3::new(0.0, 0.0, ground + 2.0), DVec3::new(0.3, 0.0, 1.0)),
@@ -372,7 +375,7 @@ fn the_path_tracer_s_orders_agree_with_the_deterministic_single_scattering() {
         let runs: Vec<(MultipleScattering, MultipleScattering)> = (0..batches)
             .map(|b| {
                 let reference = Reference::new(
-                    atmosphere,
+                    atmosphere.clone(),
                     &[sun],
                     ReferenceSettings {
                         seed: 1000 + b,
@@ -397,7 +400,7 @@ fn the_path_tracer_s_orders_agree_with_the_deterministic_single_scattering() {
         let (first, first_error) = mean(&|r| r.0.per_order[1]);
         let (unforced, unforced_error) = mean(&|r| r.0.total - r.0.per_order[1]);
         let (forced, forced_error) = mean(&|r| r.1.total);
-        let reference = Reference::new(atmosphere, &[sun], settings).with_clouds(std::slice::from_ref(&layer));
+        let reference = Reference::new(atmosphere.clone(), &[sun], settings).with_clouds(std::slice::from_ref(&layer));
         let planet_view = reference.atmosphere.planet.ray_to_planet_frame(&view);
         let (single, ground, _) = reference.single_scattering(&planet_view, f64::INFINITY);
         let want = single + ground;

@@ -23,7 +23,7 @@ fn noon() -> Reference {
         paths: 16,
         ..Default::default()
     };
-    Reference::new(earth, &[presets::earth_sun(DVec3::Z)], settings)
+    Reference::new(earth.clone(), &[presets::earth_sun(DVec3::Z)], settings)
 }
 
 /// A 1 m ball 3 m over the origin hides the zenith sun from the ground under it, to the

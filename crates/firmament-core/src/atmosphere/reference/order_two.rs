@@ -52,7 +52,7 @@ use rayon::prelude::*;
 
 use super::inputs::{Reference, segment};
 use super::quadrature::GaussRule;
-use crate::atmosphere::medium::{DensityProfile, LocalCoefficients};
+use crate::atmosphere::medium::{Density, DensityProfile, LocalCoefficients};
 use crate::atmosphere::spectrum::Spectrum;
 use crate::geometry::{Ellipsoid, Ray};
 
@@ -509,22 +509,24 @@ fn polar_breaks(a: f64, b: f64, graded: usize, towards_end: bool) -> Vec<f64> {
     }
 }
 
-/// Altitudes at which rays are split into panels: every profile's kinks and, for each
-/// exponential constituent, every [`SHELL_E_FOLDS`] e-folds up to [`MAX_SHELL_E_FOLDS`].
+/// Altitudes at which rays are split into panels: every profile's kinks (a table's knots) and,
+/// for each exponential term, every [`SHELL_E_FOLDS`] e-folds up to [`MAX_SHELL_E_FOLDS`].
 fn shells(reference: &Reference) -> Vec<f64> {
     let medium = &reference.atmosphere.medium;
     let top = reference.atmosphere.planet.atmosphere_height;
     let mut shells = Vec::new();
-    let constituents = [
-        (medium.rayleigh.scattering, medium.rayleigh.density),
-        (medium.mie.extinction, medium.mie.density),
-        (medium.absorber.absorption, medium.absorber.density),
-    ];
-    for (coefficient, profile) in constituents {
-        if coefficient.max_element() <= 0.0 {
+    for term in &medium.terms {
+        if term.extinction().max_element() <= 0.0 {
             continue;
         }
-        shells.extend(profile_kinks(&profile));
+        let profile = match &term.density {
+            Density::Profile(profile) => profile,
+            Density::Table(table) => {
+                shells.extend(table.pairs().map(|(h, _)| h));
+                continue;
+            }
+        };
+        shells.extend(profile_kinks(profile));
         for (i, layer) in profile.layers.iter().enumerate() {
             if layer.exp_term == 0.0 || layer.exp_scale == 0.0 {
                 continue;
@@ -778,7 +780,7 @@ mod tests {
     fn the_horizon_is_exact_on_an_ellipsoid() {
         let mut atmosphere = presets::earth();
         atmosphere.planet = Planet::spheroid(6_378_000.0, 0.9 * 6_378_000.0, 60_000.0);
-        let reference = Reference::new(atmosphere, &[], ReferenceSettings::default());
+        let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
         let integrator = Integrator::new(&reference, &SecondOrderSettings::default());
         let planet = &atmosphere.planet;
         for (latitude, height) in [(0.3_f64, 1.0), (0.8, 2_000.0), (1.2, 40_000.0)] {

@@ -15,7 +15,11 @@ const GROUND: f64 = 6_360_000.0;
 fn bruneton_earth(sun_zenith: f64, settings: ReferenceSettings) -> Reference {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(GROUND, 60_000.0);
-    Reference::new(atmosphere, &[presets::earth_sun(direction(sun_zenith, 0.0))], settings)
+    Reference::new(
+        atmosphere.clone(),
+        &[presets::earth_sun(direction(sun_zenith, 0.0))],
+        settings,
+    )
 }
 
 /// A unit direction `zenith` degrees from +Z (the eye's up) and `azimuth` degrees from the sun's
@@ -141,8 +145,9 @@ fn second_order_adds_the_light_of_several_suns() {
         refinement: 0,
     };
     let view = view(1.0, 60.0, 45.0);
-    let second_order =
-        |suns: &[Sun]| Reference::new(atmosphere, suns, ReferenceSettings::default()).second_order(&view, &settings);
+    let second_order = |suns: &[Sun]| {
+        Reference::new(atmosphere.clone(), suns, ReferenceSettings::default()).second_order(&view, &settings)
+    };
     let (alone, with_dark) = (second_order(&[a]), second_order(&[a, dark]));
     assert!(
         ((alone - with_dark) / alone).abs().max_element() < 1e-6,

@@ -56,7 +56,7 @@ use rayon::prelude::*;
 
 use super::cloud_media::{self, Densities};
 use super::inputs::{Reference, Segment, segment};
-use crate::atmosphere::medium::{LocalCoefficients, henyey_greenstein, rayleigh_phase};
+use crate::atmosphere::medium::{LocalCoefficients, MAX_TERMS, Medium, Phase, henyey_greenstein, rayleigh_phase};
 use crate::atmosphere::spectrum::Spectrum;
 use crate::geometry::Ray;
 
@@ -368,16 +368,10 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                     weight *= factor;
                     ray = Ray { origin: p, direction };
                 } else {
-                    // Pick the next direction from a Rayleigh / Henyey–Greenstein mixture, and
+                    // Pick the next direction from the mixture of the terms' phase functions, and
                     // along segments also towards the sunlit air of suns below the horizon.
-                    let rayleigh = coefficients.rayleigh_scattering.y;
-                    let mie = coefficients.mie_scattering.y;
-                    let mie_share = if rayleigh + mie > 0.0 {
-                        mie / (rayleigh + mie)
-                    } else {
-                        0.5
-                    };
-                    let g = medium.mie.phase.g();
+                    let weights = term_weights(&coefficients);
+                    let total: f64 = weights.iter().sum();
                     let guides = if along_segment {
                         twilight_guides(reference, p)
                     } else {
@@ -390,15 +384,12 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                         let cos = sample_henyey_greenstein(GUIDE_G, rng.random());
                         rotate_to(guide, cos, 2.0 * PI * rng.random::<f64>())
                     } else {
-                        let cos = if rng.random::<f64>() < mie_share {
-                            sample_henyey_greenstein(g, rng.random())
-                        } else {
-                            sample_rayleigh(rng.random())
-                        };
+                        let term = pick_term(&weights, rng.random::<f64>() * total).unwrap_or(0);
+                        let cos = sample_phase(&medium.terms[term].phase, rng.random());
                         rotate_to(ray.direction, cos, 2.0 * PI * rng.random::<f64>())
                     };
                     let cos = ray.direction.dot(direction).clamp(-1.0, 1.0);
-                    let phase_pdf = (1.0 - mie_share) * rayleigh_phase(cos) + mie_share * henyey_greenstein(g, cos);
+                    let phase_pdf = mixture_pdf(medium, &weights, cos) / total;
                     let guide_pdf = guides
                         .iter()
                         .map(|guide| henyey_greenstein(GUIDE_G, guide.dot(direction)))
@@ -582,6 +573,10 @@ fn line_light(reference: &Reference, ray: &Ray, segment: Segment, rng: &mut Pcg6
     (air * stratum, ground)
 }
 
+#[expect(
+    clippy::large_enum_variant,
+    reason = "a flight lives on the stack for one step of a path: boxing its coefficients would allocate at every collision"
+)]
 enum Flight {
     /// A scattering event at `t`; `weight` = T(t)/p(t) per wavelength (the caller multiplies by
     /// σ_s and the phase function). `coefficients` are the medium's there — the cell's mean, the
@@ -644,9 +639,8 @@ fn sample_distance(
                 t: start + dt * i as f64 + t_in_cell,
                 weight: transmittance / pdf,
                 coefficients: LocalCoefficients {
-                    rayleigh_scattering: (nodes[i].rayleigh_scattering + nodes[i + 1].rayleigh_scattering) * 0.5,
-                    mie_scattering: (nodes[i].mie_scattering + nodes[i + 1].mie_scattering) * 0.5,
                     extinction: sigma,
+                    ..nodes[i].mean(&nodes[i + 1])
                 },
                 clouds: NO_CLOUDS,
             };
@@ -667,24 +661,12 @@ fn sample_distance(
 const NO_CLOUDS: Densities = [0.0; crate::atmosphere::clouds::MAX_CLOUD_LAYERS];
 
 /// No air.
-const NO_AIR: LocalCoefficients = LocalCoefficients {
-    rayleigh_scattering: Spectrum::ZERO,
-    mie_scattering: Spectrum::ZERO,
-    extinction: Spectrum::ZERO,
-};
+const NO_AIR: LocalCoefficients = LocalCoefficients::NONE;
 
 /// Whether the atmosphere has any air at all (clouds in a vacuum, as the plane-parallel checks
 /// have them, skip evaluating the air).
 fn has_air(reference: &Reference) -> bool {
-    let medium = &reference.atmosphere.medium;
-    [
-        medium.rayleigh.scattering,
-        medium.mie.scattering,
-        medium.mie.extinction,
-        medium.absorber.absorption,
-    ]
-    .iter()
-    .any(|c| *c != Spectrum::ZERO)
+    reference.atmosphere.medium.has_air()
 }
 
 /// The wavelength whose free flight is drawn, picked with probability proportional to the path's
@@ -753,11 +735,7 @@ impl<'a> AirTable<'a> {
             let k = self.cells.len();
             let next = self.node_at(k + 1);
             let (a, b) = (self.node, next);
-            let cell = LocalCoefficients {
-                rayleigh_scattering: (a.rayleigh_scattering + b.rayleigh_scattering) * 0.5,
-                mie_scattering: (a.mie_scattering + b.mie_scattering) * 0.5,
-                extinction: (a.extinction + b.extinction) * 0.5,
-            };
+            let cell = a.mean(&b);
             self.depth.push(self.depth[k] + cell.extinction * self.dt);
             self.cells.push(cell);
             self.node = next;
@@ -1018,17 +996,14 @@ fn scatter_with_clouds(
 ) -> (DVec3, Spectrum) {
     let medium = &reference.atmosphere.medium;
     let layers = &reference.clouds;
-    let rayleigh = coefficients.rayleigh_scattering.y.max(0.0);
-    let mie = coefficients.mie_scattering.y.max(0.0);
-    let g = medium.mie.phase.g();
-    let total = rayleigh + mie + cloud_scattering;
+    let weights = term_weights(coefficients);
+    let air: f64 = weights.iter().sum();
+    let total = air + cloud_scattering;
     let u = rng.random::<f64>() * total;
-    let cos = if u < rayleigh {
-        sample_rayleigh(rng.random())
-    } else if u < rayleigh + mie {
-        sample_henyey_greenstein(g, rng.random())
+    let cos = if let Some(term) = pick_term(&weights, u) {
+        sample_phase(&medium.terms[term].phase, rng.random())
     } else {
-        let mut rest = u - rayleigh - mie;
+        let mut rest = u - air;
         let mut chosen = None;
         for (layer, d) in layers.iter().zip(densities) {
             let share = layer.albedo * d;
@@ -1048,7 +1023,7 @@ fn scatter_with_clouds(
     let direction = rotate_to(ray.direction, cos, 2.0 * PI * rng.random::<f64>());
     let cos = ray.direction.dot(direction).clamp(-1.0, 1.0);
     let clouds = cloud_media::scattering_phase(layers, densities, cos);
-    let pdf = (rayleigh * rayleigh_phase(cos) + mie * henyey_greenstein(g, cos) + clouds) / total;
+    let pdf = (mixture_pdf(medium, &weights, cos) + clouds) / total;
     let value = medium.scattering_phase(coefficients, cos) + Spectrum::splat(clouds);
     (direction, value / pdf)
 }
@@ -1079,6 +1054,70 @@ fn transmittance_to_sun(reference: &Reference, p: DVec3, direction: DVec3, rng: 
     }
     let depth = segment_depth(reference, &ray, segment.start, segment.end);
     (-depth).exp() * clouds
+}
+
+/// Each term's share in choosing the next direction: its scattering at the middle wavelength.
+fn term_weights(coefficients: &LocalCoefficients) -> [f64; MAX_TERMS] {
+    coefficients.scattering.map(|s| s.y.max(0.0))
+}
+
+/// The term whose cumulative share `u` falls in (`u` drawn in [0, Σ weights)), or `None` past
+/// the last (the clouds' share, where they scatter too).
+fn pick_term(weights: &[f64; MAX_TERMS], mut u: f64) -> Option<usize> {
+    for (i, w) in weights.iter().enumerate() {
+        if *w > 0.0 {
+            if u < *w {
+                return Some(i);
+            }
+            u -= w;
+        }
+    }
+    None
+}
+
+/// The henyey–greenstein `g` drawn for a phase function without a sampler of its own: a
+/// table's mean cosine, kept off the needle-like lobes near ±1.
+fn proposal_g(phase: &Phase) -> f64 {
+    phase.legendre_coefficient(1).clamp(-0.9, 0.9)
+}
+
+/// Cosine of the scattering angle drawn for a term: exactly from Rayleigh, Henyey–Greenstein and
+/// the dual lobes, from Henyey–Greenstein with the same `g` for Cornette–Shanks, and with the
+/// mean cosine for a table ([`proposal_pdf`] is the density drawn from).
+fn sample_phase(phase: &Phase, u: f64) -> f64 {
+    match phase {
+        Phase::Rayleigh => sample_rayleigh(u),
+        Phase::CornetteShanks { g } | Phase::HenyeyGreenstein { g } => sample_henyey_greenstein(*g, u),
+        Phase::DualHenyeyGreenstein(dual) => {
+            if u < dual.blend {
+                sample_henyey_greenstein(dual.g_forward, u / dual.blend)
+            } else {
+                sample_henyey_greenstein(dual.g_back, (u - dual.blend) / (1.0 - dual.blend))
+            }
+        }
+        Phase::Table(_) => sample_henyey_greenstein(proposal_g(phase), u),
+    }
+}
+
+/// The density, sr⁻¹, [`sample_phase`] draws directions from.
+fn proposal_pdf(phase: &Phase, cos: f64) -> f64 {
+    match phase {
+        Phase::Rayleigh => rayleigh_phase(cos),
+        Phase::CornetteShanks { g } | Phase::HenyeyGreenstein { g } => henyey_greenstein(*g, cos),
+        Phase::DualHenyeyGreenstein(dual) => dual.eval(cos),
+        Phase::Table(_) => henyey_greenstein(proposal_g(phase), cos),
+    }
+}
+
+/// `Σ weight_i · proposal_i(cos)`: the mixture's density times the weights' sum.
+fn mixture_pdf(medium: &Medium, weights: &[f64; MAX_TERMS], cos: f64) -> f64 {
+    medium
+        .terms
+        .iter()
+        .zip(weights)
+        .filter(|(_, w)| **w > 0.0)
+        .map(|(term, w)| w * proposal_pdf(&term.phase, cos))
+        .sum()
 }
 
 /// Cosine of the scattering angle drawn from Rayleigh's phase function (inverting its CDF

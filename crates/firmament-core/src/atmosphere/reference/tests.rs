@@ -13,11 +13,41 @@ fn relative(a: Spectrum, b: Spectrum) -> f64 {
 fn rayleigh_only(planet: Planet) -> Atmosphere {
     let mut atmosphere = presets::earth();
     atmosphere.planet = planet;
-    atmosphere.medium.mie.scattering = Spectrum::ZERO;
-    atmosphere.medium.mie.extinction = Spectrum::ZERO;
-    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[1].scattering = Spectrum::ZERO;
+    atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
     atmosphere.medium.ground_albedo = Spectrum::ZERO;
     atmosphere
+}
+
+/// A pure absorber of tabulated density: the transmittance straight up is `exp(−σ_a·∫d)`, the
+/// integral the trapezoids of the table by hand (1 at the ground, ½ at 10 km, 0 from 30 km:
+/// 7.5 km + 5 km = 12.5 km), and 30° from the zenith on a flat Earth's `1/cos` within the
+/// curvature's share (below 0.2 % at 30 km).
+#[test]
+fn a_tabulated_absorber_transmits_exp_of_its_integral() {
+    use crate::atmosphere::medium::{DensityTable, MediumTerm, Phase};
+    let mut atmosphere = presets::earth();
+    atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0);
+    let absorption = Spectrum::new(1e-5, 2e-5, 3e-5);
+    atmosphere.medium.terms = vec![MediumTerm {
+        scattering: Spectrum::ZERO,
+        absorption,
+        density: crate::atmosphere::medium::Density::Table(
+            DensityTable::new("test", &[(0.0, 1.0), (10_000.0, 0.5), (30_000.0, 0.0)]).unwrap(),
+        ),
+        phase: Phase::Rayleigh,
+    }];
+    atmosphere.validate().unwrap();
+    let reference = Reference::new(atmosphere, &[], ReferenceSettings::default());
+    let ground = DVec3::new(0.0, 0.0, 6_360_000.0);
+    let want = (-absorption * 12_500.0).exp();
+    let got = reference.transmittance_to_space(ground, DVec3::Z);
+    assert!(relative(got, want) < 1e-6, "{got} vs {want}");
+    let slant = DVec3::new(0.5, 0.0, 3f64.sqrt() / 2.0);
+    let flat = (-absorption * 12_500.0 / slant.z).exp();
+    let got = reference.transmittance_to_space(ground, slant);
+    assert!(relative(got.ln(), flat.ln()) < 2e-3, "{got} vs {flat}");
 }
 
 #[test]
@@ -36,23 +66,23 @@ fn sea_level_vertical_optical_depths_of_the_earth_preset() {
         ("ozone", Spectrum::new(0.650e-6, 1.881e-6, 0.085e-6) * 15_000.0),
     ];
     for (name, want) in cases {
-        let mut atmosphere = earth;
+        let mut atmosphere = earth.clone();
         if name != "rayleigh" {
-            atmosphere.medium.rayleigh.scattering = Spectrum::ZERO;
+            atmosphere.medium.terms[0].scattering = Spectrum::ZERO;
         }
         if name != "mie" {
-            atmosphere.medium.mie.scattering = Spectrum::ZERO;
-            atmosphere.medium.mie.extinction = Spectrum::ZERO;
+            atmosphere.medium.terms[1].scattering = Spectrum::ZERO;
+            atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
         }
         if name != "ozone" {
-            atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+            atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
         }
-        let reference = Reference::new(atmosphere, &[], ReferenceSettings::default());
+        let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
         let got = reference.optical_depth(pole, top);
         assert!(relative(got, want) < 1e-7, "{name}: {got} vs {want}");
     }
     // The sums quoted in the literature for this preset: τ_R(550 nm) ≈ 0.1084, τ_M ≈ 0.00533.
-    let reference = Reference::new(earth, &[], ReferenceSettings::default());
+    let reference = Reference::new(earth.clone(), &[], ReferenceSettings::default());
     let total = reference.optical_depth(pole, top);
     assert!((total.y - (0.10846 + 0.005328 + 0.028215)).abs() < 1e-4, "{total}");
 }
@@ -60,9 +90,9 @@ fn sea_level_vertical_optical_depths_of_the_earth_preset() {
 #[test]
 fn beer_lambert_in_a_constant_medium() {
     let mut atmosphere = rayleigh_only(Planet::sphere(1_000_000.0, 100_000.0));
-    atmosphere.medium.rayleigh.density = DensityProfile::single(DensityLayer::constant());
-    let reference = Reference::new(atmosphere, &[], ReferenceSettings::default());
-    let beta = atmosphere.medium.rayleigh.scattering;
+    atmosphere.medium.terms[0].density = DensityProfile::single(DensityLayer::constant()).into();
+    let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
+    let beta = atmosphere.medium.terms[0].scattering;
     // A horizontal chord 50 km up: length 2·√((R+H)² − (R+50 km)²).
     let p = DVec3::new(0.0, 0.0, 1_050_000.0);
     let half_chord = (1_100_000.0_f64.powi(2) - 1_050_000.0_f64.powi(2)).sqrt();
@@ -92,7 +122,7 @@ fn transmittance_is_reciprocal_and_zero_through_the_ground() {
 fn single_scattering_matches_the_plane_parallel_closed_form() {
     let radius = 1e10;
     let atmosphere = rayleigh_only(Planet::sphere(radius, 60_000.0));
-    let beta = atmosphere.medium.rayleigh.scattering;
+    let beta = atmosphere.medium.terms[0].scattering;
     let tau = beta * 8_000.0 * (1.0 - (-7.5_f64).exp());
     for (view_zenith, sun_zenith, azimuth) in [(0.0_f64, 30.0_f64, 0.0_f64), (60.0, 20.0, 90.0), (45.0, 70.0, 180.0)] {
         let (vz, sz, az) = (view_zenith.to_radians(), sun_zenith.to_radians(), azimuth.to_radians());
@@ -100,7 +130,7 @@ fn single_scattering_matches_the_plane_parallel_closed_form() {
         let sun_direction = DVec3::new(sz.sin() * az.cos(), sz.sin() * az.sin(), sz.cos());
         let sun = presets::earth_sun(sun_direction);
         let reference = Reference::new(
-            atmosphere,
+            atmosphere.clone(),
             &[sun],
             ReferenceSettings {
                 paths: 1,
@@ -133,7 +163,7 @@ fn single_scattering_is_mirror_symmetric_and_reciprocal() {
         DVec3::new(z.sin() * a.cos(), z.sin() * a.sin(), z.cos())
     };
     let single = |view: DVec3, sun: DVec3| {
-        let reference = Reference::new(atmosphere, &[presets::earth_sun(sun)], settings);
+        let reference = Reference::new(atmosphere.clone(), &[presets::earth_sun(sun)], settings);
         reference
             .single_scattering(&Ray::new(eye, view).unwrap(), f64::INFINITY)
             .0
@@ -147,7 +177,7 @@ fn single_scattering_is_mirror_symmetric_and_reciprocal() {
     // scales radiance by μ₀'/μ₀. Rayleigh alone on the curved WGS84 Earth.
     let rayleigh = rayleigh_only(atmosphere.planet);
     let single = |view: DVec3, sun: DVec3| {
-        let reference = Reference::new(rayleigh, &[presets::earth_sun(sun)], settings);
+        let reference = Reference::new(rayleigh.clone(), &[presets::earth_sun(sun)], settings);
         reference
             .single_scattering(&Ray::new(eye, view).unwrap(), f64::INFINITY)
             .0
@@ -163,14 +193,14 @@ fn single_scattering_is_mirror_symmetric_and_reciprocal() {
 /// Every path eventually leaves, so the radiance everywhere must equal the background.
 fn furnace(grey: bool) -> (Atmosphere, Spectrum) {
     let mut atmosphere = presets::earth();
-    atmosphere.medium.mie.extinction = atmosphere.medium.mie.scattering;
-    atmosphere.medium.absorber.absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[1].absorption = Spectrum::ZERO;
+    atmosphere.medium.terms[2].absorption = Spectrum::ZERO;
     atmosphere.medium.ground_albedo = Spectrum::ONE;
     if grey {
         // Equal coefficients at every wavelength and a phase function the sampler draws exactly:
         // every path's weight is exactly 1, so the estimate has no variance at all.
-        atmosphere.medium.rayleigh.scattering = Spectrum::splat(atmosphere.medium.rayleigh.scattering.y);
-        atmosphere.medium.mie.phase = crate::atmosphere::MiePhase::HenyeyGreenstein { g: 0.8 };
+        atmosphere.medium.terms[0].scattering = Spectrum::splat(atmosphere.medium.terms[0].scattering.y);
+        atmosphere.medium.terms[1].phase = crate::atmosphere::Phase::HenyeyGreenstein { g: 0.8 };
     }
     (atmosphere, Spectrum::new(1.0, 2.0, 3.0))
 }
@@ -196,7 +226,7 @@ fn grey_white_furnace_conserves_energy_exactly() {
         background,
         ..Default::default()
     };
-    let reference = Reference::new(atmosphere, &[], settings);
+    let reference = Reference::new(atmosphere.clone(), &[], settings);
     for ray in furnace_rays(&atmosphere) {
         let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths, f64::INFINITY);
         assert!(
@@ -217,7 +247,7 @@ fn spectral_white_furnace_conserves_energy_within_noise() {
         background,
         ..Default::default()
     };
-    let reference = Reference::new(atmosphere, &[], settings);
+    let reference = Reference::new(atmosphere.clone(), &[], settings);
     for ray in furnace_rays(&atmosphere) {
         let radiance = path_tracer::multiple_scattering(&reference, &ray, 0, settings.paths, f64::INFINITY);
         let deviation = (radiance.total - background).abs();
@@ -239,7 +269,7 @@ fn multiple_scattering_converges_with_order() {
         paths: 8_000,
         ..Default::default()
     };
-    let reference = Reference::new(atmosphere, &[sun], settings);
+    let reference = Reference::new(atmosphere.clone(), &[sun], settings);
     let eye = DVec3::new(0.0, 0.0, atmosphere.planet.radii.z + 2.0);
     let parts = reference.radiance(&Ray::new(eye, DVec3::new(-0.3, 0.2, 0.5)).unwrap());
     let orders = &parts.multiple.per_order;
@@ -270,7 +300,7 @@ fn results_do_not_depend_on_the_thread_count() {
     let atmosphere = presets::earth();
     let sun = presets::earth_sun(DVec3::new(0.0, 0.6, 0.8));
     let reference = Reference::new(
-        atmosphere,
+        atmosphere.clone(),
         &[sun],
         ReferenceSettings {
             paths: 64,
@@ -295,7 +325,7 @@ fn ground_irradiance_is_plausible_at_noon() {
     let sun_zenith = 30.0_f64.to_radians();
     let sun = presets::earth_sun(DVec3::new(sun_zenith.sin(), 0.0, sun_zenith.cos()));
     let reference = Reference::new(
-        atmosphere,
+        atmosphere.clone(),
         &[sun],
         ReferenceSettings {
             paths: 2000,
@@ -333,7 +363,7 @@ fn radiance_before_a_surface_splits_the_ray() {
         paths: 1,
         ..Default::default()
     };
-    let reference = Reference::new(atmosphere, &[sun], settings);
+    let reference = Reference::new(atmosphere.clone(), &[sun], settings);
     let eye = atmosphere.planet.surface_point(0.0, 0.0) + DVec3::Z * 100.0;
     let view = Ray::new(eye, DVec3::new(0.0, 1.0, 0.05)).unwrap();
     let distance = 20_000.0;

@@ -286,12 +286,12 @@ impl AtmospherePass {
         if self.uploaded != Some(params) {
             queue.write_buffer(&self.build.params, 0, bytemuck::bytes_of(&params));
             self.uploaded = Some(params);
-            self.rebuild.start(sky.atmosphere);
+            self.rebuild.start(sky.atmosphere.clone());
         }
         let live_sky;
         let sky = match self.rebuild.plan() {
             Some(live) => {
-                let mut atmosphere = *live;
+                let mut atmosphere = live.clone();
                 atmosphere.planet.center = sky.atmosphere.planet.center;
                 atmosphere.planet.orientation = sky.atmosphere.planet.orientation;
                 // For the view's uniforms only: the clouds were uploaded above.

@@ -18,27 +18,40 @@ const MAX_ECLIPSERS: u32 = 4u;
 const RING_TABLE_ENTRIES: u32 = 128u;
 const RING_TABLE_VECTORS: u32 = 32u;
 
+// The medium's terms and tables (firmament-render's gpu_types/medium.rs): the most terms, and
+// the values of each term's density table (altitudes evenly spread from the ground to the top)
+// and phase table (scattering angles evenly spread from 0 to π), four to a vector.
+const MAX_MEDIUM_TERMS: u32 = 8u;
+const DENSITY_TABLE_SAMPLES: u32 = 128u;
+const PHASE_TABLE_SAMPLES: u32 = 256u;
+
 struct DensityProfile {
     layer0: vec4<f32>, // exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term: below width
     layer1: vec4<f32>, // the same terms above width
     width: vec4<f32>,  // x = top of layer 0 (m); yzw unused
 }
 
+// One term of the medium.
+struct MediumTerm {
+    extinction: vec4<f32>, // rgb m⁻¹ at density 1 (scattering + absorption); w = DENSITY_* (generated/constants)
+    scattering: vec4<f32>, // rgb m⁻¹ at density 1; w = PHASE_*
+    phase: vec4<f32>,      // x = g (the forward lobe's), y = the backward lobe's g, z = the forward lobe's
+                           // weight; w = f, the delta-M forward peak (see Coefficients)
+    legendre: vec4<f32>,   // the phase function's Legendre coefficients a_1 … a_4 (a_0 = 1)
+    profile: DensityProfile,
+}
+
 // The medium: everything the LUTs depend on.
 struct AtmosphereParams {
-    radii: vec4<f32>,               // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
-    lut: vec4<f32>,                 // x, y = bottom and top radius of the LUT sphere (m); z = mie g;
-                                    // w = mie phase (MIE_PHASE_*, generated/constants)
-    rayleigh_scattering: vec4<f32>, // rgb m⁻¹ at density 1
-    mie_scattering: vec4<f32>,
-    mie_extinction: vec4<f32>,
-    absorption: vec4<f32>,
-    ground_albedo: vec4<f32>,       // rgb, dimensionless
-    mie_legendre: vec4<f32>,        // the Mie phase's Legendre coefficients a_1 … a_4 (a_0 = 1)
-    mie_forward_peak: vec4<f32>,    // x = f, the delta-M forward peak (see Coefficients); yzw unused
-    rayleigh_density: DensityProfile,
-    mie_density: DensityProfile,
-    absorber_density: DensityProfile,
+    radii: vec4<f32>,         // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
+    lut: vec4<f32>,           // x, y = bottom and top radius of the LUT sphere (m); z = number of terms
+    ground_albedo: vec4<f32>, // rgb, dimensionless
+    terms: array<MediumTerm, MAX_MEDIUM_TERMS>,
+    table_counts: vec4<u32>,                      // x = terms with a density table, y = with a phase table
+    density_table_terms: array<vec4<u32>, 2>,     // their indices, four to a vector
+    phase_table_terms: array<vec4<u32>, 2>,
+    density_tables: array<vec4<f32>, 256>, // MAX_MEDIUM_TERMS · DENSITY_TABLE_SAMPLES / 4
+    phase_tables: array<vec4<f32>, 512>,   // MAX_MEDIUM_TERMS · PHASE_TABLE_SAMPLES / 4
 }
 
 struct AtmosphereSun {

@@ -26,55 +26,159 @@ fn profile_density(profile: DensityProfile, h: f32) -> f32 {
     return select(layer_density(profile.layer1, h), layer_density(profile.layer0, h), h < profile.width.x);
 }
 
-// The local coefficients at altitude h: rayleigh scattering, mie scattering, extinction, and the
-// extinction that light already scattered once meets, `diffuse_extinction`.
+fn term_count() -> u32 {
+    return min(u32(atmosphere.lut.z), MAX_MEDIUM_TERMS);
+}
+
+// Where x in [0, 1] falls in row `row` of a table of `samples` values per row: the index of the
+// value before it (tables hold four values to a vector) and the fraction towards the next.
+struct TableSpot {
+    at: u32,
+    t: f32,
+}
+
+fn table_spot(row: u32, samples: u32, x: f32) -> TableSpot {
+    let position = clamp(x, 0.0, 1.0) * f32(samples - 1u);
+    let k = min(u32(position), samples - 2u);
+    return TableSpot(row * samples + k, position - f32(k));
+}
+
+// Linear interpolation in a term's row of the density tables (x: altitude over the height) and
+// of the phase tables (x: scattering angle over π).
+fn density_table_value(row: u32, x: f32) -> f32 {
+    let s = table_spot(row, DENSITY_TABLE_SAMPLES, x);
+    let b = s.at + 1u;
+    return mix(atmosphere.density_tables[s.at / 4u][s.at % 4u], atmosphere.density_tables[b / 4u][b % 4u], s.t);
+}
+
+fn phase_table_value(row: u32, x: f32) -> f32 {
+    let s = table_spot(row, PHASE_TABLE_SAMPLES, x);
+    let b = s.at + 1u;
+    return mix(atmosphere.phase_tables[s.at / 4u][s.at % 4u], atmosphere.phase_tables[b / 4u][b % 4u], s.t);
+}
+
+// The terms whose density is a table, and those whose phase function is one (their indices).
+// Tables are read in loops of their own so that an air without them pays nothing for them: a
+// shader compiler that runs both sides of a branch (llvmpipe does) would otherwise read the
+// tables for every term.
+fn density_table_term(k: u32) -> u32 {
+    return atmosphere.density_table_terms[k / 4u][k % 4u];
+}
+
+fn phase_table_term(k: u32) -> u32 {
+    return atmosphere.phase_table_terms[k / 4u][k % 4u];
+}
+
+// The local coefficients at altitude h: each term's density, the extinction, and the extinction
+// that light already scattered once meets, `diffuse_extinction`.
 //
 // That is the delta-M method (Wiscombe 1977, "The Delta-M Method: Rapid Yet Accurate Radiative
 // Flux Calculations for Strongly Asymmetric Phase Functions", J. Atmos. Sci. 34): multiple
-// scattering sees the Mie phase function only through bands 0–4 (`scatter_moments` in luts.wgsl),
-// and Mie's forward peak reaches far beyond them (a_5 = 0.37 for Cornette–Shanks with g = 0.8).
-// So a share f of it is split off as light that goes straight on — it lowers the extinction
-// scattered light meets by f·σ_M — and the rest, with coefficients a_l − f, is left to bands 0–4.
-// Delta-M takes f = a_5; firmament takes at most 0.19 (MIE_FORWARD_PEAK_MAX in
-// gpu_types/atmosphere.rs: Earth's horizon light is a band narrower than its haze's wide peak).
+// scattering sees each phase function only through bands 0–4 (`scatter_moments` in luts.wgsl),
+// and a forward peak reaches far beyond them (a_5 = 0.37 for Cornette–Shanks with g = 0.8).
+// So a share f of each term's scattering is split off as light that goes straight on — it lowers
+// the extinction scattered light meets by f·σ_s — and the rest, with coefficients a_l − f, is
+// left to bands 0–4. Delta-M takes f = a_5; firmament takes at most 0.19 (MIE_FORWARD_PEAK_MAX in
+// gpu_types/medium.rs: Earth's horizon light is a band narrower than its haze's wide peak).
 // Cutting the series off after band 4 instead leaves the sky dark near the horizon
 // (docs/ATMOSPHERE.md, "Mie's forward peak").
-// Sunlight itself keeps the full extinction and the exact phase function: single scattering, the
+// Sunlight itself keeps the full extinction and the exact phase functions: single scattering, the
 // sun's disc and whatever stands behind the air (whose transmittance is `extinction`'s) are exact.
 struct Coefficients {
-    rayleigh: vec3<f32>,
-    mie: vec3<f32>,
+    density: array<f32, MAX_MEDIUM_TERMS>,
     extinction: vec3<f32>,
     diffuse_extinction: vec3<f32>,
 }
 
+// A term's profile density; 0 for a term whose density is a table (its profile is all zeros).
+fn term_profile_density(i: u32, h: f32) -> f32 {
+    return profile_density(atmosphere.terms[i].profile, h);
+}
+
+fn term_table_density(i: u32, h: f32) -> f32 {
+    return density_table_value(i, h / atmosphere.radii.w);
+}
+
+// The extinction alone at altitude h, m⁻¹ (what transmittance needs).
+fn extinction_at(h: f32) -> vec3<f32> {
+    var extinction = vec3<f32>(0.0);
+    for (var i = 0u; i < term_count(); i++) {
+        extinction += atmosphere.terms[i].extinction.rgb * term_profile_density(i, h);
+    }
+    for (var k = 0u; k < atmosphere.table_counts.x; k++) {
+        let i = density_table_term(k);
+        extinction += atmosphere.terms[i].extinction.rgb * term_table_density(i, h);
+    }
+    return extinction;
+}
+
 fn coefficients_at(h: f32) -> Coefficients {
-    let rayleigh = atmosphere.rayleigh_scattering.rgb * profile_density(atmosphere.rayleigh_density, h);
-    let mie_density = profile_density(atmosphere.mie_density, h);
     var c: Coefficients;
-    c.rayleigh = rayleigh;
-    c.mie = atmosphere.mie_scattering.rgb * mie_density;
-    c.extinction = rayleigh + atmosphere.mie_extinction.rgb * mie_density
-        + atmosphere.absorption.rgb * profile_density(atmosphere.absorber_density, h);
-    c.diffuse_extinction = c.extinction - atmosphere.mie_forward_peak.x * c.mie;
+    var forward = vec3<f32>(0.0);
+    for (var i = 0u; i < term_count(); i++) {
+        let density = term_profile_density(i, h);
+        c.density[i] = density;
+        c.extinction += atmosphere.terms[i].extinction.rgb * density;
+        forward += atmosphere.terms[i].phase.w * (atmosphere.terms[i].scattering.rgb * density);
+    }
+    for (var k = 0u; k < atmosphere.table_counts.x; k++) {
+        let i = density_table_term(k);
+        let density = term_table_density(i, h);
+        c.density[i] = density;
+        c.extinction += atmosphere.terms[i].extinction.rgb * density;
+        forward += atmosphere.terms[i].phase.w * (atmosphere.terms[i].scattering.rgb * density);
+    }
+    c.diffuse_extinction = c.extinction - forward;
     return c;
+}
+
+// Term i's scattering at a point of coefficients c, m⁻¹.
+fn term_scattering(c: Coefficients, i: u32) -> vec3<f32> {
+    return atmosphere.terms[i].scattering.rgb * c.density[i];
 }
 
 fn rayleigh_phase(nu: f32) -> f32 {
     return 3.0 / (16.0 * PI) * (1.0 + nu * nu);
 }
 
-fn mie_phase(nu: f32) -> f32 {
-    let g = atmosphere.lut.z;
+fn henyey_greenstein(g: f32, nu: f32) -> f32 {
     let denominator = 1.0 + g * g - 2.0 * g * nu;
-    let hg = (1.0 - g * g) / (4.0 * PI * denominator * sqrt(denominator));
-    let cs = 3.0 / (8.0 * PI) * (1.0 - g * g) * (1.0 + nu * nu) / ((2.0 + g * g) * denominator * sqrt(denominator));
-    return select(cs, hg, u32(atmosphere.lut.w) == MIE_PHASE_HENYEY_GREENSTEIN);
+    return (1.0 - g * g) / (4.0 * PI * denominator * sqrt(denominator));
 }
 
-// σ_s·p for light travelling along the sun direction scattered into the view: nu = dot(view, sun).
+fn cornette_shanks(g: f32, nu: f32) -> f32 {
+    let denominator = 1.0 + g * g - 2.0 * g * nu;
+    return 3.0 / (8.0 * PI) * (1.0 - g * g) * (1.0 + nu * nu) / ((2.0 + g * g) * denominator * sqrt(denominator));
+}
+
+// Term i's analytic phase function at nu, sr⁻¹ (0 for a table: see `scattering_phase`). Every
+// kind is computed and one selected, without branches.
+fn analytic_phase(i: u32, nu: f32) -> f32 {
+    let kind = u32(atmosphere.terms[i].scattering.w);
+    let p = atmosphere.terms[i].phase;
+    let hg = henyey_greenstein(p.x, nu);
+    var value = rayleigh_phase(nu);
+    value = select(value, cornette_shanks(p.x, nu), kind == PHASE_CORNETTE_SHANKS);
+    value = select(value, hg, kind == PHASE_HENYEY_GREENSTEIN);
+    value = select(value, p.z * hg + (1.0 - p.z) * henyey_greenstein(p.y, nu), kind == PHASE_DUAL_HENYEY_GREENSTEIN);
+    return select(value, 0.0, kind == PHASE_TABLE);
+}
+
+// Σ σ_s·p over the terms for light travelling along the sun direction scattered into the view:
+// nu = dot(view, sun).
 fn scattering_phase(c: Coefficients, nu: f32) -> vec3<f32> {
-    return c.rayleigh * rayleigh_phase(nu) + c.mie * mie_phase(nu);
+    var total = vec3<f32>(0.0);
+    for (var i = 0u; i < term_count(); i++) {
+        total += term_scattering(c, i) * analytic_phase(i, nu);
+    }
+    if atmosphere.table_counts.y > 0u {
+        let x = acos(clamp(nu, -1.0, 1.0)) / PI;
+        for (var k = 0u; k < atmosphere.table_counts.y; k++) {
+            let i = phase_table_term(k);
+            total += term_scattering(c, i) * phase_table_value(i, x);
+        }
+    }
+    return total;
 }
 
 // ---- Sphere geometry of the LUTs (Bruneton 2017, functions.glsl) ----

@@ -73,30 +73,34 @@ struct Moments {
 // ω = (`toward`, ·, `up`). A phase function with Legendre coefficients a_l scatters
 // Σ a_l L_l(ω), L_l the field's degree-l spherical-harmonic band; L_0 = psi, L_1(ω) = 3 ω·m (m the
 // first moments), L_2(ω) = 5·(3/2 ωᵀQω − psi/2) (Q the second-moment matrix), and L_3, L_4 the
-// stored projections times their harmonics. Rayleigh's phase (3/16π)(1 + cos²) has a_2 = 1/10
-// and nothing else, so its part is exact: ¾(psi + ωᵀQω). Mie's is truncated after band 4, with
-// the medium's own a_l (`atmosphere.mie_legendre`, from firmament_core's
-// MiePhase::legendre_coefficient) less its forward peak f (delta-M, see `Coefficients` in
-// common.wgsl: the peak's light goes straight on, which the marches account for by
-// `diffuse_extinction`). Bands 3 and 4 matter for a dusty sky (Mars, g = 0.63), whole and not
+// stored projections times their harmonics. Each term's phase function enters with its own a_l
+// (`legendre`, from firmament_core's Phase::legendre_coefficient) less its forward peak f
+// (delta-M, see `Coefficients` in common.wgsl: the peak's light goes straight on, which the
+// marches account for by `diffuse_extinction`). Rayleigh's phase (3/16π)(1 + cos²) has
+// a_2 = 1/10 and nothing else, so its part is exact: ¾(psi + ωᵀQω); the others are truncated
+// after band 4, and each is clamped at 0 where its truncation would go negative. Bands 3 and 4 matter for a dusty sky (Mars, g = 0.63), whole and not
 // only about the up and sun axes (docs/ATMOSPHERE.md, "The GPU pipeline"). Isotropic light (m = 0, Q = psi/3 on the diagonal, no bands 3–4) gives
-// (σ_R + (1 − f)·σ_M)·psi.
+// Σ (1 − f_i)·σ_i·psi.
 fn scatter_moments(c: Coefficients, m: Moments, up_axis: vec3<f32>, s: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let up = dot(d, up_axis);
     let toward = toward_sun_cosine(d, up_axis, s);
     let yy = m.psi - m.xx - m.zz;
     let across2 = max(1.0 - up * up - toward * toward, 0.0);
     let second = m.zz * up * up + m.xx * toward * toward + yy * across2 + 2.0 * m.xz * toward * up;
-    let f = atmosphere.mie_forward_peak.x;
-    let a = atmosphere.mie_legendre - f;
     let band1 = 3.0 * (m.x * toward + m.z * up);
     let band2 = 5.0 * (1.5 * second - 0.5 * m.psi);
     let band3 = dot(m.band3, band3_basis(toward, across2, up));
     let b4 = band4_basis(toward, across2, up);
     let band4 = dot(m.band4, b4.low) + m.band4_m4 * b4.m4;
-    let higher = (a.z * band3 + a.w * band4) * m.psi;
-    let mie = max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + higher, vec3<f32>(0.0));
-    return c.rayleigh * 0.75 * (m.psi + second) + c.mie * mie;
+    var scattered = vec3<f32>(0.0);
+    for (var i = 0u; i < term_count(); i++) {
+        let sigma = term_scattering(c, i);
+        let f = atmosphere.terms[i].phase.w;
+        let a = atmosphere.terms[i].legendre - f;
+        let higher = (a.z * band3 + a.w * band4) * m.psi;
+        scattered += sigma * max((1.0 - f) * m.psi + a.x * band1 + a.y * band2 + higher, vec3<f32>(0.0));
+    }
+    return scattered;
 }
 
 // The field's band-3 harmonics at the unit direction (x, y, z), y given as y²: the real spherical

@@ -98,7 +98,7 @@ pub(crate) fn sky_reference(
 ) -> firmament_core::atmosphere::reference::Reference {
     use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
     Reference::new(
-        sky.atmosphere,
+        sky.atmosphere.clone(),
         &sky.suns,
         ReferenceSettings {
             paths,

@@ -1,18 +1,86 @@
 //! `[atmosphere]`: the body's medium with the scene's overrides.
 
-use firmament_core::atmosphere::{DensityLayer, DensityProfile, Medium, MiePhase, Spectrum, Wavelengths};
+use firmament_core::atmosphere::medium::Constituents;
+use firmament_core::atmosphere::{DensityLayer, DensityProfile, Medium, Phase, Spectrum, Wavelengths};
+
+use super::terms;
 
 use crate::checks::{check, non_negative, positive};
 use crate::error::SceneError;
 use crate::model::{AtmosphereSection, Body, MiePhaseName};
 use crate::spectrum::SceneSpectrum;
 
-/// The medium and the model wavelengths, every value checked.
+/// The medium and the model wavelengths, every value checked: the body's constituents with the
+/// shorthand keys' changes, or `[[atmosphere.terms]]`.
 pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium, Wavelengths), SceneError> {
     let base = body.atmosphere();
-    let mut medium = base.medium;
     let a = section;
+    let wavelengths = match a.wavelengths {
+        Some(w) => {
+            let [x, y, z] = w;
+            check(
+                w.iter().all(|v| v.is_finite() && (360.0..=830.0).contains(v)) && x != y && y != z && x != z,
+                "atmosphere.wavelengths",
+                SceneSpectrum(w),
+                "needs three different wavelengths within [360, 830] nm",
+            )?;
+            Wavelengths(w)
+        }
+        None => base.wavelengths,
+    };
+    let mut ground_albedo = base.medium.ground_albedo;
+    if let Some(albedo) = a.ground_albedo {
+        check(
+            albedo.0.iter().all(|v| (0.0..=1.0).contains(v)),
+            "atmosphere.ground_albedo",
+            albedo,
+            "every value must lie in [0, 1]",
+        )?;
+        ground_albedo = albedo.spectrum();
+    }
+    let terms = match &a.terms {
+        Some(entries) => {
+            if let Some(key) = shorthand_key(a) {
+                return Err(SceneError::invalid(
+                    "atmosphere.terms",
+                    format!("{} terms", entries.len()),
+                    format!("replaces the body's medium and its shorthand keys: remove atmosphere.{key}"),
+                ));
+            }
+            terms::terms(entries, wavelengths)?
+        }
+        None => constituents(a, body, &base.medium)?.terms(),
+    };
+    Ok((Medium { terms, ground_albedo }, wavelengths))
+}
 
+/// The first shorthand key of the medium `a` sets.
+fn shorthand_key(a: &AtmosphereSection) -> Option<&'static str> {
+    let spectra = [
+        ("rayleigh_scattering", a.rayleigh_scattering.is_some()),
+        ("rayleigh_scale_height", a.rayleigh_scale_height.is_some()),
+        ("mie_scattering", a.mie_scattering.is_some()),
+        ("mie_extinction", a.mie_extinction.is_some()),
+        ("mie_scale_height", a.mie_scale_height.is_some()),
+        ("mie_g", a.mie_g.is_some()),
+        ("mie_phase", a.mie_phase.is_some()),
+        ("ozone_absorption", a.ozone_absorption.is_some()),
+        ("ozone_bottom", a.ozone_bottom.is_some()),
+        ("ozone_peak", a.ozone_peak.is_some()),
+        ("ozone_top", a.ozone_top.is_some()),
+    ];
+    spectra.iter().find(|(_, set)| *set).map(|(key, _)| *key)
+}
+
+/// The body's molecules, aerosols and absorbing gas with the shorthand keys' changes.
+fn constituents(a: &AtmosphereSection, body: Body, base: &Medium) -> Result<Constituents, SceneError> {
+    let mut medium = base.constituents().ok_or_else(|| {
+        SceneError::invalid(
+            "planet.body",
+            body.name(),
+            "has no molecules-aerosols-gas medium for the shorthand keys",
+        )
+    })?;
     if let Some(s) = coefficient("atmosphere.rayleigh_scattering", a.rayleigh_scattering)? {
         medium.rayleigh.scattering = s;
     }
@@ -61,12 +129,12 @@ pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium,
         "must lie strictly between -1 and 1",
     )?;
     let kind = a.mie_phase.unwrap_or(match medium.mie.phase {
-        MiePhase::CornetteShanks { .. } => MiePhaseName::CornetteShanks,
-        MiePhase::HenyeyGreenstein { .. } => MiePhaseName::HenyeyGreenstein,
+        Phase::HenyeyGreenstein { .. } => MiePhaseName::HenyeyGreenstein,
+        _ => MiePhaseName::CornetteShanks,
     });
     medium.mie.phase = match kind {
-        MiePhaseName::CornetteShanks => MiePhase::CornetteShanks { g },
-        MiePhaseName::HenyeyGreenstein => MiePhase::HenyeyGreenstein { g },
+        MiePhaseName::CornetteShanks => Phase::CornetteShanks { g },
+        MiePhaseName::HenyeyGreenstein => Phase::HenyeyGreenstein { g },
     };
 
     if let Some(s) = coefficient("atmosphere.ozone_absorption", a.ozone_absorption)? {
@@ -75,35 +143,11 @@ pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium,
     if let Some(tent) = ozone_tent(a, body, &medium.absorber.density)? {
         medium.absorber.density = tent;
     }
-
-    if let Some(albedo) = a.ground_albedo {
-        check(
-            albedo.0.iter().all(|v| (0.0..=1.0).contains(v)),
-            "atmosphere.ground_albedo",
-            albedo,
-            "every value must lie in [0, 1]",
-        )?;
-        medium.ground_albedo = albedo.spectrum();
-    }
-
-    let wavelengths = match a.wavelengths {
-        Some(w) => {
-            let [x, y, z] = w;
-            check(
-                w.iter().all(|v| v.is_finite() && (360.0..=830.0).contains(v)) && x != y && y != z && x != z,
-                "atmosphere.wavelengths",
-                SceneSpectrum(w),
-                "needs three different wavelengths within [360, 830] nm",
-            )?;
-            Wavelengths(w)
-        }
-        None => base.wavelengths,
-    };
-    Ok((medium, wavelengths))
+    Ok(medium)
 }
 
 /// A coefficient in m⁻¹, if given: every value finite and >= 0.
-fn coefficient(key: &str, value: Option<SceneSpectrum>) -> Result<Option<Spectrum>, SceneError> {
+pub(super) fn coefficient(key: &str, value: Option<SceneSpectrum>) -> Result<Option<Spectrum>, SceneError> {
     let Some(value) = value else { return Ok(None) };
     check(
         value.is_finite_non_negative(),
@@ -115,7 +159,7 @@ fn coefficient(key: &str, value: Option<SceneSpectrum>) -> Result<Option<Spectru
 }
 
 /// An exponential profile `e^(−h/H)` for a scale height `H` in metres, if given.
-fn scale_height(key: &str, value: Option<f64>) -> Result<Option<DensityProfile>, SceneError> {
+pub(super) fn scale_height(key: &str, value: Option<f64>) -> Result<Option<DensityProfile>, SceneError> {
     let Some(h) = value else { return Ok(None) };
     positive(key, h, " metres")?;
     Ok(Some(DensityProfile::single(DensityLayer::exponential(h))))

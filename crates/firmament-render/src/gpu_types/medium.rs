@@ -1,0 +1,165 @@
+//! The medium's terms as the GPU reads them (`MediumTerm` and the tables of `AtmosphereParams`
+//! in `shaders/atmosphere/bindings.wgsl`; read by `coefficients_at` and `scattering_phase` in
+//! `atmosphere/common.wgsl`).
+//!
+//! Analytic profiles and phase functions go as their parameters. Tables are resampled: a density
+//! table at [`DENSITY_TABLE_SAMPLES`] altitudes evenly spread from the ground to the top of the
+//! atmosphere, a phase table at [`PHASE_TABLE_SAMPLES`] scattering angles evenly spread from 0°
+//! to 180°; the GPU interpolates linearly between them.
+
+use bytemuck::{Pod, Zeroable};
+use firmament_core::atmosphere::medium::{Density, DensityLayer, DensityProfile, MAX_TERMS, MediumTerm, Phase};
+use firmament_core::atmosphere::{Medium, Spectrum};
+
+use super::codes;
+
+/// The most terms the GPU reads (`MAX_MEDIUM_TERMS` in `bindings.wgsl`).
+pub const MAX_MEDIUM_TERMS: usize = MAX_TERMS;
+/// Altitudes a density table is resampled at, ground to top.
+pub const DENSITY_TABLE_SAMPLES: usize = 128;
+/// Scattering angles a phase table is resampled at, 0° to 180°.
+pub const PHASE_TABLE_SAMPLES: usize = 256;
+
+/// The largest share f of a term's scattering that multiple scattering sends straight on: the
+/// delta-M forward peak (Wiscombe 1977) is a₅, the first Legendre coefficient past the four bands
+/// the LUTs hold, but no more than this.
+///
+/// Delta-M assumes the light the peak scatters hardly changes over the peak's width. That holds
+/// for Mars's dust, whose sky is smooth, but not for Earth's haze near the horizon, where a view
+/// gets its forward-scattered light from half a lobe of bright sky and half a lobe of dark
+/// ground; capping f at about half of Earth's a₅ keeps both within budget. The measurements and
+/// what no single cap fits: docs/ATMOSPHERE.md, "Mie's forward peak (delta-M)" and "Not yet done".
+pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
+
+/// Mirrors `DensityProfile` in `shaders/atmosphere/bindings.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct DensityProfileUniform {
+    /// Layer 0: exp_term, exp_scale (m⁻¹), linear_term (m⁻¹), constant_term.
+    pub layer0: [f32; 4],
+    /// Layer 1, the same terms.
+    pub layer1: [f32; 4],
+    /// x = top of layer 0, metres.
+    pub width: [f32; 4],
+}
+
+impl DensityProfileUniform {
+    fn new(profile: &DensityProfile) -> Self {
+        let terms = |l: &DensityLayer| {
+            [
+                l.exp_term as f32,
+                l.exp_scale as f32,
+                l.linear_term as f32,
+                l.constant_term as f32,
+            ]
+        };
+        Self {
+            layer0: terms(&profile.layers[0]),
+            layer1: terms(&profile.layers[1]),
+            width: [profile.layers[0].width as f32, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// Mirrors `MediumTerm` in `shaders/atmosphere/bindings.wgsl`: one term of the medium.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct MediumTermUniform {
+    /// rgb: extinction (scattering + absorption) at density 1, m⁻¹; w: the density's kind (a
+    /// `DENSITY_*` of [`codes`]).
+    pub extinction: [f32; 4],
+    /// rgb: scattering at density 1, m⁻¹; w: the phase function's kind (a `PHASE_*`).
+    pub scattering: [f32; 4],
+    /// x: `g` (the forward lobe's for two lobes), y: the backward lobe's `g`, z: the forward
+    /// lobe's weight; w: the share f of the scattering multiple scattering sends straight on
+    /// (a₅, at most [`MIE_FORWARD_PEAK_MAX`], 0 when a₅ < 0; see `Coefficients` in
+    /// `atmosphere/common.wgsl`).
+    pub phase: [f32; 4],
+    /// The phase function's Legendre coefficients a₁ … a₄ (`Phase::legendre_coefficient`).
+    pub legendre: [f32; 4],
+    /// The profile, for `DENSITY_PROFILE`.
+    pub profile: DensityProfileUniform,
+}
+
+impl MediumTermUniform {
+    fn new(term: &MediumTerm) -> Self {
+        let spectrum = |s: Spectrum, w: u32| [s.x as f32, s.y as f32, s.z as f32, w as f32];
+        let (density_kind, profile) = match &term.density {
+            Density::Profile(p) => (codes::DENSITY_PROFILE, DensityProfileUniform::new(p)),
+            Density::Table(_) => (codes::DENSITY_TABLE, DensityProfileUniform::zeroed()),
+        };
+        let (phase_kind, lobes) = match &term.phase {
+            Phase::Rayleigh => (codes::PHASE_RAYLEIGH, [0.0; 3]),
+            Phase::CornetteShanks { g } => (codes::PHASE_CORNETTE_SHANKS, [*g, 0.0, 1.0]),
+            Phase::HenyeyGreenstein { g } => (codes::PHASE_HENYEY_GREENSTEIN, [*g, 0.0, 1.0]),
+            Phase::DualHenyeyGreenstein(d) => (codes::PHASE_DUAL_HENYEY_GREENSTEIN, [d.g_forward, d.g_back, d.blend]),
+            Phase::Table(_) => (codes::PHASE_TABLE, [0.0; 3]),
+        };
+        let forward_peak = term.phase.legendre_coefficient(5).clamp(0.0, MIE_FORWARD_PEAK_MAX);
+        Self {
+            extinction: spectrum(term.extinction(), density_kind),
+            scattering: spectrum(term.scattering, phase_kind),
+            phase: [lobes[0] as f32, lobes[1] as f32, lobes[2] as f32, forward_peak as f32],
+            legendre: [1, 2, 3, 4].map(|l| term.phase.legendre_coefficient(l) as f32),
+            profile,
+        }
+    }
+}
+
+/// The terms of `medium` (the first [`MAX_MEDIUM_TERMS`]), their count, which of them have tables,
+/// and the resampled density and phase tables (row `i` for term `i`, four values per vector) of
+/// an atmosphere `atmosphere_height` metres high.
+pub(super) struct MediumGpu {
+    pub(super) terms: [MediumTermUniform; MAX_MEDIUM_TERMS],
+    pub(super) count: usize,
+    pub(super) table_counts: [u32; 4],
+    pub(super) density_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],
+    pub(super) phase_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],
+    pub(super) density_tables: [[f32; 4]; MAX_MEDIUM_TERMS * DENSITY_TABLE_SAMPLES / 4],
+    pub(super) phase_tables: [[f32; 4]; MAX_MEDIUM_TERMS * PHASE_TABLE_SAMPLES / 4],
+}
+
+impl MediumGpu {
+    pub(super) fn new(medium: &Medium, atmosphere_height: f64) -> Self {
+        let mut gpu = Self {
+            terms: [MediumTermUniform::zeroed(); MAX_MEDIUM_TERMS],
+            count: medium.terms.len().min(MAX_MEDIUM_TERMS),
+            table_counts: [0; 4],
+            density_table_terms: [[0; 4]; MAX_MEDIUM_TERMS / 4],
+            phase_table_terms: [[0; 4]; MAX_MEDIUM_TERMS / 4],
+            density_tables: [[0.0; 4]; MAX_MEDIUM_TERMS * DENSITY_TABLE_SAMPLES / 4],
+            phase_tables: [[0.0; 4]; MAX_MEDIUM_TERMS * PHASE_TABLE_SAMPLES / 4],
+        };
+        for (i, term) in medium.terms.iter().take(MAX_MEDIUM_TERMS).enumerate() {
+            gpu.terms[i] = MediumTermUniform::new(term);
+            if let Density::Table(table) = &term.density {
+                list(&mut gpu.density_table_terms, &mut gpu.table_counts[0], i);
+                let last = (DENSITY_TABLE_SAMPLES - 1) as f64;
+                let row = |k: usize| table.density(atmosphere_height * k as f64 / last);
+                write_row(&mut gpu.density_tables, i, DENSITY_TABLE_SAMPLES, row);
+            }
+            if let Phase::Table(table) = &term.phase {
+                list(&mut gpu.phase_table_terms, &mut gpu.table_counts[1], i);
+                let last = (PHASE_TABLE_SAMPLES - 1) as f64;
+                let row = |k: usize| table.at_angle(std::f64::consts::PI * k as f64 / last);
+                write_row(&mut gpu.phase_tables, i, PHASE_TABLE_SAMPLES, row);
+            }
+        }
+        gpu
+    }
+}
+
+/// Appends term `i` to a list of term indices packed four to a vector, counting it.
+fn list(indices: &mut [[u32; 4]], count: &mut u32, i: usize) {
+    let at = *count as usize;
+    indices[at / 4][at % 4] = i as u32;
+    *count += 1;
+}
+
+/// Writes `value(k)` for `k < samples` into row `row` of a table packed four to a vector.
+fn write_row(table: &mut [[f32; 4]], row: usize, samples: usize, value: impl Fn(usize) -> f64) {
+    for k in 0..samples {
+        let at = row * samples + k;
+        table[at / 4][at % 4] = value(k) as f32;
+    }
+}
