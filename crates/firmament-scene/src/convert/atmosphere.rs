@@ -153,14 +153,6 @@ fn scene_key(field: &str, scene: &Scene) -> String {
         "planet.radii.x" | "planet.radii.y" | "planet.radii.z" | "planet.radii" => "planet.radius",
         "atmosphere.height" => "planet.atmosphere_height",
         "planet.center" | "planet.orientation" => "planet.latitude",
-        "atmosphere.rayleigh.scattering" => "atmosphere.rayleigh_scattering",
-        "atmosphere.rayleigh.density" => "atmosphere.rayleigh_scale_height",
-        "atmosphere.mie.scattering" => "atmosphere.mie_scattering",
-        "atmosphere.mie.extinction" => "atmosphere.mie_extinction",
-        "atmosphere.mie.density" => "atmosphere.mie_scale_height",
-        "atmosphere.mie.g" => "atmosphere.mie_g",
-        "atmosphere.ozone.absorption" => "atmosphere.ozone_absorption",
-        "atmosphere.ozone.density" => "atmosphere.ozone_peak",
         other => other,
     };
     key.to_owned()

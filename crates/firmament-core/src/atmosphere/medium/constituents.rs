@@ -4,7 +4,6 @@
 
 use crate::atmosphere::medium::{Density, DensityProfile, MediumTerm, Phase};
 use crate::atmosphere::spectrum::Spectrum;
-use crate::error::CoreError;
 
 /// Molecules: pure scatterers with Rayleigh's phase function.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,41 +101,5 @@ impl Constituents {
                 density: profile(absorber)?,
             },
         })
-    }
-
-    /// Checks the rules, naming the shorthand's fields (`atmosphere.mie.extinction`): every
-    /// coefficient finite and ≥ 0, Mie extinction ≥ Mie scattering, `g` in (−1, 1).
-    pub fn validate(&self) -> Result<(), CoreError> {
-        let non_negative = |field, s: Spectrum| {
-            if s.is_finite() && s.min_element() >= 0.0 {
-                Ok(())
-            } else {
-                Err(CoreError::Invalid {
-                    field,
-                    value: format!("{:?}", s.to_array()),
-                    rule: "every coefficient must be finite and >= 0 (m⁻¹)",
-                })
-            }
-        };
-        non_negative("atmosphere.rayleigh.scattering", self.rayleigh.scattering)?;
-        non_negative("atmosphere.mie.scattering", self.mie.scattering)?;
-        non_negative("atmosphere.mie.extinction", self.mie.extinction)?;
-        non_negative("atmosphere.ozone.absorption", self.absorber.absorption)?;
-        if (self.mie.extinction - self.mie.scattering).min_element() < 0.0 {
-            return Err(CoreError::Invalid {
-                field: "atmosphere.mie.extinction",
-                value: format!("{:?}", self.mie.extinction.to_array()),
-                rule: "must be >= atmosphere.mie_scattering at every wavelength",
-            });
-        }
-        let g = self.mie.phase.g();
-        if !(g > -1.0 && g < 1.0) {
-            return Err(CoreError::Invalid {
-                field: "atmosphere.mie.g",
-                value: g.to_string(),
-                rule: "must lie strictly between -1 and 1",
-            });
-        }
-        Ok(())
     }
 }

@@ -1075,7 +1075,7 @@ fn pick_term(weights: &[f64; MAX_TERMS], mut u: f64) -> Option<usize> {
     None
 }
 
-/// The henyey–greenstein `g` drawn for a phase function without a sampler of its own: a
+/// The Henyey–Greenstein `g` drawn for a phase function without a sampler of its own: a
 /// table's mean cosine, kept off the needle-like lobes near ±1.
 fn proposal_g(phase: &Phase) -> f64 {
     phase.legendre_coefficient(1).clamp(-0.9, 0.9)
