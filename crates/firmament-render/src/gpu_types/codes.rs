@@ -91,10 +91,6 @@ codes! {
     PHASE_DUAL_HENYEY_GREENSTEIN = 3;
     /// Phase function: the term's row of the phase tables.
     PHASE_TABLE = 4;
-    /// A medium term's density (`MediumTermUniform::extinction.w`, in an `f32`): its profile.
-    DENSITY_PROFILE = 0;
-    /// Density: the term's row of the density tables.
-    DENSITY_TABLE = 1;
     /// Sky pass variant (`SKY_MODE` of `atmosphere/sky.wgsl`): the sky-view LUT only.
     SKY_MODE_LUT = 0;
     /// Sky pass variant: a ray march per pixel only.

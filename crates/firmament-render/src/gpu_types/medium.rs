@@ -65,8 +65,7 @@ impl DensityProfileUniform {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
 pub struct MediumTermUniform {
-    /// rgb: extinction (scattering + absorption) at density 1, m⁻¹; w: the density's kind (a
-    /// `DENSITY_*` of [`codes`]).
+    /// rgb: extinction (scattering + absorption) at density 1, m⁻¹; w unused.
     pub extinction: [f32; 4],
     /// rgb: scattering at density 1, m⁻¹; w: the phase function's kind (a `PHASE_*`).
     pub scattering: [f32; 4],
@@ -77,16 +76,16 @@ pub struct MediumTermUniform {
     pub phase: [f32; 4],
     /// The phase function's Legendre coefficients a₁ … a₄ (`Phase::legendre_coefficient`).
     pub legendre: [f32; 4],
-    /// The profile, for `DENSITY_PROFILE`.
+    /// The profile; all zeros (density 0) for a term whose density is a table.
     pub profile: DensityProfileUniform,
 }
 
 impl MediumTermUniform {
     fn new(term: &MediumTerm) -> Self {
         let spectrum = |s: Spectrum, w: u32| [s.x as f32, s.y as f32, s.z as f32, w as f32];
-        let (density_kind, profile) = match &term.density {
-            Density::Profile(p) => (codes::DENSITY_PROFILE, DensityProfileUniform::new(p)),
-            Density::Table(_) => (codes::DENSITY_TABLE, DensityProfileUniform::zeroed()),
+        let profile = match &term.density {
+            Density::Profile(p) => DensityProfileUniform::new(p),
+            Density::Table(_) => DensityProfileUniform::zeroed(),
         };
         let (phase_kind, lobes) = match &term.phase {
             Phase::Rayleigh => (codes::PHASE_RAYLEIGH, [0.0; 3]),
@@ -97,7 +96,7 @@ impl MediumTermUniform {
         };
         let forward_peak = term.phase.legendre_coefficient(5).clamp(0.0, MIE_FORWARD_PEAK_MAX);
         Self {
-            extinction: spectrum(term.extinction(), density_kind),
+            extinction: spectrum(term.extinction(), 0),
             scattering: spectrum(term.scattering, phase_kind),
             phase: [lobes[0] as f32, lobes[1] as f32, lobes[2] as f32, forward_peak as f32],
             legendre: [1, 2, 3, 4].map(|l| term.phase.legendre_coefficient(l) as f32),

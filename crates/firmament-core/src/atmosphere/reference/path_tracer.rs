@@ -661,8 +661,6 @@ fn sample_distance(
 const NO_CLOUDS: Densities = [0.0; crate::atmosphere::clouds::MAX_CLOUD_LAYERS];
 
 /// No air.
-const NO_AIR: LocalCoefficients = LocalCoefficients::NONE;
-
 /// Whether the atmosphere has any air at all (clouds in a vacuum, as the plane-parallel checks
 /// have them, skip evaluating the air).
 fn has_air(reference: &Reference) -> bool {
@@ -711,7 +709,7 @@ impl<'a> AirTable<'a> {
             ray: *ray,
             start,
             dt: (end - start) / TABLE_STEPS as f64,
-            node: NO_AIR,
+            node: LocalCoefficients::NONE,
             cells: Vec::with_capacity(TABLE_STEPS),
             depth: Vec::with_capacity(TABLE_STEPS + 1),
         };
@@ -722,7 +720,7 @@ impl<'a> AirTable<'a> {
 
     fn node_at(&self, i: usize) -> LocalCoefficients {
         if !has_air(self.reference) {
-            return NO_AIR;
+            return LocalCoefficients::NONE;
         }
         let planet = &self.reference.atmosphere.planet;
         let at = self.ray.at(self.start + self.dt * i as f64);

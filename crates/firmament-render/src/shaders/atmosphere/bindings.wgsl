@@ -33,12 +33,12 @@ struct DensityProfile {
 
 // One term of the medium.
 struct MediumTerm {
-    extinction: vec4<f32>, // rgb m⁻¹ at density 1 (scattering + absorption); w = DENSITY_* (generated/constants)
+    extinction: vec4<f32>, // rgb m⁻¹ at density 1 (scattering + absorption); w unused
     scattering: vec4<f32>, // rgb m⁻¹ at density 1; w = PHASE_*
     phase: vec4<f32>,      // x = g (the forward lobe's), y = the backward lobe's g, z = the forward lobe's
                            // weight; w = f, the delta-M forward peak (see Coefficients)
     legendre: vec4<f32>,   // the phase function's Legendre coefficients a_1 … a_4 (a_0 = 1)
-    profile: DensityProfile,
+    profile: DensityProfile, // all zeros for a term whose density is a table
 }
 
 // The medium: everything the LUTs depend on.

@@ -99,34 +99,22 @@ fn term_table_density(i: u32, h: f32) -> f32 {
     return density_table_value(i, h / atmosphere.radii.w);
 }
 
-// The extinction alone at altitude h, m⁻¹ (what transmittance needs).
-fn extinction_at(h: f32) -> vec3<f32> {
-    var extinction = vec3<f32>(0.0);
-    for (var i = 0u; i < term_count(); i++) {
-        extinction += atmosphere.terms[i].extinction.rgb * term_profile_density(i, h);
-    }
-    for (var k = 0u; k < atmosphere.table_counts.x; k++) {
-        let i = density_table_term(k);
-        extinction += atmosphere.terms[i].extinction.rgb * term_table_density(i, h);
-    }
-    return extinction;
+// Adds term i at `density` to c's extinction and to the share of it delta-M sends straight on.
+fn add_term(c: ptr<function, Coefficients>, forward: ptr<function, vec3<f32>>, i: u32, density: f32) {
+    (*c).density[i] = density;
+    (*c).extinction += atmosphere.terms[i].extinction.rgb * density;
+    *forward += atmosphere.terms[i].phase.w * (atmosphere.terms[i].scattering.rgb * density);
 }
 
 fn coefficients_at(h: f32) -> Coefficients {
     var c: Coefficients;
     var forward = vec3<f32>(0.0);
     for (var i = 0u; i < term_count(); i++) {
-        let density = term_profile_density(i, h);
-        c.density[i] = density;
-        c.extinction += atmosphere.terms[i].extinction.rgb * density;
-        forward += atmosphere.terms[i].phase.w * (atmosphere.terms[i].scattering.rgb * density);
+        add_term(&c, &forward, i, term_profile_density(i, h));
     }
     for (var k = 0u; k < atmosphere.table_counts.x; k++) {
         let i = density_table_term(k);
-        let density = term_table_density(i, h);
-        c.density[i] = density;
-        c.extinction += atmosphere.terms[i].extinction.rgb * density;
-        forward += atmosphere.terms[i].phase.w * (atmosphere.terms[i].scattering.rgb * density);
+        add_term(&c, &forward, i, term_table_density(i, h));
     }
     c.diffuse_extinction = c.extinction - forward;
     return c;

@@ -40,7 +40,7 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
         let r_t = sqrt(t * t + 2.0 * r * mu * t + r * r);
         let h = (t * t + 2.0 * r * mu * t) / (r_t + r) + (r - atmosphere.lut.x);
         let weight = select(1.0, 0.5, i == 0 || i == STEPS);
-        depth += extinction_at(h) * weight;
+        depth += coefficients_at(h).extinction * weight;
     }
     partial[invocation] = depth;
     workgroupBarrier();

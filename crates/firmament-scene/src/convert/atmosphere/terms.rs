@@ -43,7 +43,6 @@ fn term(entry: &TermEntry, key: &str, wavelengths: Wavelengths) -> Result<Medium
 fn spectrum(key: &str, value: &toml::Value, wavelengths: Wavelengths) -> Result<Spectrum, SceneError> {
     const RULE: &str = "must be a number, [a, b, c] (m⁻¹ at the model wavelengths), { rayleigh = { cross_section, \
                         number_density } } or { angstrom = { coefficient, exponent } }";
-    let number = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
     let values = match value {
         toml::Value::Array(items) if items.len() == 3 => {
             let numbers: Option<Vec<f64>> = items.iter().map(number).collect();
@@ -73,9 +72,7 @@ fn formula(key: &str, kind: &str, parameters: &toml::Value, wavelengths: Wavelen
     let get = |name: &str| -> Result<Option<f64>, SceneError> {
         match table.get(name) {
             None => Ok(None),
-            Some(v) => v
-                .as_float()
-                .or_else(|| v.as_integer().map(|i| i as f64))
+            Some(v) => number(v)
                 .map(Some)
                 .ok_or_else(|| SceneError::invalid(format!("{key}.{name}"), v, "must be a number")),
         }
@@ -300,9 +297,12 @@ fn phase(entry: &TermEntry, key: &str) -> Result<Phase, SceneError> {
     })
 }
 
+/// A TOML number, integer or float.
+fn number(value: &toml::Value) -> Option<f64> {
+    value.as_float().or_else(|| value.as_integer().map(|i| i as f64))
+}
+
+/// A core error about a table, its field already the scene key.
 fn from_core(error: CoreError) -> SceneError {
-    match error {
-        CoreError::InvalidItem { field, value, rule } => SceneError::invalid(field, value, rule),
-        other => SceneError::invalid("atmosphere.terms", "(the terms)", other.to_string()),
-    }
+    super::from_core(error, str::to_owned)
 }
