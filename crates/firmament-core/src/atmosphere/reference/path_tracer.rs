@@ -11,8 +11,11 @@
 //! and Henyey–Greenstein (the proposal for Cornette–Shanks) and weighted by the true phase
 //! function over the mixture's density. At each scattering or ground event, next-event
 //! estimation adds every sun's light (a point for scattering). Russian roulette ends paths after
-//! the fourth event (and a path is cut after 1000 events, which no realistic path reaches), so no
-//! order is cut off.
+//! the fourth event (and a path is cut after `MAX_EVENTS` = 100 000, which only a path deep in
+//! an air of optical depth over a hundred comes near), so no order is cut off. The air along a
+//! segment is evaluated lazily, node by node from its start, as far as the walk needs it, and the
+//! transmittance towards a sun stops at optical depth `OPAQUE_DEPTH`: in Venus's or Titan's air
+//! a path collides within a kilometre and most of its points see no sun at all.
 //!
 //! With [`ReferenceSettings::line_samples`](super::ReferenceSettings::line_samples) the light a
 //! path gathers after each event is estimated along the whole next segment instead of at the next
@@ -63,8 +66,11 @@ use crate::geometry::Ray;
 /// Orders tallied separately in [`MultipleScattering::per_order`]; higher ones go to the last.
 pub const TALLIED_ORDERS: usize = 16;
 
-/// Events after which a path is cut (a safety net: Russian roulette ends paths long before).
-const MAX_EVENTS: usize = 1000;
+/// Events after which a path is cut. Russian roulette ends paths in thin air long before; in a
+/// thick, nearly conservative air (Venus: vertical optical depth 40, single-scattering albedo
+/// 0.999) a path from the ground wanders for thousands of events before it reaches sunlit air
+/// or leaves, as in a cloud ([`MAX_EVENTS_WITH_CLOUDS`] gives the bias of the cut).
+const MAX_EVENTS: usize = 100_000;
 
 /// Events after which a path through clouds is cut. In a conservative cloud Russian roulette
 /// cannot end a path (its weight stays near 1), so the path goes on until it leaves; in a slab
@@ -72,6 +78,10 @@ const MAX_EVENTS: usize = 1000;
 /// `exp(−n·π²/(3(1 − g)(τ + 1.42/(1 − g))²))` (diffusion's slowest mode), so the cut removes
 /// e⁻¹⁴⁰⁰ of the light of a τ = 30, g = 0.85 slab and e⁻³⁶ of a τ = 150 one.
 const MAX_EVENTS_WITH_CLOUDS: usize = 100_000;
+
+/// Optical depth beyond which a transmittance is taken as zero (e⁻¹⁰⁰ ≈ 4·10⁻⁴⁴): a point deep
+/// in a thick air stops summing its path to the sun there instead of crossing the whole air.
+const OPAQUE_DEPTH: f64 = 100.0;
 
 /// Nodes of the optical-depth table along each path segment.
 const TABLE_STEPS: usize = 256;
@@ -485,22 +495,25 @@ fn reflect_and_trace(
     tally
 }
 
-/// Optical depth of the piecewise-constant medium [`sample_distance`] uses along a segment.
+/// Optical depth of the piecewise-constant medium [`sample_distance`] uses along a segment, or a
+/// depth past [`OPAQUE_DEPTH`] in every channel once the sum from the start exceeds it there.
 fn segment_depth(reference: &Reference, ray: &Ray, start: f64, end: f64) -> Spectrum {
     let planet = &reference.atmosphere.planet;
     let dt = (end - start) / TABLE_STEPS as f64;
-    (0..=TABLE_STEPS)
-        .map(|i| {
-            let w = if i == 0 || i == TABLE_STEPS { 0.5 } else { 1.0 };
-            reference
-                .atmosphere
-                .medium
-                .at(planet.approximate_altitude(ray.at(start + dt * i as f64)))
-                .extinction
-                * w
-        })
-        .sum::<Spectrum>()
-        * dt
+    let mut sum = Spectrum::ZERO;
+    for i in 0..=TABLE_STEPS {
+        let w = if i == 0 || i == TABLE_STEPS { 0.5 } else { 1.0 };
+        sum += reference
+            .atmosphere
+            .medium
+            .at(planet.approximate_altitude(ray.at(start + dt * i as f64)))
+            .extinction
+            * w;
+        if (sum * dt).min_element() > OPAQUE_DEPTH {
+            break;
+        }
+    }
+    sum * dt
 }
 
 /// The share of new directions drawn towards the twilight guides (when there are any).
@@ -598,6 +611,7 @@ enum Flight {
 /// Draws where the path's next event is, choosing the wavelength to sample by `path_weight`.
 /// With `forced`, the event is drawn among collisions only (conditioned on one happening before
 /// the segment's end) and weighted accordingly; the caller accounts for the boundary separately.
+/// Unforced, the nodes are evaluated only as far as the walk goes (the same numbers).
 fn sample_distance(
     reference: &Reference,
     ray: &Ray,
@@ -610,13 +624,16 @@ fn sample_distance(
     let planet = &reference.atmosphere.planet;
     let medium = &reference.atmosphere.medium;
     let dt = (end - start) / TABLE_STEPS as f64;
-    let nodes: Vec<LocalCoefficients> = (0..=TABLE_STEPS)
-        .map(|i| medium.at(planet.approximate_altitude(ray.at(start + dt * i as f64))))
-        .collect();
+    let node = |i: usize| medium.at(planet.approximate_altitude(ray.at(start + dt * i as f64)));
     // Piecewise-linear optical depth: constant coefficients (the cell mean) inside each cell.
-    let cell_extinction = |i: usize| (nodes[i].extinction + nodes[i + 1].extinction) * 0.5;
-    let total_depth: Spectrum = (0..TABLE_STEPS).map(cell_extinction).sum::<Spectrum>() * dt;
+    let cell_extinction = |a: &LocalCoefficients, b: &LocalCoefficients| (a.extinction + b.extinction) * 0.5;
     let collision_probability = if forced {
+        let nodes: Vec<LocalCoefficients> = (0..=TABLE_STEPS).map(node).collect();
+        let total_depth: Spectrum = nodes
+            .windows(2)
+            .map(|pair| cell_extinction(&pair[0], &pair[1]))
+            .sum::<Spectrum>()
+            * dt;
         Spectrum::ONE - (-total_depth).exp()
     } else {
         Spectrum::ONE
@@ -628,8 +645,10 @@ fn sample_distance(
     }
     let target = -(1.0 - rng.random::<f64>() * collision_probability[channel]).ln();
     let mut depth = Spectrum::ZERO;
+    let mut near = node(0);
     for i in 0..TABLE_STEPS {
-        let sigma = cell_extinction(i);
+        let far = node(i + 1);
+        let sigma = cell_extinction(&near, &far);
         let next = depth + sigma * dt;
         if next[channel] >= target {
             let t_in_cell = ((target - depth[channel]) / sigma[channel]).clamp(0.0, dt);
@@ -640,12 +659,13 @@ fn sample_distance(
                 weight: transmittance / pdf,
                 coefficients: LocalCoefficients {
                     extinction: sigma,
-                    ..nodes[i].mean(&nodes[i + 1])
+                    ..near.mean(&far)
                 },
                 clouds: NO_CLOUDS,
             };
         }
         depth = next;
+        near = far;
     }
     if forced {
         // Rounding put the target past the end: treat as the last cell's far edge.
@@ -1073,15 +1093,9 @@ fn pick_term(weights: &[f64; MAX_TERMS], mut u: f64) -> Option<usize> {
     None
 }
 
-/// The Henyey–Greenstein `g` drawn for a phase function without a sampler of its own: a
-/// table's mean cosine, kept off the needle-like lobes near ±1.
-fn proposal_g(phase: &Phase) -> f64 {
-    phase.legendre_coefficient(1).clamp(-0.9, 0.9)
-}
-
 /// Cosine of the scattering angle drawn for a term: exactly from Rayleigh, Henyey–Greenstein and
-/// the dual lobes, from Henyey–Greenstein with the same `g` for Cornette–Shanks, and with the
-/// mean cosine for a table ([`proposal_pdf`] is the density drawn from).
+/// the dual lobes, from Henyey–Greenstein with the same `g` for Cornette–Shanks, and from a
+/// density in 0.1° bins for a table ([`proposal_pdf`] is the density drawn from).
 fn sample_phase(phase: &Phase, u: f64) -> f64 {
     match phase {
         Phase::Rayleigh => sample_rayleigh(u),
@@ -1093,7 +1107,7 @@ fn sample_phase(phase: &Phase, u: f64) -> f64 {
                 sample_henyey_greenstein(dual.g_back, (u - dual.blend) / (1.0 - dual.blend))
             }
         }
-        Phase::Table(_) => sample_henyey_greenstein(proposal_g(phase), u),
+        Phase::Table(table) => table.sample(u),
     }
 }
 
@@ -1103,7 +1117,7 @@ fn proposal_pdf(phase: &Phase, cos: f64) -> f64 {
         Phase::Rayleigh => rayleigh_phase(cos),
         Phase::CornetteShanks { g } | Phase::HenyeyGreenstein { g } => henyey_greenstein(*g, cos),
         Phase::DualHenyeyGreenstein(dual) => dual.eval(cos),
-        Phase::Table(_) => henyey_greenstein(proposal_g(phase), cos),
+        Phase::Table(table) => table.sampling_pdf(cos),
     }
 }
 
