@@ -112,6 +112,26 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/saturn-rings.toml"),
     },
     Preset {
+        name: "venus-surface",
+        summary: "atmosphere: Venus on the ground at noon, the dim orange light under 92 bar of CO₂ and a cloud deck of optical depth 26",
+        toml: include_str!("presets/venus-surface.toml"),
+    },
+    Preset {
+        name: "venus-orbit",
+        summary: "atmosphere: the cloud-covered globe of Venus from 30 000 km, lit at a gibbous phase",
+        toml: include_str!("presets/venus-orbit.toml"),
+    },
+    Preset {
+        name: "titan-surface",
+        summary: "atmosphere: Titan at the Huygens landing site, the orange-brown sky under the haze, the Sun 50° up",
+        toml: include_str!("presets/titan-surface.toml"),
+    },
+    Preset {
+        name: "titan-orbit",
+        summary: "atmosphere: Titan from 15 000 km, the globe wrapped in its orange haze, lit at a gibbous phase",
+        toml: include_str!("presets/titan-orbit.toml"),
+    },
+    Preset {
         name: "seed-earth",
         summary: "the seed's own model: its Earth from 12 000 km, the blue-veiled globe and its glowing limb",
         toml: include_str!("presets/seed-earth.toml"),

@@ -2,9 +2,17 @@
 
 use glam::DVec3;
 
-use crate::atmosphere::medium::{Absorber, Constituents, DensityLayer, DensityProfile, Medium, Mie, Phase, Rayleigh};
+use crate::atmosphere::medium::{
+    Absorber, Constituents, Density, DensityLayer, DensityProfile, DensityTable, Medium, Mie, Phase, Rayleigh,
+};
 use crate::atmosphere::spectrum::{Spectrum, Wavelengths};
 use crate::atmosphere::{Atmosphere, Planet, Sun};
+
+mod titan;
+mod venus;
+
+pub use titan::{titan, titan_sun};
+pub use venus::{VENUS_SEMI_MAJOR_AXIS_AU, venus, venus_sun};
 
 /// WGS84 equatorial radius, m (NIMA TR8350.2, 2000).
 pub const WGS84_EQUATORIAL_RADIUS: f64 = 6_378_137.0;
@@ -112,10 +120,16 @@ pub fn mars() -> Atmosphere {
 /// The Sun seen from Mars: Earth's solar irradiance divided by Mars' mean distance squared, and
 /// the angular radius divided by that distance.
 pub fn mars_sun(direction: DVec3) -> Sun {
+    sun_at(direction, MARS_SEMI_MAJOR_AXIS_AU)
+}
+
+/// The Sun towards `direction` from `au` astronomical units: Earth's solar irradiance divided
+/// by `au²`, its angular radius by `au`.
+fn sun_at(direction: DVec3, au: f64) -> Sun {
     let earth = earth_sun(direction);
     Sun {
-        irradiance: earth.irradiance / (MARS_SEMI_MAJOR_AXIS_AU * MARS_SEMI_MAJOR_AXIS_AU),
-        angular_radius: earth.angular_radius / MARS_SEMI_MAJOR_AXIS_AU,
+        irradiance: earth.irradiance / (au * au),
+        angular_radius: earth.angular_radius / au,
         ..earth
     }
 }
@@ -188,26 +202,38 @@ pub fn saturn() -> Atmosphere {
 /// The Sun seen from Saturn: Earth's solar irradiance divided by Saturn's mean distance squared
 /// (about 1/91.8), and the angular radius divided by that distance.
 pub fn saturn_sun(direction: DVec3) -> Sun {
-    let earth = earth_sun(direction);
-    Sun {
-        irradiance: earth.irradiance / (SATURN_SEMI_MAJOR_AXIS_AU * SATURN_SEMI_MAJOR_AXIS_AU),
-        angular_radius: earth.angular_radius / SATURN_SEMI_MAJOR_AXIS_AU,
-        ..earth
-    }
+    sun_at(direction, SATURN_SEMI_MAJOR_AXIS_AU)
+}
+
+/// A density table of a preset's constant `(altitude m, density)` pairs, `name` naming it; every
+/// preset's tables are checked by the test `presets_are_valid`.
+fn density_table(name: &str, pairs: &[(f64, f64)]) -> Density {
+    Density::Table(DensityTable::new(name, pairs).expect("a preset's density table is valid"))
+}
+
+/// The integral of a table of `(altitude m, density)` pairs, linear between them: the column it
+/// spreads a term over, m.
+fn table_integral(pairs: &[(f64, f64)]) -> f64 {
+    pairs
+        .windows(2)
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::atmosphere::MediumTerm;
 
     #[test]
     fn presets_are_valid() {
-        for atmosphere in [earth(), mars(), saturn()] {
+        // Venus' and Titan's tables are made (`expect`) when their presets are.
+        for atmosphere in [earth(), mars(), saturn(), venus(), titan()] {
             atmosphere.validate().unwrap();
         }
-        earth_sun(DVec3::Z).validate().unwrap();
-        mars_sun(DVec3::Z).validate().unwrap();
-        saturn_sun(DVec3::Z).validate().unwrap();
+        for sun in [earth_sun, mars_sun, saturn_sun, venus_sun, titan_sun] {
+            sun(DVec3::Z).validate().unwrap();
+        }
         assert!((earth().planet.flattening() - 1.0 / 298.257_223_563).abs() < 1e-12);
     }
 
@@ -227,6 +253,108 @@ mod tests {
         assert!((rayleigh.y * 59_500.0 - 0.290).abs() < 2e-3);
         // The Sun at 9.58 AU: irradiance 1/91.8 of Earth's.
         let ratio = earth_sun(DVec3::Z).irradiance.y / saturn_sun(DVec3::Z).irradiance.y;
+        assert!((ratio - 91.83).abs() < 0.01, "{ratio}");
+    }
+
+    /// The vertical optical depth of `terms` from the ground to `top` metres: the extinction of
+    /// [`Medium::at`] by the midpoint rule in 1 m steps.
+    fn vertical_optical_depth(terms: &[MediumTerm], top: f64) -> Spectrum {
+        let medium = Medium {
+            terms: terms.to_vec(),
+            ground_albedo: Spectrum::ZERO,
+        };
+        let steps = top as usize;
+        (0..steps)
+            .map(|i| medium.at(i as f64 + 0.5).extinction)
+            .sum::<Spectrum>()
+            * (top / steps as f64)
+    }
+
+    fn within(got: Spectrum, want: [f64; 3], tolerance: f64) -> bool {
+        got.to_array()
+            .iter()
+            .zip(want)
+            .all(|(g, w)| (g / w - 1.0).abs() <= tolerance)
+    }
+
+    #[test]
+    fn venus_matches_its_sources() {
+        let venus = venus();
+        let top = venus.planet.atmosphere_height;
+        assert_eq!(venus.planet.radii, DVec3::splat(6_051_800.0));
+        assert_eq!(top, 100_000.0);
+        let terms = &venus.medium.terms;
+        assert_eq!(terms.len(), 6);
+        // The gas: the column of VIRA (Seiff et al. 1985) times CO₂'s cross-section, τ_R = 6.9 /
+        // 16.4 / 41.2 from 1.44·10³¹ m⁻² (the research note's hydrostatic column).
+        let gas = vertical_optical_depth(&terms[..1], top);
+        assert!(within(gas, [6.9, 16.4, 41.2], 0.03), "{gas}");
+        // Its surface coefficient, an extinction length of ~1 km at 550 nm.
+        assert!(within(terms[0].scattering, [4.35e-4, 1.034e-3, 2.60e-3], 0.005));
+        // Cloud and haze: Titov et al. 2018's layer midpoints 0.6 + 7 + 9 + 9 and Crisp's 0.24,
+        // grey.
+        let clouds = vertical_optical_depth(&terms[1..5], top);
+        assert!(within(clouds, [25.84; 3], 0.03), "{clouds}");
+        for (term, tau) in terms[1..5].iter().zip([0.6, 7.0, 18.0, 0.24]) {
+            let one = vertical_optical_depth(std::slice::from_ref(term), top);
+            assert!(within(one, [tau; 3], 0.01), "{one} against {tau}");
+            assert_eq!(term.absorption, Spectrum::ZERO);
+        }
+        // Nothing of the cloud below 30.5 km or above 100 km; the lower cloud twice as dense as
+        // the middle one.
+        let local = |h: f64| {
+            Medium {
+                terms: terms[1..5].to_vec(),
+                ground_albedo: Spectrum::ZERO,
+            }
+            .at(h)
+        };
+        assert_eq!(local(30_000.0).extinction, Spectrum::ZERO);
+        assert!((local(49_000.0).extinction.y / local(53_000.0).extinction.y - 2.0).abs() < 1e-12);
+        // The UV absorber: 0.015 / 0.026 / 0.067 (Haus et al.'s profile and cross-section).
+        let uv = vertical_optical_depth(&terms[5..], top);
+        assert!(within(uv, [0.015, 0.026, 0.067], 0.03), "{uv}");
+        // The Sun at 0.723 AU: 1.911 times Earth's irradiance, a disc 0.737° across.
+        let ratio = venus_sun(DVec3::Z).irradiance.y / earth_sun(DVec3::Z).irradiance.y;
+        assert!((ratio - 1.9113).abs() < 1e-3, "{ratio}");
+        assert!((2.0 * venus_sun(DVec3::Z).angular_radius.to_degrees() - 0.7406).abs() < 1e-3);
+    }
+
+    #[test]
+    fn titan_matches_its_sources() {
+        let titan = titan();
+        let top = titan.planet.atmosphere_height;
+        assert_eq!(titan.planet.radii, DVec3::splat(2_574_700.0));
+        assert_eq!(top, 600_000.0);
+        let terms = &titan.medium.terms;
+        assert_eq!(terms.len(), 5);
+        // The haze: Tomasko et al. 2008's three-region fit, 5.59 / 8.11 / 12.17 in all.
+        let haze = vertical_optical_depth(&terms[2..], top);
+        assert!(within(haze, [5.59, 8.11, 12.17], 0.03), "{haze}");
+        // Region by region: 1.12 / 1.37 / 1.70 below 30 km, 2.07 / 2.79 / 3.83 at 30–80 km,
+        // 2.40 / 3.94 / 6.64 above.
+        for (term, tau) in terms[2..]
+            .iter()
+            .zip([[1.12, 1.37, 1.70], [2.07, 2.79, 3.83], [2.40, 3.94, 6.64]])
+        {
+            let one = vertical_optical_depth(std::slice::from_ref(term), top);
+            assert!(within(one, tau, 0.01), "{one} against {tau:?}");
+        }
+        // Its single-scattering albedo above 80 km, and the phase function's mean cosine (0.783
+        // from Tomasko et al.'s table at 599.9 nm).
+        let albedo = terms[4].scattering / terms[4].extinction();
+        assert!(within(albedo, [0.957, 0.933, 0.869], 1e-9), "{albedo}");
+        assert!((terms[2].phase.g() - 0.783).abs() < 0.01, "{}", terms[2].phase.g());
+        // The gas: the hydrostatic column p/(μ·m_u·g) = 2.39·10³⁰ m⁻² at 1467 hPa (Fulchignoni et
+        // al. 2005) times the N₂–CH₄ cross-section.
+        let gas = vertical_optical_depth(&terms[..1], top);
+        assert!(within(gas, [0.51, 1.22, 3.04], 0.05), "{gas}");
+        // Methane at 680 nm: 0.0965 per km-amagat (Karkoschka 1998) over ~3.2 km-amagat, 0.31.
+        let methane = vertical_optical_depth(&terms[1..2], top);
+        assert!((methane.x / 0.31 - 1.0).abs() < 0.07, "{methane}");
+        assert_eq!([methane.y, methane.z], [0.0, 0.0]);
+        // The Sun at Saturn's distance: 1/91.8 of Earth's irradiance.
+        let ratio = earth_sun(DVec3::Z).irradiance.y / titan_sun(DVec3::Z).irradiance.y;
         assert!((ratio - 91.83).abs() < 0.01, "{ratio}");
     }
 }

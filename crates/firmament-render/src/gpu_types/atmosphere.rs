@@ -13,7 +13,10 @@ use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
-use super::medium::{DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, MediumGpu, MediumTermUniform, PHASE_TABLE_SAMPLES};
+use super::medium::{
+    DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, MediumGpu, MediumTermUniform, PHASE_TABLE_SAMPLES,
+    is_thick_air, multiscattering_lut_height,
+};
 use super::planet_view::PlanetView;
 use super::pack::vec3_w;
 
@@ -36,7 +39,8 @@ fn spectrum_w(s: Spectrum, w: f64) -> [f32; 4] {
 pub struct AtmosphereParamsUniforms {
     /// Ellipsoid semi-axes (m); `w` = atmosphere height (m).
     pub radii: [f32; 4],
-    /// Bottom and top radius of the LUT sphere (m); the number of terms; unused.
+    /// Bottom and top radius of the LUT sphere (m); the number of terms; the height the
+    /// multiple-scattering and sky-irradiance LUTs span (m, [`multiscattering_lut_height`]).
     pub lut: [f32; 4],
     /// Ground albedo.
     pub ground_albedo: [f32; 4],
@@ -65,7 +69,8 @@ impl AtmosphereParamsUniforms {
     /// The medium and shape of `atmosphere`.
     pub fn new(atmosphere: &Atmosphere) -> Self {
         let planet = &atmosphere.planet;
-        let medium = MediumGpu::new(&atmosphere.medium, planet.atmosphere_height);
+        let thick = is_thick_air(&atmosphere.medium, planet.atmosphere_height);
+        let medium = MediumGpu::new(&atmosphere.medium, planet.atmosphere_height, thick);
         let bottom = lut_bottom_radius(atmosphere);
         Self {
             radii: vec3_w(planet.radii, planet.atmosphere_height),
@@ -73,7 +78,7 @@ impl AtmosphereParamsUniforms {
                 bottom as f32,
                 (bottom + planet.atmosphere_height) as f32,
                 medium.count as f32,
-                0.0,
+                multiscattering_lut_height(&atmosphere.medium, planet.atmosphere_height, thick) as f32,
             ],
             ground_albedo: spectrum_w(atmosphere.medium.ground_albedo, 0.0),
             terms: medium.terms,

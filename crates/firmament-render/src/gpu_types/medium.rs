@@ -31,6 +31,34 @@ pub const PHASE_TABLE_SAMPLES: usize = 256;
 /// what no single cap fits: docs/ATMOSPHERE.md, "Mie's forward peak (delta-M)" and "Not yet done".
 pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
+/// The vertical scattering optical depth (at any model wavelength) from which an air is thick:
+/// the orders of multiple scattering after the last marched one are solved by diffusion
+/// (`atmosphere/multiscattering_diffusion.wgsl`) rather than summed as a geometric series, and
+/// the multiple-scattering LUTs span only the air that scatters ([`THICK_AIR_LUT_TOP_DEPTH`]).
+/// Venus's 68 and Titan's 14 (at 440 nm) are thick; Earth's 0.27, Mars's 0.49 and Saturn's 0.73
+/// are not, and render as before (docs/ATMOSPHERE.md, "Thick airs").
+pub const THICK_AIR_DEPTH: f64 = 2.0;
+
+/// In a thick air the multiple-scattering and sky-irradiance LUTs reach up to where the air
+/// above scatters this vertical optical depth, not to the top: Titan's LUTs reach 385 km of its
+/// 600 (its lowest 80 km, the haze, had four of the 32 rows), Venus's 83 km of 100.
+pub const THICK_AIR_LUT_TOP_DEPTH: f64 = 0.01;
+
+/// Whether `medium` up to `top` metres is a thick air ([`THICK_AIR_DEPTH`]).
+pub fn is_thick_air(medium: &Medium, top: f64) -> bool {
+    medium.vertical_scattering_depth(0.0, top).max_element() >= THICK_AIR_DEPTH
+}
+
+/// The height, metres, the multiple-scattering and sky-irradiance LUTs span for `medium` up to
+/// `top`: `top` itself but in a thick air ([`THICK_AIR_LUT_TOP_DEPTH`]).
+pub fn multiscattering_lut_height(medium: &Medium, top: f64, thick: bool) -> f64 {
+    if thick {
+        medium.altitude_of_scattering_depth(top, THICK_AIR_LUT_TOP_DEPTH).max(1.0)
+    } else {
+        top
+    }
+}
+
 /// Mirrors `DensityProfile` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -81,7 +109,9 @@ pub struct MediumTermUniform {
 }
 
 impl MediumTermUniform {
-    fn new(term: &MediumTerm) -> Self {
+    /// The term as the GPU reads it; in a thick air ([`THICK_AIR_DEPTH`]) delta-M takes the
+    /// whole forward peak a₅ rather than at most [`MIE_FORWARD_PEAK_MAX`].
+    fn new(term: &MediumTerm, thick: bool) -> Self {
         let spectrum = |s: Spectrum, w: u32| [s.x as f32, s.y as f32, s.z as f32, w as f32];
         let profile = match &term.density {
             Density::Profile(p) => DensityProfileUniform::new(p),
@@ -94,7 +124,8 @@ impl MediumTermUniform {
             Phase::DualHenyeyGreenstein(d) => (codes::PHASE_DUAL_HENYEY_GREENSTEIN, [d.g_forward, d.g_back, d.blend]),
             Phase::Table(_) => (codes::PHASE_TABLE, [0.0; 3]),
         };
-        let forward_peak = term.phase.legendre_coefficient(5).clamp(0.0, MIE_FORWARD_PEAK_MAX);
+        let peak_max = if thick { 1.0 } else { MIE_FORWARD_PEAK_MAX };
+        let forward_peak = term.phase.legendre_coefficient(5).clamp(0.0, peak_max);
         Self {
             extinction: spectrum(term.extinction(), 0),
             scattering: spectrum(term.scattering, phase_kind),
@@ -119,7 +150,9 @@ pub(super) struct MediumGpu {
 }
 
 impl MediumGpu {
-    pub(super) fn new(medium: &Medium, atmosphere_height: f64) -> Self {
+    /// `medium` up to `atmosphere_height` metres; `thick` when it is a thick air
+    /// ([`is_thick_air`]).
+    pub(super) fn new(medium: &Medium, atmosphere_height: f64, thick: bool) -> Self {
         let mut gpu = Self {
             terms: [MediumTermUniform::zeroed(); MAX_MEDIUM_TERMS],
             count: medium.terms.len().min(MAX_MEDIUM_TERMS),
@@ -130,7 +163,7 @@ impl MediumGpu {
             phase_tables: [[0.0; 4]; MAX_MEDIUM_TERMS * PHASE_TABLE_SAMPLES / 4],
         };
         for (i, term) in medium.terms.iter().take(MAX_MEDIUM_TERMS).enumerate() {
-            gpu.terms[i] = MediumTermUniform::new(term);
+            gpu.terms[i] = MediumTermUniform::new(term, thick);
             if let Density::Table(table) = &term.density {
                 list(&mut gpu.density_table_terms, &mut gpu.table_counts[0], i);
                 let last = (DENSITY_TABLE_SAMPLES - 1) as f64;
@@ -160,5 +193,37 @@ fn write_row(table: &mut [[f32; 4]], row: usize, samples: usize, value: impl Fn(
     for k in 0..samples {
         let at = row * samples + k;
         table[at / 4][at % 4] = value(k) as f32;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use firmament_core::atmosphere::presets;
+
+    use super::*;
+
+    /// Which presets are thick airs, and how high a thick air's multiple-scattering LUTs reach.
+    #[test]
+    fn venus_and_titan_are_thick_and_the_others_thin() {
+        for (name, atmosphere, thick) in [
+            ("earth", presets::earth(), false),
+            ("mars", presets::mars(), false),
+            ("saturn", presets::saturn(), false),
+            ("venus", presets::venus(), true),
+            ("titan", presets::titan(), true),
+        ] {
+            let top = atmosphere.planet.atmosphere_height;
+            let depth = atmosphere.medium.vertical_scattering_depth(0.0, top);
+            let height = multiscattering_lut_height(&atmosphere.medium, top, thick);
+            println!("{name}: vertical scattering depth {depth:.3}, LUTs up to {height:.0} m of {top:.0} m");
+            assert_eq!(is_thick_air(&atmosphere.medium, top), thick, "{name}");
+            if thick {
+                // The air above the LUTs scatters THICK_AIR_LUT_TOP_DEPTH.
+                let above = atmosphere.medium.vertical_scattering_depth(height, top).max_element();
+                assert!((above / THICK_AIR_LUT_TOP_DEPTH - 1.0).abs() < 0.2, "{name}: {above}");
+            } else {
+                assert_eq!(height, top);
+            }
+        }
     }
 }

@@ -65,6 +65,10 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/multiscattering_sum",
         include_str!("atmosphere/multiscattering_sum.wgsl"),
     ),
+    (
+        "atmosphere/multiscattering_diffusion",
+        include_str!("atmosphere/multiscattering_diffusion.wgsl"),
+    ),
     ("atmosphere/sky_view_lut", include_str!("atmosphere/sky_view_lut.wgsl")),
     ("atmosphere/sky", include_str!("atmosphere/sky.wgsl")),
     ("atmosphere/sky_lighting", include_str!("atmosphere/sky_lighting.wgsl")),
@@ -217,6 +221,9 @@ pub static ATMOSPHERE_TRANSMITTANCE_LUT: Shader = entry!("atmosphere/transmittan
 pub static ATMOSPHERE_MULTISCATTERING_LUT: Shader = entry!("atmosphere/multiscattering_lut");
 /// The atmosphere's multiple-scattering LUTs: the orders summed.
 pub static ATMOSPHERE_MULTISCATTERING_SUM: Shader = entry!("atmosphere/multiscattering_sum");
+/// The atmosphere's multiple-scattering LUTs: the orders after the last marched in a thick air,
+/// by diffusion.
+pub static ATMOSPHERE_MULTISCATTERING_DIFFUSION: Shader = entry!("atmosphere/multiscattering_diffusion");
 /// The atmosphere's sky-view LUT pass.
 pub static ATMOSPHERE_SKY_VIEW_LUT: Shader = entry!("atmosphere/sky_view_lut");
 /// The atmosphere's sky pass.
@@ -266,13 +273,14 @@ pub static ENVMAP_WRITE: Shader = entry!("envmap/write");
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 25] = [
+pub static ENTRIES: [&Shader; 26] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
     &ATMOSPHERE_TRANSMITTANCE_LUT,
     &ATMOSPHERE_MULTISCATTERING_LUT,
     &ATMOSPHERE_MULTISCATTERING_SUM,
+    &ATMOSPHERE_MULTISCATTERING_DIFFUSION,
     &ATMOSPHERE_SKY_VIEW_LUT,
     &ATMOSPHERE_SKY,
     &ATMOSPHERE_SKY_LIGHTING,

@@ -26,4 +26,5 @@ mod shadows;
 mod sky;
 mod sky_lighting;
 mod support;
+mod thick_airs;
 mod user_material;

@@ -20,6 +20,10 @@ pub enum Body {
     Mars,
     /// Saturn above its cloud deck ([`firmament_core::atmosphere::presets::saturn`]).
     Saturn,
+    /// Venus under its cloud deck ([`firmament_core::atmosphere::presets::venus`]).
+    Venus,
+    /// Titan at the Huygens landing site ([`firmament_core::atmosphere::presets::titan`]).
+    Titan,
 }
 
 impl Body {
@@ -29,6 +33,8 @@ impl Body {
             Self::Earth => "earth",
             Self::Mars => "mars",
             Self::Saturn => "saturn",
+            Self::Venus => "venus",
+            Self::Titan => "titan",
         }
     }
 
@@ -38,6 +44,8 @@ impl Body {
             Self::Earth => presets::earth(),
             Self::Mars => presets::mars(),
             Self::Saturn => presets::saturn(),
+            Self::Venus => presets::venus(),
+            Self::Titan => presets::titan(),
         }
     }
 
@@ -47,6 +55,8 @@ impl Body {
             Self::Earth => presets::earth_sun(direction),
             Self::Mars => presets::mars_sun(direction),
             Self::Saturn => presets::saturn_sun(direction),
+            Self::Venus => presets::venus_sun(direction),
+            Self::Titan => presets::titan_sun(direction),
         }
     }
 }
@@ -55,7 +65,7 @@ impl Body {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanetSection {
-    /// The body: `"earth"`, `"mars"` or `"saturn"`.
+    /// The body: `"earth"`, `"mars"`, `"saturn"`, `"venus"` or `"titan"`.
     pub body: Body,
     /// Equatorial radius, metres, > 0 (default: the body's).
     #[serde(default)]
@@ -102,8 +112,8 @@ pub enum AtmosphereModelName {
 }
 
 /// `[atmosphere.seed]`: the empirical model's values, all optional; the defaults are the seed's
-/// own for the body (`seed_earth`, `seed_mars`; Saturn has none, so a Saturn scene must give
-/// `view_depth`, `b0` and `overglow`). The radii are the planet's when `[planet]` sets them, else
+/// own for the body (`seed_earth`, `seed_mars`; Saturn, Venus and Titan have none, so their scenes
+/// must give `view_depth`, `b0` and `overglow`). The radii are the planet's when `[planet]` sets them, else
 /// the seed's (Earth 6 378 141.2 / 6 356 754.795 m, Mars 3 397 000 / 3 374 919.5 m).
 ///
 /// `expecting` keeps the wrong-type message ("expected struct SeedSection") as it was before the

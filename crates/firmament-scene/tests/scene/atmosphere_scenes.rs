@@ -7,13 +7,17 @@ use firmament_core::frame::{AtmosphereSky, Sky};
 use firmament_scene::{Body, Scene, SceneError, SceneSource, load};
 use glam::DVec3;
 
-const ATMOSPHERE_PRESETS: [&str; 6] = [
+const ATMOSPHERE_PRESETS: [&str; 10] = [
     "earth-noon",
     "earth-sunset",
     "earth-orbit",
     "mars-noon",
     "binary-sunset",
     "saturn-orbit",
+    "venus-surface",
+    "venus-orbit",
+    "titan-surface",
+    "titan-orbit",
 ];
 
 fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
@@ -366,8 +370,11 @@ fn unknown_atmosphere_keys_and_bodies_are_named() {
     );
     let msg = message(preset("earth-noon", &["suns.0.azimut=3"]));
     assert!(msg.contains("suns[0].azimut") && msg.contains("`azimuth`"), "{msg}");
-    let msg = message(preset("earth-noon", &["planet.body=venus"]));
-    assert!(msg.starts_with("planet.body: ") && msg.contains("saturn"), "{msg}");
+    let msg = message(preset("earth-noon", &["planet.body=jupiter"]));
+    assert!(
+        msg.starts_with("planet.body: ") && msg.contains("saturn") && msg.contains("venus") && msg.contains("titan"),
+        "{msg}"
+    );
     let msg = message(preset("earth-noon", &["atmosphere.mie_phase=rayleigh"]));
     assert!(
         msg.starts_with("atmosphere.mie_phase: ") && msg.contains("henyey_greenstein"),
@@ -444,5 +451,78 @@ fn saturn_s_rings_come_from_the_preset_and_bad_rings_name_the_key() {
     ] {
         let text = message(preset("saturn-rings", &[set]));
         assert!(text.contains(key), "{set}: {text}");
+    }
+}
+
+#[test]
+fn the_venus_and_titan_presets_stand_on_their_bodies() {
+    for (name, body, on_the_ground) in [
+        ("venus-surface", Body::Venus, true),
+        ("venus-orbit", Body::Venus, false),
+        ("titan-surface", Body::Titan, true),
+        ("titan-orbit", Body::Titan, false),
+    ] {
+        let scene = preset(name, &[]).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(scene.planet.body, body, "{name}");
+        let sky = sky_of(&scene);
+        let core = body.atmosphere();
+        assert_eq!(sky.atmosphere.medium, core.medium, "{name}");
+        assert_eq!(sky.atmosphere.planet.radii, core.planet.radii, "{name}");
+        assert_eq!(
+            sky.atmosphere.planet.atmosphere_height, core.planet.atmosphere_height,
+            "{name}"
+        );
+        let sun = sky.suns[0];
+        assert_eq!(sun, body.sun(sun.direction), "{name}");
+        let planet = sky.atmosphere.planet;
+        let altitude = planet.altitude(planet.to_planet_frame(DVec3::from_array(scene.camera.position)));
+        assert_eq!(altitude < 10.0, on_the_ground, "{name}: {altitude} m up");
+        // From orbit the whole globe and its air are in view.
+        if !on_the_ground {
+            let top = planet.radii.x + planet.atmosphere_height;
+            let half_width = (top / (planet.radii.x + altitude)).asin().to_degrees();
+            assert!(2.0 * half_width < scene.camera.fov_y_deg, "{name}");
+        }
+    }
+}
+
+#[test]
+fn venus_and_titan_bodies_give_the_core_presets() {
+    for (name, medium, sun) in [
+        ("venus", presets::venus().medium, presets::venus_sun as fn(DVec3) -> _),
+        ("titan", presets::titan().medium, presets::titan_sun),
+    ] {
+        let scene = preset("earth-noon", &[&format!("planet.body={name}")]).expect("valid");
+        assert_eq!(scene.planet.body.name(), name);
+        let sky = sky_of(&scene);
+        assert_eq!(sky.atmosphere.medium, medium, "{name}");
+        assert_eq!(sky.suns[0], sun(sky.suns[0].direction), "{name}");
+        // Their air is free-form terms: the ground albedo may change, the shorthand keys may not.
+        let scene = preset(
+            "earth-noon",
+            &[&format!("planet.body={name}"), "atmosphere.ground_albedo=0.3"],
+        )
+        .expect("valid");
+        let air = sky_of(&scene).atmosphere.medium;
+        assert_eq!(air.terms, medium.terms);
+        assert_eq!(air.ground_albedo.to_array(), [0.3; 3]);
+        let msg = message(preset(
+            "earth-noon",
+            &[&format!("planet.body={name}"), "atmosphere.mie_g=0.5"],
+        ));
+        assert!(
+            msg.starts_with(&format!("planet.body = {name}: "))
+                && msg.contains("atmosphere.mie_g")
+                && msg.contains("[[atmosphere.terms]]"),
+            "{msg}"
+        );
+        // No seed values and no rings of their own.
+        let msg = message(preset("seed-earth", &[&format!("planet.body={name}")]));
+        assert!(msg.contains(&format!("the seed has no values for {name}")), "{msg}");
+        let msg = message(preset(
+            "earth-noon",
+            &[&format!("planet.body={name}"), "rings.enabled=true"],
+        ));
+        assert!(msg.contains("only saturn"), "{msg}");
     }
 }

@@ -313,6 +313,10 @@ fn check_accepts_the_atmosphere_presets_and_presets_lists_them() {
         "mars-noon",
         "binary-sunset",
         "saturn-orbit",
+        "venus-surface",
+        "venus-orbit",
+        "titan-surface",
+        "titan-orbit",
         "seed-earth",
         "seed-mars",
     ] {

@@ -42,6 +42,10 @@ impl MediumTerm {
     }
 }
 
+/// Trapezoids of [`Medium::vertical_scattering_depth`] and
+/// [`Medium::altitude_of_scattering_depth`].
+pub const DEPTH_STEPS: usize = 1024;
+
 /// The whole medium and the ground under it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Medium {
@@ -115,6 +119,33 @@ impl Medium {
             .filter(|(_, s)| **s != Spectrum::ZERO)
             .map(|(term, s)| *s * term.phase.eval(nu))
             .sum()
+    }
+
+    /// The vertical scattering optical depth between altitudes `bottom` and `top` metres, all
+    /// terms together, by trapezoids over [`DEPTH_STEPS`] steps (within 10⁻⁵ of an exponential
+    /// profile's closed form over Earth's 60 km).
+    pub fn vertical_scattering_depth(&self, bottom: f64, top: f64) -> Spectrum {
+        let dh = (top - bottom) / DEPTH_STEPS as f64;
+        let scattering = |i: usize| -> Spectrum { self.at(bottom + dh * i as f64).scattering.iter().sum() };
+        let inner: Spectrum = (1..DEPTH_STEPS).map(scattering).sum();
+        (inner + (scattering(0) + scattering(DEPTH_STEPS)) * 0.5) * dh
+    }
+
+    /// The altitude, metres, above which the vertical scattering optical depth up to `top` is
+    /// `depth` at the wavelength that scatters most (0 when the whole air scatters less), to
+    /// within `top`/[`DEPTH_STEPS`].
+    pub fn altitude_of_scattering_depth(&self, top: f64, depth: f64) -> f64 {
+        let dh = top / DEPTH_STEPS as f64;
+        let scattering = |h: f64| -> f64 { self.at(h).scattering.iter().sum::<Spectrum>().max_element() };
+        let mut above = 0.0;
+        for i in (0..DEPTH_STEPS).rev() {
+            let (low, high) = (dh * i as f64, dh * (i + 1) as f64);
+            above += 0.5 * (scattering(low) + scattering(high)) * dh;
+            if above >= depth {
+                return low;
+            }
+        }
+        0.0
     }
 
     /// Whether any term scatters or absorbs at all.

@@ -62,3 +62,22 @@ fn bad_terms_name_the_key_and_the_rule() {
     }
     earth.validate().unwrap();
 }
+
+/// An exponential scatterer's vertical optical depth is `σ·H·(1 − e^(−top/H))` in closed form.
+#[test]
+fn the_vertical_scattering_depth_of_an_exponential_term_is_its_closed_form() {
+    let atmosphere = crate::atmosphere::presets::earth();
+    let mut medium = atmosphere.medium.clone();
+    medium.terms.truncate(1);
+    let top = atmosphere.planet.atmosphere_height;
+    let scale_height = 8_000.0;
+    let want = medium.terms[0].scattering * scale_height * (1.0 - (-top / scale_height).exp());
+    let got = medium.vertical_scattering_depth(0.0, top);
+    assert!(((got - want) / want).abs().max_element() < 1e-5, "{got} vs {want}");
+    // Above h the depth is σ·H·(e^(−h/H) − e^(−top/H)): at 0.1 of the 440 nm column, h = 18.4 km.
+    let blue = medium.terms[0].scattering.z * scale_height;
+    let target = 0.1 * blue * (1.0 - (-top / scale_height).exp());
+    let want = -scale_height * (target / blue + (-top / scale_height).exp()).ln();
+    let got = medium.altitude_of_scattering_depth(top, target);
+    assert!((got - want).abs() <= top / 1024.0, "{got} vs {want}");
+}

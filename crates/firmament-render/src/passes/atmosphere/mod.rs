@@ -51,7 +51,7 @@ use clouds::CloudStages;
 pub use luts::AtmosphereLuts;
 use luts::{SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
 pub use multiscattering::MULTISCATTERING_ORDERS;
-use multiscattering::MultiscatteringStages;
+use multiscattering::{MultiscatteringStages, Tail};
 pub use rebuild::MEDIUM_BUILD_STEPS;
 use luts::MediumLuts;
 use rebuild::{BuildStep, Rebuild};
@@ -450,9 +450,10 @@ impl AtmospherePass {
     pub fn record_medium_luts_to_order(&self, encoder: &mut wgpu::CommandEncoder, orders: u32) {
         self.record_build_step(encoder, BuildStep::Transmittance);
         for order in 1..=orders {
-            self.multiscattering.record_order(encoder, &self.build, order == 1);
+            let tail = self.rebuild.tail;
+            self.multiscattering.record_order(encoder, &self.build, order == 1, tail);
         }
-        self.multiscattering.record_sum(encoder, &self.build, false);
+        self.multiscattering.record_sum(encoder, &self.build, Tail::None);
         self.record_swap(encoder);
     }
 
@@ -473,9 +474,10 @@ impl AtmospherePass {
                 self.multiscattering.record_start(encoder);
             }
             BuildStep::Order(order) => {
-                self.multiscattering.record_order(encoder, &self.build, order == 1);
+                let tail = self.rebuild.tail;
+                self.multiscattering.record_order(encoder, &self.build, order == 1, tail);
                 if order == MULTISCATTERING_ORDERS {
-                    self.multiscattering.record_sum(encoder, &self.build, true);
+                    self.multiscattering.record_sum(encoder, &self.build, self.rebuild.tail);
                     self.record_swap(encoder);
                 }
             }

@@ -5,8 +5,9 @@
 //! textures and its ground sky irradiance row E, and writes its own into a buffer of packed
 //! `Rgba16Float` texels — copied into those textures for the next order — while adding them, in
 //! `f32`, into a buffer of per-texel sums. A last dispatch (`atmosphere/multiscattering_sum.wgsl`)
-//! writes the sum of the orders, and the geometric tail of those after the last, into the build
-//! set's textures ([`MediumLuts`], copied into
+//! writes the sum of the orders, and the geometric tail of those after the last (in a thick air
+//! the diffusion tail a dispatch of `atmosphere/multiscattering_diffusion.wgsl` added before it),
+//! into the build set's textures ([`MediumLuts`], copied into
 //! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done). A
 //! buffer rather than storage textures: seven moments are more storage textures than GL-class
 //! devices bind at once.
@@ -17,7 +18,10 @@ use super::stages::{
     ComputeStage, binding, moments_entry, sampler_entry, storage_buffer_entry, texture_entry,
     uniform_entry,
 };
+use firmament_core::atmosphere::Atmosphere;
+
 use crate::gpu_types::OrderSumsGpu;
+use crate::gpu_types::medium::is_thick_air;
 use crate::shaders;
 
 /// Orders of scattering the LUTs march (the light arriving at a point after 1 to this many
@@ -25,6 +29,30 @@ use crate::shaders;
 /// geometric series (`atmosphere/multiscattering_sum.wgsl`). docs/ATMOSPHERE.md ("Multiple
 /// scattering") measures the choice against more orders marched.
 pub const MULTISCATTERING_ORDERS: u32 = 4;
+
+/// How the light of the orders after the last marched one is added to the sums.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) enum Tail {
+    /// Not at all: the LUTs hold exactly the orders marched.
+    None,
+    /// As a geometric series from the last two orders (`atmosphere/multiscattering_sum.wgsl`).
+    #[default]
+    Geometric,
+    /// By the diffusion approximation (`atmosphere/multiscattering_diffusion.wgsl`).
+    Diffusion,
+}
+
+impl Tail {
+    /// The tail for `atmosphere`'s air: diffusion in a thick air
+    /// ([`THICK_AIR_DEPTH`](crate::gpu_types::medium::THICK_AIR_DEPTH)).
+    pub(super) fn for_air(atmosphere: &Atmosphere) -> Self {
+        if is_thick_air(&atmosphere.medium, atmosphere.planet.atmosphere_height) {
+            Self::Diffusion
+        } else {
+            Self::Geometric
+        }
+    }
+}
 
 /// Bytes of one `Rgba16Float` texel.
 const TEXEL_BYTES: u32 = 8;
@@ -49,12 +77,15 @@ const ORDER_SUMS_BYTES: u64 = std::mem::size_of::<OrderSumsGpu>() as u64;
 /// Invocations per workgroup of the sum (`atmosphere/multiscattering_sum.wgsl`).
 const SUM_WORKGROUP: u32 = 256;
 
-/// The orders' compute stages (order 1, later orders, the sums with and without the tail), their
-/// buffers and the ground irradiance row.
+/// The orders' compute stages (order 1, later orders, the diffusion tail, the sums with and
+/// without the geometric tail), their buffers and the ground irradiance row.
 #[derive(Debug)]
 pub(super) struct MultiscatteringStages {
     first: ComputeStage,
+    /// Order 1 with the forward peaks split off (`SPLIT_PEAK`), for a thick air.
+    first_thick: ComputeStage,
     next: ComputeStage,
+    diffusion: ComputeStage,
     sum: ComputeStage,
     sum_without_tail: ComputeStage,
     /// An order's output, or the sums', packed texels.
@@ -114,14 +145,17 @@ impl MultiscatteringStages {
             binding::MULTISCATTERING,
             wgpu::BindingResource::TextureView(&luts.multiscattering.view),
         ));
-        let order = |owner, first: bool| {
+        let order = |owner, first: bool, split_peak: bool| {
             ComputeStage::with_constants(
                 device,
                 owner,
                 &shaders::ATMOSPHERE_MULTISCATTERING_LUT,
                 &entries,
                 &resources,
-                &[("FIRST_ORDER", f64::from(u8::from(first)))],
+                &[
+                    ("FIRST_ORDER", f64::from(u8::from(first))),
+                    ("SPLIT_PEAK", f64::from(u8::from(split_peak))),
+                ],
             )
         };
         let sum_entries = [
@@ -142,9 +176,36 @@ impl MultiscatteringStages {
                 &[("TAIL", f64::from(u8::from(tail)))],
             )
         };
+        let diffusion_entries = [
+            uniform_entry(binding::PARAMS),
+            texture_entry(binding::PREVIOUS_GROUND_IRRADIANCE, true),
+            storage_buffer_entry(binding::MULTISCATTERING_ORDERS),
+        ];
+        let diffusion_resources = [
+            (binding::PARAMS, luts.params.as_entire_binding()),
+            (
+                binding::PREVIOUS_GROUND_IRRADIANCE,
+                wgpu::BindingResource::TextureView(&ground.view),
+            ),
+            (binding::MULTISCATTERING_ORDERS, orders.as_entire_binding()),
+        ];
+        let diffusion = ComputeStage::with_constants(
+            device,
+            "AtmospherePass multiple-scattering diffusion tail",
+            &shaders::ATMOSPHERE_MULTISCATTERING_DIFFUSION,
+            &diffusion_entries,
+            &diffusion_resources,
+            &[],
+        );
         Self {
-            first: order("AtmospherePass multiple-scattering LUT, order 1", true),
-            next: order("AtmospherePass multiple-scattering LUT, later orders", false),
+            first: order("AtmospherePass multiple-scattering LUT, order 1", true, false),
+            first_thick: order(
+                "AtmospherePass multiple-scattering LUT, order 1 of a thick air",
+                true,
+                true,
+            ),
+            next: order("AtmospherePass multiple-scattering LUT, later orders", false, false),
+            diffusion,
             sum: sum("AtmospherePass multiple-scattering sum", true),
             sum_without_tail: sum("AtmospherePass multiple-scattering sum without the tail", false),
             output,
@@ -159,19 +220,33 @@ impl MultiscatteringStages {
     }
 
     /// Encodes the next order (order 1 when `first`; after [`record_start`](Self::record_start)
-    /// and the orders before it): it leaves its moments in `luts` for the next.
-    pub(super) fn record_order(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, first: bool) {
+    /// and the orders before it) of an air with `tail`: it leaves its moments in `luts` for the
+    /// next. A thick air's order 1 splits off the forward peaks (`SPLIT_PEAK` in
+    /// `atmosphere/multiscattering_lut.wgsl`).
+    pub(super) fn record_order(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, first: bool, tail: Tail) {
         let (width, height) = MULTISCATTERING_SIZE;
         // One workgroup per texel, and a row more for the ground's irradiance.
-        let stage = if first { &self.first } else { &self.next };
+        let stage = match (first, tail) {
+            (true, Tail::Diffusion) => &self.first_thick,
+            (true, _) => &self.first,
+            (false, _) => &self.next,
+        };
         stage.dispatch(encoder, (width, height + 1, 1));
         self.record_copy(encoder, luts, true);
     }
 
-    /// Encodes the sum of the orders so far into `luts`' moments and sky irradiance, with the
-    /// geometric tail of the orders after them when `tail`.
-    pub(super) fn record_sum(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, tail: bool) {
-        let stage = if tail { &self.sum } else { &self.sum_without_tail };
+    /// Encodes the sum of the orders so far into `luts`' moments and sky irradiance, with `tail`,
+    /// the light of the orders after them.
+    pub(super) fn record_sum(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, tail: Tail) {
+        if tail == Tail::Diffusion {
+            // One invocation per column of mu_s.
+            self.diffusion.dispatch(encoder, (1, 1, 1));
+        }
+        let stage = if tail == Tail::Geometric {
+            &self.sum
+        } else {
+            &self.sum_without_tail
+        };
         stage.dispatch(encoder, (MOMENT_TEXELS.div_ceil(SUM_WORKGROUP), 1, 1));
         self.record_copy(encoder, luts, false);
     }

@@ -12,7 +12,7 @@ use std::ops::Range;
 
 use firmament_core::atmosphere::Atmosphere;
 
-use super::multiscattering::MULTISCATTERING_ORDERS;
+use super::multiscattering::{MULTISCATTERING_ORDERS, Tail};
 
 /// Steps of one build: the transmittance LUT, each order of the multiple-scattering LUTs (the
 /// last with their sum, the sky irradiance LUT and the copy into the live set).
@@ -48,6 +48,8 @@ pub(super) struct Rebuild {
     live: Option<Atmosphere>,
     /// The medium being built.
     pending: Option<Atmosphere>,
+    /// How the build adds the orders after the last marched one (chosen by its air).
+    pub(super) tail: Tail,
     /// The next step of the build in progress.
     next: Cell<Option<u32>>,
     /// The steps the next `record_luts` encodes.
@@ -60,6 +62,7 @@ impl Rebuild {
     /// Starts building `medium` (from the first step, also when a build was under way).
     pub(super) fn start(&mut self, medium: Atmosphere) {
         self.promote_finished();
+        self.tail = Tail::for_air(&medium);
         self.pending = Some(medium);
         self.next.set(Some(0));
     }

@@ -44,7 +44,8 @@ struct MediumTerm {
 // The medium: everything the LUTs depend on.
 struct AtmosphereParams {
     radii: vec4<f32>,         // xyz ellipsoid semi-axes (m); w = atmosphere height (m)
-    lut: vec4<f32>,           // x, y = bottom and top radius of the LUT sphere (m); z = number of terms
+    lut: vec4<f32>,           // x, y = bottom and top radius of the LUT sphere (m); z = number of terms;
+                              // w = the height the multiple-scattering and irradiance LUTs span (m)
     ground_albedo: vec4<f32>, // rgb, dimensionless
     terms: array<MediumTerm, MAX_MEDIUM_TERMS>,
     table_counts: vec4<u32>,                      // x = terms with a density table, y = with a phase table

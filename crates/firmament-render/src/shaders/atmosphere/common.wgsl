@@ -211,14 +211,14 @@ fn unit_to_mu_s(u: f32) -> f32 {
 fn mu_s_h_to_uv(mu_s: f32, h: f32, size: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(
         unit_to_texel_coord(mu_s_to_unit(mu_s), size.x),
-        unit_to_texel_coord(clamp(h / atmosphere.radii.w, 0.0, 1.0), size.y),
+        unit_to_texel_coord(clamp(h / atmosphere.lut.w, 0.0, 1.0), size.y),
     );
 }
 
 fn uv_to_mu_s_h(uv: vec2<f32>, size: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(
         unit_to_mu_s(texel_coord_to_unit(uv.x, size.x)),
-        texel_coord_to_unit(uv.y, size.y) * atmosphere.radii.w,
+        texel_coord_to_unit(uv.y, size.y) * atmosphere.lut.w,
     );
 }
 

@@ -36,6 +36,15 @@
 // Whether this pipeline marches order 1 (sunlight scattered once) rather than a later order.
 override FIRST_ORDER: bool = true;
 
+// Whether order 1 splits off the phase functions' delta-M forward peaks (a thick air,
+// gpu_types::medium::THICK_AIR_DEPTH). A peak as narrow as a thick cloud's or Titan's haze's
+// falls between the directions: with the Sun at the zenith no direction lies within 33° of it,
+// and Venus's subsolar cloud top came out 40 % dark, with the Sun 30° down 10 % bright. Split,
+// the directions march the band-limited rest (bands 0–4 with a_l − f, as the later orders
+// scatter), and the peak's light, which arrives from the sun's direction alone, is marched along
+// that one direction and added to the moments exactly (`peak_light`).
+override SPLIT_PEAK: bool = false;
+
 // Directions: ZENITHS strata of the cosine by AZIMUTHS of the half circle towards +y. The light is
 // mirror-symmetric about the sun's vertical plane (the x–z plane) and every moment summed is even
 // in y (luts.wgsl), so each direction stands for its mirror image too: the 144 directions of
@@ -65,6 +74,80 @@ fn sum_directions(v: vec4<f32>, lane: u32) -> vec4<f32> {
 fn previous_irradiance(mu_s: f32) -> vec3<f32> {
     let u = unit_to_texel_coord(mu_s_to_unit(mu_s), MULTISCATTERING_LUT_SIZE.x);
     return decode_log(textureSampleLevel(previous_ground_irradiance, lut_sampler, vec2<f32>(u, 0.5), 0.0).rgb);
+}
+
+// Step k of STEPS along a ray of `ray_length`: its middle (x) and length (y), spread
+// quadratically, short near the point: a grazing ray from the ground is ~1000 km long but meets
+// most of its air in the first kilometres.
+fn quadratic_step(k: i32, ray_length: f32) -> vec2<f32> {
+    let a = f32(k) / f32(STEPS);
+    let b = f32(k + 1) / f32(STEPS);
+    return vec2<f32>(0.5 * (a * a + b * b) * ray_length, (b * b - a * a) * ray_length);
+}
+
+// Σ σ_s·p of the terms' delta-M phase functions without their peaks: bands 0–4 with a_l − f
+// (the light `scatter_moments` in luts.wgsl scatters from isotropic… moments, here from the
+// sun's direction), each term's clamped at 0.
+fn band_limited_scattering_phase(c: Coefficients, nu: f32) -> vec3<f32> {
+    let p2 = 0.5 * (3.0 * nu * nu - 1.0);
+    let p3 = 0.5 * nu * (5.0 * nu * nu - 3.0);
+    let p4 = (35.0 * nu * nu * nu * nu - 30.0 * nu * nu + 3.0) / 8.0;
+    var total = vec3<f32>(0.0);
+    for (var i = 0u; i < term_count(); i++) {
+        let f = atmosphere.terms[i].phase.w;
+        let a = atmosphere.terms[i].legendre - f;
+        let value = (1.0 - f) + 3.0 * a.x * nu + 5.0 * a.y * p2 + 7.0 * a.z * p3 + 9.0 * a.w * p4;
+        total += term_scattering(c, i) * max(value, 0.0) / (4.0 * PI);
+    }
+    return total;
+}
+
+// The radiance of the forward peaks' light arriving at radius r from the sun's direction, per
+// unit sun: Σ f_i·σ_i·T_sun along that direction, meeting the diffuse extinction on its way back.
+fn peak_light(r: f32, sun: vec3<f32>) -> vec3<f32> {
+    if ray_hits_ground(r, sun.z) {
+        return vec3<f32>(0.0);
+    }
+    let ray_length = distance_to_top(r, sun.z);
+    let origin = vec3<f32>(0.0, 0.0, r);
+    var throughput = vec3<f32>(1.0);
+    var light = vec3<f32>(0.0);
+    for (var k = 0; k < STEPS; k++) {
+        let step = quadratic_step(k, ray_length);
+        let dt = step.y;
+        let p = origin + sun * step.x;
+        let r_t = length(p);
+        let h_t = r_t - atmosphere.lut.x;
+        let c = coefficients_at(h_t);
+        var peak = vec3<f32>(0.0);
+        for (var i = 0u; i < term_count(); i++) {
+            peak += atmosphere.terms[i].phase.w * term_scattering(c, i);
+        }
+        let step_transmittance = exp(-c.diffuse_extinction * dt);
+        let source = peak * transmittance_to_sun(h_t, dot(p, sun) / r_t, 0.0);
+        light += throughput * integrate_step(source, c.diffuse_extinction, step_transmittance, dt);
+        throughput *= step_transmittance;
+    }
+    return light;
+}
+
+// The moments of light `peak` arriving from the single direction s alone (as `cs_main` sums
+// them over directions: means over the sphere).
+fn peak_moments(peak: vec3<f32>, s: vec3<f32>) -> array<vec4<f32>, ORDER_SUMS> {
+    let m = peak / (4.0 * PI);
+    let m_sum = m.r + m.g + m.b;
+    let b3 = m_sum * band3_basis(s.x, s.y * s.y, s.z);
+    let b4 = band4_basis(s.x, s.y * s.y, s.z);
+    let b4_low = m_sum * b4.low;
+    return array<vec4<f32>, ORDER_SUMS>(
+        vec4<f32>(m, b4.m4 * m_sum),
+        vec4<f32>(m * s.z * s.z, b3.x),
+        vec4<f32>(m * s.x * s.x, b3.y),
+        vec4<f32>(m * s.x * s.z, b3.z),
+        vec4<f32>(m * s.x, b3.w),
+        vec4<f32>(m * s.z, b4_low.x),
+        vec4<f32>(b4_low.yzw, 0.0),
+    );
 }
 
 // What one direction brings: its light (weighted for the sphere) and the direction.
@@ -102,13 +185,9 @@ fn direction_light(lane: u32, r: f32, sun: vec3<f32>) -> DirectionLight {
     var throughput = vec3<f32>(1.0);
     var light = vec3<f32>(0.0);
     for (var k = 0; k < STEPS; k++) {
-        // Steps spread quadratically, short near the point: a grazing ray from the ground is
-        // ~1000 km long but meets most of its air in the first kilometres.
-        let a = f32(k) / f32(STEPS);
-        let b = f32(k + 1) / f32(STEPS);
-        let dt = (b * b - a * a) * ray_length;
-        let t = 0.5 * (a * a + b * b) * ray_length;
-        let p = origin + dir * t;
+        let step = quadratic_step(k, ray_length);
+        let dt = step.y;
+        let p = origin + dir * step.x;
         let r_t = length(p);
         let h_t = r_t - atmosphere.lut.x;
         let mu_s_t = dot(p, sun) / r_t;
@@ -116,7 +195,9 @@ fn direction_light(lane: u32, r: f32, sun: vec3<f32>) -> DirectionLight {
         // Scattered light meets the diffuse extinction (delta-M, common.wgsl).
         let step_transmittance = exp(-c.diffuse_extinction * dt);
         var source: vec3<f32>;
-        if FIRST_ORDER {
+        if FIRST_ORDER && SPLIT_PEAK {
+            source = band_limited_scattering_phase(c, nu) * transmittance_to_sun(h_t, mu_s_t, 0.0);
+        } else if FIRST_ORDER {
             source = scattering_phase(c, nu) * transmittance_to_sun(h_t, mu_s_t, 0.0);
         } else {
             source = multiple_scattering(c, h_t, p / r_t, sun, dir);
@@ -157,7 +238,13 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
 
     // The sky irradiance on a horizontal surface: ∫ L cos⁺ dω, 4π/n per direction. On the ground
     // row it is E_k, which the next order's ground reflects.
-    let irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane) * (4.0 * PI / n);
+    var irradiance = sum_directions(vec4<f32>(light * max(dir.z, 0.0), 0.0), lane) * (4.0 * PI / n);
+    // Order 1's forward peaks, from the sun's direction alone (lane 0 keeps the sums).
+    var peak = vec3<f32>(0.0);
+    if FIRST_ORDER && SPLIT_PEAK && lane == 0u {
+        peak = peak_light(atmosphere.lut.x + h, sun);
+        irradiance += vec4<f32>(peak * max(sun.z, 0.0), 0.0);
+    }
     if ground_row {
         if lane == 0u {
             store_texel(GROUND_ROW_START + texel.x, vec4<f32>(encode_log(irradiance.rgb), 1.0));
@@ -183,6 +270,12 @@ fn cs_main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_in
     );
     if lane != 0u {
         return;
+    }
+    if FIRST_ORDER && SPLIT_PEAK {
+        let from_peak = peak_moments(peak, sun);
+        for (var m = 0u; m < ORDER_SUMS; m++) {
+            order[m] += from_peak[m];
+        }
     }
     let index = texel.y * size.x + texel.x;
     store_moments(index, order);

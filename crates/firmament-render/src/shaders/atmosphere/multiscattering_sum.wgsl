@@ -18,6 +18,8 @@
 // same ratio of Ψ summed over every texel: in the shadow, where light arrives from lit air far
 // off, a texel's orders may still grow at n, and its own ratio would sum them as if they never
 // stopped. Measured against more orders marched in docs/ATMOSPHERE.md, "Multiple scattering".
+// In a thick air (Venus, Titan) the ratio has not settled after the orders marched: there
+// multiscattering_diffusion.wgsl adds the tail to the sums and this runs without TAIL.
 
 #import atmosphere/bindings
 #import atmosphere/luts

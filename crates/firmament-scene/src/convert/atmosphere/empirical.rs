@@ -33,7 +33,7 @@ fn body_seed(body: Body) -> Option<EmpiricalAtmosphere> {
     match body {
         Body::Earth => Some(EmpiricalAtmosphere::seed_earth()),
         Body::Mars => Some(EmpiricalAtmosphere::seed_mars()),
-        Body::Saturn => None,
+        Body::Saturn | Body::Venus | Body::Titan => None,
     }
 }
 

@@ -11,7 +11,8 @@ use crate::model::{AtmosphereSection, Body, MiePhaseName};
 use crate::spectrum::SceneSpectrum;
 
 /// The medium and the model wavelengths, every value checked: the body's constituents with the
-/// shorthand keys' changes, or `[[atmosphere.terms]]`.
+/// shorthand keys' changes, the body's own free-form terms (Venus, Titan: no shorthand keys), or
+/// `[[atmosphere.terms]]`.
 pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium, Wavelengths), SceneError> {
     let base = body.atmosphere();
     let a = section;
@@ -49,6 +50,9 @@ pub(super) fn medium(section: &AtmosphereSection, body: Body) -> Result<(Medium,
             }
             terms::terms(entries, wavelengths)?
         }
+        // A body whose medium is free-form terms (Venus, Titan) keeps them when no shorthand key
+        // is set.
+        None if base.medium.constituents().is_none() && shorthand_key(a).is_none() => base.medium.terms,
         None => constituents(a, body, &base.medium)?.terms(),
     };
     Ok((Medium { terms, ground_albedo }, wavelengths))
@@ -78,7 +82,11 @@ fn constituents(a: &AtmosphereSection, body: Body, base: &Medium) -> Result<Cons
         SceneError::invalid(
             "planet.body",
             body.name(),
-            "has no molecules-aerosols-gas medium for the shorthand keys",
+            format!(
+                "has no molecules-aerosols-gas medium for the shorthand keys (atmosphere.{}): its air is \
+                 free-form terms; give the whole medium as [[atmosphere.terms]] instead",
+                shorthand_key(a).unwrap_or("rayleigh_scattering")
+            ),
         )
     })?;
     if let Some(s) = coefficient("atmosphere.rayleigh_scattering", a.rayleigh_scattering)? {
