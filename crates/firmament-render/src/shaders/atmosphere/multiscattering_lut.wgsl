@@ -85,9 +85,8 @@ fn quadratic_step(k: i32, ray_length: f32) -> vec2<f32> {
     return vec2<f32>(0.5 * (a * a + b * b) * ray_length, (b * b - a * a) * ray_length);
 }
 
-// Σ σ_s·p of the terms' delta-M phase functions without their peaks: bands 0–4 with a_l − f
-// (the light `scatter_moments` in luts.wgsl scatters from isotropic… moments, here from the
-// sun's direction), each term's clamped at 0.
+// Σ σ_s·p of the terms' delta-M phase functions without their peaks: bands 0–4 with a_l − f, as
+// `scatter_moments` in luts.wgsl scatters the later orders' light, each term's clamped at 0.
 fn band_limited_scattering_phase(c: Coefficients, nu: f32) -> vec3<f32> {
     let p2 = 0.5 * (3.0 * nu * nu - 1.0);
     let p3 = 0.5 * nu * (5.0 * nu * nu - 3.0);
