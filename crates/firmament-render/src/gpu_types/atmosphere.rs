@@ -68,8 +68,13 @@ pub fn lut_bottom_radius(atmosphere: &Atmosphere) -> f64 {
 impl AtmosphereParamsUniforms {
     /// The medium and shape of `atmosphere`.
     pub fn new(atmosphere: &Atmosphere) -> Self {
+        let thick = is_thick_air(&atmosphere.medium, atmosphere.planet.atmosphere_height);
+        Self::with_thickness(atmosphere, thick)
+    }
+
+    /// [`new`](Self::new) for a caller that knows whether the air is thick ([`is_thick_air`]).
+    pub(crate) fn with_thickness(atmosphere: &Atmosphere, thick: bool) -> Self {
         let planet = &atmosphere.planet;
-        let thick = is_thick_air(&atmosphere.medium, planet.atmosphere_height);
         let medium = MediumGpu::new(&atmosphere.medium, planet.atmosphere_height, thick);
         let bottom = lut_bottom_radius(atmosphere);
         Self {

@@ -40,6 +40,7 @@ mod stages;
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 
+use crate::gpu_types::medium::is_thick_air;
 use crate::gpu_types::{AtmosphereParamsUniforms, AtmosphereViewUniforms, codes};
 use crate::passes::common::SkyTarget;
 use crate::passes::common::{PassPipeline, begin_load_pass, far_depth_constant, far_plane_depth_state, uniform_buffer};
@@ -131,8 +132,6 @@ pub struct AtmospherePass {
     sky_compute: Option<([ComputeStage; 3], (u32, u32))>,
     /// Which sky pipeline this frame uses.
     sky_mode: SkyMode,
-    /// The medium last uploaded for building, to rebuild the LUTs only when it changes.
-    uploaded: Option<AtmosphereParamsUniforms>,
     /// The medium LUTs' build: in progress, planned, counted.
     rebuild: Rebuild,
     sun_count: u32,
@@ -267,7 +266,6 @@ impl AtmospherePass {
             sky_view,
             sky,
             sky_compute: None,
-            uploaded: None,
             rebuild: Rebuild::default(),
             sun_count: 0,
             method: SkyMethod::Lut,
@@ -282,11 +280,12 @@ impl AtmospherePass {
     /// way (with `sky`'s suns and the planet's pose), so the sky stays whole.
     pub fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky, camera: &Camera) {
         self.clouds.prepare(queue, sky);
-        let params = AtmosphereParamsUniforms::new(&sky.atmosphere);
-        if self.uploaded != Some(params) {
+        if !self.rebuild.is_newest(&sky.atmosphere) {
+            let planet = &sky.atmosphere.planet;
+            let thick = is_thick_air(&sky.atmosphere.medium, planet.atmosphere_height);
+            let params = AtmosphereParamsUniforms::with_thickness(&sky.atmosphere, thick);
             queue.write_buffer(&self.build.params, 0, bytemuck::bytes_of(&params));
-            self.uploaded = Some(params);
-            self.rebuild.start(sky.atmosphere.clone());
+            self.rebuild.start(sky.atmosphere.clone(), Tail::for_thickness(thick));
         }
         let live_sky;
         let sky = match self.rebuild.plan() {

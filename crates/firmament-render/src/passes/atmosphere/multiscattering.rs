@@ -18,10 +18,7 @@ use super::stages::{
     ComputeStage, binding, moments_entry, sampler_entry, storage_buffer_entry, texture_entry,
     uniform_entry,
 };
-use firmament_core::atmosphere::Atmosphere;
-
 use crate::gpu_types::OrderSumsGpu;
-use crate::gpu_types::medium::is_thick_air;
 use crate::shaders;
 
 /// Orders of scattering the LUTs march (the light arriving at a point after 1 to this many
@@ -43,14 +40,10 @@ pub(super) enum Tail {
 }
 
 impl Tail {
-    /// The tail for `atmosphere`'s air: diffusion in a thick air
-    /// ([`THICK_AIR_DEPTH`](crate::gpu_types::medium::THICK_AIR_DEPTH)).
-    pub(super) fn for_air(atmosphere: &Atmosphere) -> Self {
-        if is_thick_air(&atmosphere.medium, atmosphere.planet.atmosphere_height) {
-            Self::Diffusion
-        } else {
-            Self::Geometric
-        }
+    /// The tail of an air: diffusion when it is thick
+    /// ([`is_thick_air`](crate::gpu_types::medium::is_thick_air)).
+    pub(super) fn for_thickness(thick: bool) -> Self {
+        if thick { Self::Diffusion } else { Self::Geometric }
     }
 }
 

@@ -59,10 +59,21 @@ pub(super) struct Rebuild {
 }
 
 impl Rebuild {
-    /// Starts building `medium` (from the first step, also when a build was under way).
-    pub(super) fn start(&mut self, medium: Atmosphere) {
+    /// Whether the newest build (finished or under way) is of `atmosphere`'s medium and shape,
+    /// whatever its pose: what the medium's LUTs depend on.
+    pub(super) fn is_newest(&self, atmosphere: &Atmosphere) -> bool {
+        self.pending.as_ref().or(self.live.as_ref()).is_some_and(|newest| {
+            newest.medium == atmosphere.medium
+                && newest.planet.radii == atmosphere.planet.radii
+                && newest.planet.atmosphere_height == atmosphere.planet.atmosphere_height
+        })
+    }
+
+    /// Starts building `medium` with `tail` (from the first step, also when a build was under
+    /// way).
+    pub(super) fn start(&mut self, medium: Atmosphere, tail: Tail) {
         self.promote_finished();
-        self.tail = Tail::for_air(&medium);
+        self.tail = tail;
         self.pending = Some(medium);
         self.next.set(Some(0));
     }
