@@ -14,8 +14,8 @@ use glam::DVec3;
 
 pub use super::planet_view::FAR_CAMERA_RADII;
 use super::medium::{
-    DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, MediumGpu, MediumTermUniform, PHASE_TABLE_SAMPLES,
-    is_thick_air, multiscattering_lut_height,
+    DENSITY_TABLE_SAMPLES, LUT_ROWS, MAX_MEDIUM_TERMS, MediumGpu, MediumTermUniform, PHASE_TABLE_SAMPLES,
+    is_thick_air, multiscattering_lut_height, multiscattering_lut_rows,
 };
 use super::planet_view::PlanetView;
 use super::pack::vec3_w;
@@ -46,7 +46,9 @@ pub struct AtmosphereParamsUniforms {
     pub ground_albedo: [f32; 4],
     /// The medium's terms (the first `lut.z`).
     pub terms: [MediumTermUniform; MAX_MEDIUM_TERMS],
-    /// x: how many terms have a density table, y: a phase table; zw unused.
+    /// x: how many terms have a density table, y: a phase table; z: 1 where the
+    /// multiple-scattering LUTs' rows stand at `lut_rows` (a thick air), 0 where they are evenly
+    /// spread up to `lut.w`; w unused.
     pub table_counts: [u32; 4],
     /// The indices of the terms with a density table, four to a vector.
     pub density_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],
@@ -56,6 +58,9 @@ pub struct AtmosphereParamsUniforms {
     pub density_tables: [[f32; 4]; MAX_MEDIUM_TERMS * DENSITY_TABLE_SAMPLES / 4],
     /// The phase tables, [`PHASE_TABLE_SAMPLES`] values per term, four to a vector.
     pub phase_tables: [[f32; 4]; MAX_MEDIUM_TERMS * PHASE_TABLE_SAMPLES / 4],
+    /// A thick air's multiple-scattering LUT rows, altitudes (m) from the ground to `lut.w`
+    /// ([`multiscattering_lut_rows`]), four to a vector; zeros in a thin air.
+    pub lut_rows: [[f32; 4]; LUT_ROWS / 4],
 }
 
 /// The radius of the sphere the transmittance and multiple-scattering LUTs are built for: the
@@ -77,21 +82,32 @@ impl AtmosphereParamsUniforms {
         let planet = &atmosphere.planet;
         let medium = MediumGpu::new(&atmosphere.medium, planet.atmosphere_height, thick);
         let bottom = lut_bottom_radius(atmosphere);
+        let height = multiscattering_lut_height(&atmosphere.medium, planet.atmosphere_height, thick);
+        let mut table_counts = medium.table_counts;
+        let mut lut_rows = [[0.0; 4]; LUT_ROWS / 4];
+        if thick {
+            table_counts[2] = 1;
+            let rows = multiscattering_lut_rows(&atmosphere.medium, planet.atmosphere_height, height);
+            for (y, h) in rows.iter().enumerate() {
+                lut_rows[y / 4][y % 4] = *h as f32;
+            }
+        }
         Self {
             radii: vec3_w(planet.radii, planet.atmosphere_height),
             lut: [
                 bottom as f32,
                 (bottom + planet.atmosphere_height) as f32,
                 medium.count as f32,
-                multiscattering_lut_height(&atmosphere.medium, planet.atmosphere_height, thick) as f32,
+                height as f32,
             ],
             ground_albedo: spectrum_w(atmosphere.medium.ground_albedo, 0.0),
             terms: medium.terms,
-            table_counts: medium.table_counts,
+            table_counts,
             density_table_terms: medium.density_table_terms,
             phase_table_terms: medium.phase_table_terms,
             density_tables: medium.density_tables,
             phase_tables: medium.phase_tables,
+            lut_rows,
         }
     }
 }

@@ -59,6 +59,59 @@ pub fn multiscattering_lut_height(medium: &Medium, top: f64, thick: bool) -> f64
     }
 }
 
+/// Rows of the multiple-scattering and sky-irradiance LUTs (`LUT_ROWS` in
+/// `atmosphere/common.wgsl`).
+pub const LUT_ROWS: usize = 32;
+
+/// The share of evenly spread rows in a thick air's rows ([`multiscattering_lut_rows`]): it keeps
+/// every row at least a tenth of the even spacing above the one below, even across air that
+/// scatters nothing.
+const EVEN_ROW_SHARE: f64 = 0.1;
+
+/// The altitudes, metres, of the [`LUT_ROWS`] rows of a thick air's multiple-scattering and
+/// sky-irradiance LUTs, from the ground to `height` ([`multiscattering_lut_height`]) of an air
+/// `top` metres high.
+///
+/// Evenly spread rows span 0.65 optical depths each in an air of depth 20, and a thick air's
+/// light changes most within its first optical depth from the top (where the light scattered
+/// once peaks, ~0.3 down) and from a dark ground: interpolated between such rows, the light
+/// scattered twice came out 12 % dark just below the top, and the diffusion of the later orders
+/// started from it (docs/ATMOSPHERE.md, "Thick airs"). These rows are spread by the
+/// vertical scattering depth from the top instead, in cosine steps (fine at both ends, ~π/2 times
+/// the mean in the middle, where the light diffuses smoothly), blended with `EVEN_ROW_SHARE`
+/// of even steps.
+pub fn multiscattering_lut_rows(medium: &Medium, top: f64, height: f64) -> [f64; LUT_ROWS] {
+    // The scattering depth from `top` down to each of `STEPS` + 1 altitudes evenly spread over
+    // [0, height], at the wavelength that scatters most, by trapezoids.
+    const STEPS: usize = 4096;
+    let dh = height / STEPS as f64;
+    let scattering = |h: f64| medium.at(h).scattering.iter().sum::<Spectrum>().max_element();
+    let mut depth = vec![0.0; STEPS + 1];
+    depth[STEPS] = medium.vertical_scattering_depth(height, top).max_element();
+    for i in (0..STEPS).rev() {
+        let (low, high) = (dh * i as f64, dh * (i + 1) as f64);
+        depth[i] = depth[i + 1] + 0.5 * (scattering(low) + scattering(high)) * dh;
+    }
+    let (first, last) = (depth[STEPS], depth[0]);
+    // The altitude at depth `d` from the top (depth falls as the index grows).
+    let altitude_at = |d: f64| {
+        let i = depth.partition_point(|&x| x > d).clamp(1, STEPS);
+        let (above, below) = (depth[i], depth[i - 1]);
+        let t = if below > above { (below - d) / (below - above) } else { 1.0 };
+        dh * ((i - 1) as f64 + t.clamp(0.0, 1.0))
+    };
+    let last_row = (LUT_ROWS - 1) as f64;
+    std::array::from_fn(|y| {
+        let even = height * y as f64 / last_row;
+        if y == 0 || y == LUT_ROWS - 1 {
+            return even;
+        }
+        let from_top = (LUT_ROWS - 1 - y) as f64 / last_row;
+        let d = first + (last - first) * 0.5 * (1.0 - (std::f64::consts::PI * from_top).cos());
+        (1.0 - EVEN_ROW_SHARE) * altitude_at(d) + EVEN_ROW_SHARE * even
+    })
+}
+
 /// Mirrors `DensityProfile` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -224,6 +277,37 @@ mod tests {
             } else {
                 assert_eq!(height, top);
             }
+        }
+    }
+
+    /// A thick air's LUT rows climb from the ground to the LUTs' top, each at least a tenth of
+    /// the even spacing above the one before, and in a uniform slab they follow the cosine steps
+    /// in depth that `multiscattering_lut_rows` documents (computed here from the closed form).
+    #[test]
+    fn a_thick_air_s_lut_rows_climb_in_cosine_steps_of_depth() {
+        for (name, atmosphere) in [("venus", presets::venus()), ("titan", presets::titan())] {
+            let top = atmosphere.planet.atmosphere_height;
+            let height = multiscattering_lut_height(&atmosphere.medium, top, true);
+            let rows = multiscattering_lut_rows(&atmosphere.medium, top, height);
+            assert_eq!((rows[0], rows[LUT_ROWS - 1]), (0.0, height), "{name}");
+            let even = height / (LUT_ROWS - 1) as f64;
+            for pair in rows.windows(2) {
+                assert!(pair[1] - pair[0] >= 0.099 * even, "{name}: {rows:?}");
+            }
+        }
+        // A slab 10 km high of uniform air scattering 2·10⁻³ m⁻¹ (depth 20): depth from the top
+        // d = 20 (1 − h/10 km).
+        let mut medium = presets::earth().medium;
+        medium.terms.truncate(1);
+        medium.terms[0].scattering = Spectrum::splat(2e-3);
+        medium.terms[0].density = Density::Profile(DensityProfile::single(DensityLayer::constant()));
+        let (top, height) = (10_000.0, 9_995.0);
+        let rows = multiscattering_lut_rows(&medium, top, height);
+        for (y, h) in rows.iter().enumerate().skip(1).take(LUT_ROWS - 2) {
+            let from_top = (LUT_ROWS - 1 - y) as f64 / (LUT_ROWS - 1) as f64;
+            let d = 0.01 + (20.0 - 0.01) * 0.5 * (1.0 - (std::f64::consts::PI * from_top).cos());
+            let want = 0.9 * top * (1.0 - d / 20.0) + 0.1 * height * y as f64 / (LUT_ROWS - 1) as f64;
+            assert!((h - want).abs() < 0.01, "row {y}: {h} vs {want}");
         }
     }
 }

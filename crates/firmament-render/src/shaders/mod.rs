@@ -1068,7 +1068,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 density_table_terms,
                 phase_table_terms,
                 density_tables,
-                phase_tables
+                phase_tables,
+                lut_rows
             ]
         );
         let literal = |name: &str| {
@@ -1076,8 +1077,9 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             atmosphere.global_expressions[c.init].clone()
         };
         {
-            use crate::gpu_types::medium::{DENSITY_TABLE_SAMPLES, MAX_MEDIUM_TERMS, PHASE_TABLE_SAMPLES};
+            use crate::gpu_types::medium::{DENSITY_TABLE_SAMPLES, LUT_ROWS, MAX_MEDIUM_TERMS, PHASE_TABLE_SAMPLES};
             for (name, value) in [
+                ("LUT_ROWS", LUT_ROWS),
                 ("MAX_MEDIUM_TERMS", MAX_MEDIUM_TERMS),
                 ("DENSITY_TABLE_SAMPLES", DENSITY_TABLE_SAMPLES),
                 ("PHASE_TABLE_SAMPLES", PHASE_TABLE_SAMPLES),

@@ -27,4 +27,5 @@ mod sky;
 mod sky_lighting;
 mod support;
 mod thick_airs;
+mod thick_slab;
 mod user_material;

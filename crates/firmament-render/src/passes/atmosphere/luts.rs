@@ -23,6 +23,10 @@ pub const TRANSMITTANCE_SIZE: (u32, u32) = (256, 64);
 pub const TRANSMITTANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Multiple-scattering LUT size (texels): mu_s × h.
 pub const MULTISCATTERING_SIZE: (u32, u32) = (32, 32);
+const _: () = assert!(
+    MULTISCATTERING_SIZE.1 as usize == crate::gpu_types::medium::LUT_ROWS,
+    "the rows a thick air's LUT places (gpu_types::medium::multiscattering_lut_rows)"
+);
 /// Number of multiple-scattering moments, the layers of their array texture (`Moments` in
 /// `atmosphere/luts.wgsl`).
 pub const MULTISCATTERING_MOMENTS: usize = 7;

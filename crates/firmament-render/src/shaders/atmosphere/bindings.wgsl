@@ -48,11 +48,13 @@ struct AtmosphereParams {
                               // w = the height the multiple-scattering and irradiance LUTs span (m)
     ground_albedo: vec4<f32>, // rgb, dimensionless
     terms: array<MediumTerm, MAX_MEDIUM_TERMS>,
-    table_counts: vec4<u32>,                      // x = terms with a density table, y = with a phase table
+    table_counts: vec4<u32>,                      // x = terms with a density table, y = with a phase table;
+                                                  // z = 1: the multiple-scattering LUTs' rows stand at lut_rows
     density_table_terms: array<vec4<u32>, 2>,     // their indices, four to a vector
     phase_table_terms: array<vec4<u32>, 2>,
     density_tables: array<vec4<f32>, 256>, // MAX_MEDIUM_TERMS · DENSITY_TABLE_SAMPLES / 4
     phase_tables: array<vec4<f32>, 512>,   // MAX_MEDIUM_TERMS · PHASE_TABLE_SAMPLES / 4
+    lut_rows: array<vec4<f32>, 8>,         // a thick air's LUT_ROWS row altitudes (m), ground to lut.w
 }
 
 struct AtmosphereSun {

@@ -206,20 +206,61 @@ fn unit_to_mu_s(u: f32) -> f32 {
     return sign(x) * x * x;
 }
 
+// The h axis of the multiple-scattering and irradiance LUTs, LUT_ROWS rows from the ground to
+// lut.w: evenly spread in a thin air; in a thick one at the altitudes of atmosphere.lut_rows
+// (table_counts.z = 1; gpu_types::medium::multiscattering_lut_rows), with h linear between them.
+const LUT_ROWS: u32 = 32u;
+
+fn lut_row_altitude(i: u32) -> f32 {
+    return atmosphere.lut_rows[i / 4u][i % 4u];
+}
+
+// The altitude at (fractional) row `row`.
+fn lut_row_to_h(row: f32) -> f32 {
+    if atmosphere.table_counts.z == 0u {
+        return row / f32(LUT_ROWS - 1u) * atmosphere.lut.w;
+    }
+    let i = min(u32(max(row, 0.0)), LUT_ROWS - 2u);
+    return mix(lut_row_altitude(i), lut_row_altitude(i + 1u), clamp(row - f32(i), 0.0, 1.0));
+}
+
+// The unit coordinate of altitude h on the h axis (clamped to [0, 1]).
+fn h_to_lut_unit(h: f32) -> f32 {
+    if atmosphere.table_counts.z == 0u {
+        return clamp(h / atmosphere.lut.w, 0.0, 1.0);
+    }
+    // The rows lo and hi = lo + 1 around h, by bisection.
+    var lo = 0u;
+    var hi = LUT_ROWS - 1u;
+    while hi - lo > 1u {
+        let mid = (lo + hi) / 2u;
+        if lut_row_altitude(mid) <= h {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let below = lut_row_altitude(lo);
+    let t = clamp((h - below) / max(lut_row_altitude(hi) - below, 1e-3), 0.0, 1.0);
+    return (f32(lo) + t) / f32(LUT_ROWS - 1u);
+}
+
 // The (mu_s, h) tables (multiple scattering, irradiance): texel coordinates of a lookup, and the
-// (mu_s, h) a texel at `uv` stands for, on a table of `size` texels.
+// (mu_s, h) a texel at `uv` stands for, on a table of `size` texels (size.y = LUT_ROWS).
 fn mu_s_h_to_uv(mu_s: f32, h: f32, size: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(
         unit_to_texel_coord(mu_s_to_unit(mu_s), size.x),
-        unit_to_texel_coord(clamp(h / atmosphere.lut.w, 0.0, 1.0), size.y),
+        unit_to_texel_coord(h_to_lut_unit(h), size.y),
     );
 }
 
 fn uv_to_mu_s_h(uv: vec2<f32>, size: vec2<f32>) -> vec2<f32> {
-    return vec2<f32>(
-        unit_to_mu_s(texel_coord_to_unit(uv.x, size.x)),
-        texel_coord_to_unit(uv.y, size.y) * atmosphere.lut.w,
-    );
+    let unit = texel_coord_to_unit(uv.y, size.y);
+    var h = unit * atmosphere.lut.w;
+    if atmosphere.table_counts.z != 0u {
+        h = lut_row_to_h(unit * f32(LUT_ROWS - 1u));
+    }
+    return vec2<f32>(unit_to_mu_s(texel_coord_to_unit(uv.x, size.x)), h);
 }
 
 const TRANSMITTANCE_LUT_SIZE: vec2<f32> = vec2<f32>(256.0, 64.0);

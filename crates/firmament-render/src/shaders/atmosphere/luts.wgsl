@@ -22,9 +22,11 @@ fn load_bilinear(lut: texture_2d<f32>, uv: vec2<f32>) -> vec4<f32> {
 }
 
 // Transmittance from radius r along mu to the top of the atmosphere (the ray must not hit the
-// ground).
+// ground). The LUT holds the optical depth, which varies linearly along each of its rows in a
+// uniform air, so filtering it rather than its exponential stays exact where a texel spans
+// several optical depths (a thick air's slant paths).
 fn transmittance_to_top(r: f32, mu: f32) -> vec3<f32> {
-    return load_bilinear(transmittance_lut, transmittance_lut_uv(r, mu)).rgb;
+    return exp(-load_bilinear(transmittance_lut, transmittance_lut_uv(r, mu)).rgb);
 }
 
 // Transmittance to a sun of angular radius `alpha` (> 0) seen at altitude h with cosine mu_s:

@@ -2,8 +2,8 @@
 // thick air (Venus, Titan), by the diffusion approximation, added to the multiple-scattering sums.
 //
 // Conventions: as atmosphere/luts.wgsl. One invocation per column x of MULTISCATTERING_LUT_SIZE
-// (one mu_s), all wavelengths at once. Row y of the LUT lies at h = y / 31 · atmosphere.lut.w (the
-// height the LUTs span).
+// (one mu_s), all wavelengths at once. Row y of the LUT lies at h = lut_row_to_h(y) (common.wgsl:
+// a thick air's rows, crowded where its light changes fast).
 //
 // Where the air is optically thick, light diffuses through hundreds of orders before it reaches
 // the ground, and the ratio of successive orders has not settled after the few marched
@@ -20,8 +20,8 @@
 // f_i), Ψ_n and z_n order n's mean and z moment. Marshak's boundary conditions: no light arrives
 // from above the top, π(J + 2H) = 0; the Lambertian ground of albedo A sends up A times what
 // arrives from above, the tail's own and order n's irradiance E_n: π(J − 2H) = A·(π(J + 2H) + E_n).
-// Finite volumes on NODES altitudes (REFINE between rows; the sources between rows interpolated
-// as the LUT is, Ψ_n log-linearly), solved by the Thomas algorithm; the tail at each row adds J to
+// Finite volumes on NODES altitudes (REFINE evenly spread between rows; the sources between rows
+// interpolated as the LUT is, Ψ_n log-linearly), solved by the Thomas algorithm; the tail at each row adds J to
 // Ψ, J/3 to the second moments zz and xx (isotropic), H to the z moment and π(J + 2H) to the sky
 // irradiance. passes/atmosphere/multiscattering.rs runs it instead of the geometric tail in a
 // thick air (gpu_types::medium::THICK_AIR_DEPTH; docs/ATMOSPHERE.md, "Thick airs").
@@ -30,7 +30,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 
-const ROWS: u32 = 32u;
+const ROWS: u32 = LUT_ROWS;
 const REFINE: u32 = 8u;
 const NODES: u32 = (ROWS - 1u) * REFINE + 1u;
 
@@ -96,8 +96,14 @@ struct Flux {
     beta: vec3<f32>,
 }
 
-fn flux_between(x: u32, j: u32, dz: f32) -> Flux {
-    let column = column_at((f32(j) + 0.5) * dz);
+// The altitude of fine node j.
+fn node_h(j: u32) -> f32 {
+    return lut_row_to_h(f32(j) / f32(REFINE));
+}
+
+fn flux_between(x: u32, j: u32) -> Flux {
+    let dz = node_h(j + 1u) - node_h(j);
+    let column = column_at(0.5 * (node_h(j) + node_h(j + 1u)));
     let below = last_order_at(x, j);
     let above = last_order_at(x, j + 1u);
     let q1 = column.scattered_first * 0.5 * (below.z + above.z);
@@ -116,25 +122,25 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if x >= ROWS {
         return;
     }
-    let dz = atmosphere.lut.w / f32(NODES - 1u);
     let albedo = atmosphere.ground_albedo.rgb;
     let ground = decode_log(textureLoad(previous_ground_irradiance, vec2<i32>(i32(x), 0), 0).rgb);
     // The ground's H = kappa·J − epsilon (its boundary condition solved for H).
     let kappa = (1.0 - albedo) / (2.0 * (1.0 + albedo));
     let epsilon = albedo * ground / (2.0 * PI * (1.0 + albedo));
 
-    // Node j's balance H_{j+½} − H_{j−½} = w·dz·(σ_a·J_j − Q0_j) (w = ½ at the ends, where H_{−½}
-    // is the ground's and H_{N−½} the top's −J/2), written as
+    // Node j's balance H_{j+½} − H_{j−½} = w·(σ_a·J_j − Q0_j), w the length of its cell (from
+    // halfway to the node below to halfway to the one above; the ground's H is H_{−½} and the
+    // top's −J/2 is H_{N−½}), written as
     // lower·J_{j−1} + diagonal·J_j + upper·J_{j+1} = rhs and swept forward (Thomas).
     var below = Flux(vec3<f32>(0.0), vec3<f32>(0.0));
     for (var j = 0u; j < NODES; j++) {
-        let column = column_at(f32(j) * dz);
+        let h = node_h(j);
+        let column = column_at(h);
         let q0 = column.scattered_mean * last_order_at(x, j).psi;
-        let ends = j == 0u || j == NODES - 1u;
-        let w = select(1.0, 0.5, ends) * dz;
+        let w = 0.5 * (node_h(min(j + 1u, NODES - 1u)) - node_h(max(j, 1u) - 1u));
         var above = Flux(vec3<f32>(0.0), vec3<f32>(0.0));
         if j + 1u < NODES {
-            above = flux_between(x, j, dz);
+            above = flux_between(x, j);
         }
         var lower = below.alpha;
         var diagonal = above.alpha + below.alpha + w * column.absorption;
@@ -173,8 +179,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         } else if j == NODES - 1u {
             h = -0.5 * mean;
         } else {
-            let down = flux_between(x, j - 1u, dz);
-            let up = flux_between(x, j, dz);
+            let down = flux_between(x, j - 1u);
+            let up = flux_between(x, j);
             let h_down = down.alpha * (solve_d[j] - solve_d[j - 1u]) + down.beta;
             let h_up = up.alpha * (solve_d[j + 1u] - solve_d[j]) + up.beta;
             h = 0.5 * (h_down + h_up);

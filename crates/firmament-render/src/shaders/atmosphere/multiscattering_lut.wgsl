@@ -38,7 +38,7 @@ override FIRST_ORDER: bool = true;
 
 // Whether order 1 splits off the phase functions' delta-M forward peaks (a thick air,
 // gpu_types::medium::THICK_AIR_DEPTH). A peak as narrow as a thick cloud's or Titan's haze's
-// falls between the directions: with the Sun at the zenith no direction lies within 33° of it,
+// falls between the directions (with the Sun at the zenith the nearest lay 33° from it, 11° now),
 // and Venus's subsolar cloud top came out 40 % dark, with the Sun 30° down 10 % bright. Split,
 // the directions march the band-limited rest (bands 0–4 with a_l − f, as the later orders
 // scatter), and the peak's light, which arrives from the sun's direction alone, is marched along
@@ -163,13 +163,19 @@ fn direction_light(lane: u32, r: f32, sun: vec3<f32>) -> DirectionLight {
     // Stratified over the sphere, crowded at the horizon: cos θ = x·|x| for x stratified in
     // [−1, 1], each direction weighted by dcosθ/dx = 2|x| (its weights average 1). At twilight a
     // shadowed point's light comes from a thin band of lit air near the horizon, which uniform
-    // strata (cos θ = ±0.125 nearest) stepped over.
+    // strata (cos θ = ±0.125 nearest) stepped over. Deep in a thick air the light arrives from
+    // near the zenith, 33° from the nearest of these: there the poles are crowded too.
     let i = lane / ZENITHS;
     let j = lane % ZENITHS;
     let phi = PI * (f32(i) + 0.5) / f32(AZIMUTHS);
     let x = 1.0 - 2.0 * (f32(j) + 0.5) / f32(ZENITHS);
-    let cos_theta = x * abs(x);
-    let weight = 2.0 * abs(x);
+    var cos_theta = x * abs(x);
+    var weight = 2.0 * abs(x);
+    if atmosphere.table_counts.z != 0u {
+        // A thick air (table_counts.z): cos θ = sign(x)·(1 − cos πx)/2, weighted by π/2·sin π|x|.
+        cos_theta = sign(x) * 0.5 * (1.0 - cos(PI * x));
+        weight = 0.5 * PI * sin(PI * abs(x));
+    }
     let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
     let dir = vec3<f32>(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
     let mu = cos_theta;

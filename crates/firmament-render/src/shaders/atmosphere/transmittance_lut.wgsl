@@ -1,11 +1,13 @@
 // atmosphere/transmittance_lut.wgsl — the transmittance LUT: for each (r, mu) of the LUT sphere,
-// exp(−optical depth) to the top of the atmosphere (Bruneton 2017,
-// ComputeTransmittanceToTopAtmosphereBoundary).
+// the optical depth to the top of the atmosphere (Bruneton 2017,
+// ComputeTransmittanceToTopAtmosphereBoundary, which stores its exponential instead).
 //
 // Conventions: as atmosphere/common.wgsl. A compute pass (GL cannot render to Rgba32Float, but
 // can store to it): LANES invocations per texel of TRANSMITTANCE_LUT_SIZE, each summing every
 // LANES-th point of the integral, TEXELS texels per workgroup (texel index = row · width +
-// column); rgb = transmittance per wavelength, a = 1. One invocation per texel, 500 points in a
+// column); rgb = optical depth per wavelength, a = 0. luts.wgsl's `transmittance_to_top` filters
+// the depth and takes its exponential: filtered linearly, the transmittance itself overshoots
+// wherever a texel spans more than a fraction of an optical depth (a thick air's slant paths). One invocation per texel, 500 points in a
 // row, left a data-centre GPU waiting on one long chain per thread.
 
 #import atmosphere/bindings
@@ -49,6 +51,6 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
         for (var k = 0u; k < LANES; k++) {
             total += partial[slot * LANES + k];
         }
-        textureStore(transmittance_out, texel, vec4<f32>(exp(-total * dx), 1.0));
+        textureStore(transmittance_out, texel, vec4<f32>(total * dx, 0.0));
     }
 }

@@ -166,7 +166,8 @@ pub(crate) fn sample_sky(
             return Spectrum::ZERO;
         }
         let (u, v) = sphere.transmittance_uv(r, mu);
-        transmittance_lut.sample(u, v)
+        // The LUT holds the optical depth (`transmittance_to_top` in the shaders).
+        (-transmittance_lut.sample(u, v)).exp()
     };
     let eye = planet.to_planet_frame(position);
     let eye_up = planet.up(eye);
