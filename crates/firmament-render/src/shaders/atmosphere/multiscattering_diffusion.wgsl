@@ -21,9 +21,9 @@
 // from above the top, π(J + 2H) = 0; the Lambertian ground of albedo A sends up A times what
 // arrives from above, the tail's own and order n's irradiance E_n: π(J − 2H) = A·(π(J + 2H) + E_n).
 // Finite volumes on NODES altitudes (REFINE evenly spread between rows; the sources between rows
-// interpolated as the LUT is, Ψ_n log-linearly), solved by the Thomas algorithm; the tail at each row adds J to
-// Ψ, J/3 to the second moments zz and xx (isotropic), H to the z moment and π(J + 2H) to the sky
-// irradiance. passes/atmosphere/multiscattering.rs runs it instead of the geometric tail in a
+// interpolated as the LUT is, Ψ_n log-linearly), solved by the Thomas algorithm; the tail at
+// each row adds J to Ψ, J/3 to the second moments zz and xx (isotropic), H to the z moment and
+// π(J + 2H) to the sky irradiance. passes/atmosphere/multiscattering.rs runs it instead of the geometric tail in a
 // thick air (gpu_types::medium::THICK_AIR_DEPTH; docs/ATMOSPHERE.md, "Thick airs").
 
 #import atmosphere/bindings

@@ -7,8 +7,9 @@
 // LANES-th point of the integral, TEXELS texels per workgroup (texel index = row · width +
 // column); rgb = optical depth per wavelength, a = 0. luts.wgsl's `transmittance_to_top` filters
 // the depth and takes its exponential: filtered linearly, the transmittance itself overshoots
-// wherever a texel spans more than a fraction of an optical depth (a thick air's slant paths). One invocation per texel, 500 points in a
-// row, left a data-centre GPU waiting on one long chain per thread.
+// wherever a texel spans more than a fraction of an optical depth (a thick air's slant paths).
+// One invocation per texel, 500 points in a row, left a data-centre GPU waiting on one long
+// chain per thread.
 
 #import atmosphere/bindings
 #import atmosphere/common
