@@ -46,9 +46,10 @@ pub struct AtmosphereParamsUniforms {
     pub ground_albedo: [f32; 4],
     /// The medium's terms (the first `lut.z`).
     pub terms: [MediumTermUniform; MAX_MEDIUM_TERMS],
-    /// x: how many terms have a density table, y: a phase table; z: 1 where the
-    /// multiple-scattering LUTs' rows stand at `lut_rows` (a thick air), 0 where they are evenly
-    /// spread up to `lut.w`; w unused.
+    /// x: how many terms have a density table, y: a phase table; z: 1 in a thick air
+    /// ([`is_thick_air`]: the multiple-scattering LUTs' rows stand at `lut_rows` and their
+    /// directions crowd at the poles), 0 in a thin one (rows evenly spread up to `lut.w`); w
+    /// unused.
     pub table_counts: [u32; 4],
     /// The indices of the terms with a density table, four to a vector.
     pub density_table_terms: [[u32; 4]; MAX_MEDIUM_TERMS / 4],

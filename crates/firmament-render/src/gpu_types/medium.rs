@@ -72,11 +72,10 @@ const EVEN_ROW_SHARE: f64 = 0.1;
 /// sky-irradiance LUTs, from the ground to `height` ([`multiscattering_lut_height`]) of an air
 /// `top` metres high.
 ///
-/// Evenly spread rows span 0.65 optical depths each in an air of depth 20, and a thick air's
-/// light changes most within its first optical depth from the top (where the light scattered
-/// once peaks, ~0.3 down) and from a dark ground: interpolated between such rows, the light
-/// scattered twice came out 12 % dark just below the top, and the diffusion of the later orders
-/// started from it (docs/ATMOSPHERE.md, "Thick airs"). These rows are spread by the
+/// A thick air's light changes most within its first optical depth from the top (where the
+/// light scattered once peaks) and from a dark ground, which evenly spread rows step over: the
+/// light scattered twice came out dark just below the top, and the diffusion of the later
+/// orders started from it (docs/ATMOSPHERE.md, "Thick airs"). These rows are spread by the
 /// vertical scattering depth from the top instead, in cosine steps (fine at both ends, ~π/2 times
 /// the mean in the middle, where the light diffuses smoothly), blended with `EVEN_ROW_SHARE`
 /// of even steps.

@@ -49,7 +49,7 @@ struct AtmosphereParams {
     ground_albedo: vec4<f32>, // rgb, dimensionless
     terms: array<MediumTerm, MAX_MEDIUM_TERMS>,
     table_counts: vec4<u32>,                      // x = terms with a density table, y = with a phase table;
-                                                  // z = 1: the multiple-scattering LUTs' rows stand at lut_rows
+                                                  // z = 1: a thick air (common.wgsl's thick_air)
     density_table_terms: array<vec4<u32>, 2>,     // their indices, four to a vector
     phase_table_terms: array<vec4<u32>, 2>,
     density_tables: array<vec4<f32>, 256>, // MAX_MEDIUM_TERMS · DENSITY_TABLE_SAMPLES / 4

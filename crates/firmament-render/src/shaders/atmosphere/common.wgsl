@@ -206,9 +206,15 @@ fn unit_to_mu_s(u: f32) -> f32 {
     return sign(x) * x * x;
 }
 
+// Whether the air is thick (table_counts.z; gpu_types::medium::is_thick_air): its multiple-
+// scattering LUTs' rows stand at atmosphere.lut_rows and their directions crowd at the poles.
+fn thick_air() -> bool {
+    return atmosphere.table_counts.z != 0u;
+}
+
 // The h axis of the multiple-scattering and irradiance LUTs, LUT_ROWS rows from the ground to
 // lut.w: evenly spread in a thin air; in a thick one at the altitudes of atmosphere.lut_rows
-// (table_counts.z = 1; gpu_types::medium::multiscattering_lut_rows), with h linear between them.
+// (gpu_types::medium::multiscattering_lut_rows), with h linear between them.
 const LUT_ROWS: u32 = 32u;
 
 fn lut_row_altitude(i: u32) -> f32 {
@@ -217,7 +223,7 @@ fn lut_row_altitude(i: u32) -> f32 {
 
 // The altitude at (fractional) row `row`.
 fn lut_row_to_h(row: f32) -> f32 {
-    if atmosphere.table_counts.z == 0u {
+    if !thick_air() {
         return row / f32(LUT_ROWS - 1u) * atmosphere.lut.w;
     }
     let i = min(u32(max(row, 0.0)), LUT_ROWS - 2u);
@@ -226,7 +232,7 @@ fn lut_row_to_h(row: f32) -> f32 {
 
 // The unit coordinate of altitude h on the h axis (clamped to [0, 1]).
 fn h_to_lut_unit(h: f32) -> f32 {
-    if atmosphere.table_counts.z == 0u {
+    if !thick_air() {
         return clamp(h / atmosphere.lut.w, 0.0, 1.0);
     }
     // The rows lo and hi = lo + 1 around h, by bisection.
@@ -257,7 +263,7 @@ fn mu_s_h_to_uv(mu_s: f32, h: f32, size: vec2<f32>) -> vec2<f32> {
 fn uv_to_mu_s_h(uv: vec2<f32>, size: vec2<f32>) -> vec2<f32> {
     let unit = texel_coord_to_unit(uv.y, size.y);
     var h = unit * atmosphere.lut.w;
-    if atmosphere.table_counts.z != 0u {
+    if thick_air() {
         h = lut_row_to_h(unit * f32(LUT_ROWS - 1u));
     }
     return vec2<f32>(unit_to_mu_s(texel_coord_to_unit(uv.x, size.x)), h);

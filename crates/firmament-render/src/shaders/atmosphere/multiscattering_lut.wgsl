@@ -171,8 +171,8 @@ fn direction_light(lane: u32, r: f32, sun: vec3<f32>) -> DirectionLight {
     let x = 1.0 - 2.0 * (f32(j) + 0.5) / f32(ZENITHS);
     var cos_theta = x * abs(x);
     var weight = 2.0 * abs(x);
-    if atmosphere.table_counts.z != 0u {
-        // A thick air (table_counts.z): cos θ = sign(x)·(1 − cos πx)/2, weighted by π/2·sin π|x|.
+    if thick_air() {
+        // cos θ = sign(x)·(1 − cos πx)/2, weighted by π/2·sin π|x|.
         cos_theta = sign(x) * 0.5 * (1.0 - cos(PI * x));
         weight = 0.5 * PI * sin(PI * abs(x));
     }
