@@ -32,8 +32,8 @@ pub const PHASE_TABLE_SAMPLES: usize = 256;
 pub const MIE_FORWARD_PEAK_MAX: f64 = 0.19;
 
 /// The vertical scattering optical depth (at any model wavelength) from which an air is thick:
-/// the orders of multiple scattering after the last marched one are solved by diffusion
-/// (`atmosphere/multiscattering_diffusion.wgsl`) rather than summed as a geometric series, and
+/// the orders of multiple scattering after the last marched one are solved by discrete
+/// ordinates (`atmosphere/multiscattering_ordinates.wgsl`) rather than summed as a geometric series, and
 /// the multiple-scattering LUTs span only the air that scatters ([`THICK_AIR_LUT_TOP_DEPTH`]).
 /// Venus's 68 and Titan's 14 (at 440 nm) are thick; Earth's 0.27, Mars's 0.49 and Saturn's 0.73
 /// are not, and render as before (docs/ATMOSPHERE.md, "Thick airs").
@@ -74,7 +74,7 @@ const EVEN_ROW_SHARE: f64 = 0.1;
 ///
 /// A thick air's light changes most within its first optical depth from the top (where the
 /// light scattered once peaks) and from a dark ground, which evenly spread rows step over: the
-/// light scattered twice came out dark just below the top, and the diffusion of the later
+/// light scattered twice came out dark just below the top, and the solve for the later
 /// orders started from it (docs/ATMOSPHERE.md, "Thick airs"). These rows are spread by the
 /// vertical scattering depth from the top instead, in cosine steps (fine at both ends, ~π/2 times
 /// the mean in the middle, where the light diffuses smoothly), blended with `EVEN_ROW_SHARE`

@@ -66,8 +66,8 @@ const FILES: &[(&str, &str)] = &[
         include_str!("atmosphere/multiscattering_sum.wgsl"),
     ),
     (
-        "atmosphere/multiscattering_diffusion",
-        include_str!("atmosphere/multiscattering_diffusion.wgsl"),
+        "atmosphere/multiscattering_ordinates",
+        include_str!("atmosphere/multiscattering_ordinates.wgsl"),
     ),
     ("atmosphere/sky_view_lut", include_str!("atmosphere/sky_view_lut.wgsl")),
     ("atmosphere/sky", include_str!("atmosphere/sky.wgsl")),
@@ -222,8 +222,8 @@ pub static ATMOSPHERE_MULTISCATTERING_LUT: Shader = entry!("atmosphere/multiscat
 /// The atmosphere's multiple-scattering LUTs: the orders summed.
 pub static ATMOSPHERE_MULTISCATTERING_SUM: Shader = entry!("atmosphere/multiscattering_sum");
 /// The atmosphere's multiple-scattering LUTs: the orders after the last marched in a thick air,
-/// by diffusion.
-pub static ATMOSPHERE_MULTISCATTERING_DIFFUSION: Shader = entry!("atmosphere/multiscattering_diffusion");
+/// by discrete ordinates.
+pub static ATMOSPHERE_MULTISCATTERING_ORDINATES: Shader = entry!("atmosphere/multiscattering_ordinates");
 /// The atmosphere's sky-view LUT pass.
 pub static ATMOSPHERE_SKY_VIEW_LUT: Shader = entry!("atmosphere/sky_view_lut");
 /// The atmosphere's sky pass.
@@ -280,7 +280,7 @@ pub static ENTRIES: [&Shader; 26] = [
     &ATMOSPHERE_TRANSMITTANCE_LUT,
     &ATMOSPHERE_MULTISCATTERING_LUT,
     &ATMOSPHERE_MULTISCATTERING_SUM,
-    &ATMOSPHERE_MULTISCATTERING_DIFFUSION,
+    &ATMOSPHERE_MULTISCATTERING_ORDINATES,
     &ATMOSPHERE_SKY_VIEW_LUT,
     &ATMOSPHERE_SKY,
     &ATMOSPHERE_SKY_LIGHTING,

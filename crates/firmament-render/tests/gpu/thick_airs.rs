@@ -29,6 +29,8 @@ struct Body {
     orbit: f64,
     /// Reference paths per view for the stored values.
     paths: usize,
+    /// The budget for the median of the views' errors (docs/ATMOSPHERE.md, "Thick airs").
+    median_budget: f64,
 }
 
 const BODIES: [Body; 2] = [
@@ -38,6 +40,7 @@ const BODIES: [Body; 2] = [
         sun: presets::venus_sun,
         orbit: 300_000.0,
         paths: 32_768,
+        median_budget: 0.125,
     },
     Body {
         name: "titan",
@@ -45,6 +48,7 @@ const BODIES: [Body; 2] = [
         sun: presets::titan_sun,
         orbit: 1_000_000.0,
         paths: 65_536,
+        median_budget: 0.07,
     },
 ];
 
@@ -275,7 +279,7 @@ fn the_stored_thick_air_references_are_the_reference_s() {
 
 /// Venus and Titan against the stored references at 23 views each (`cargo test --release -p
 /// firmament-render --test gpu -- --nocapture thick_airs::`): every view within [`THICK_VIEW`]
-/// plus twice the reference's noise there, the median within [`THICK_MEDIAN`]. The measured
+/// plus twice the reference's noise there, the median within the air's own budget. The measured
 /// errors and the budget's reasons are in docs/ATMOSPHERE.md, "Thick airs".
 #[test]
 fn venus_and_titan_match_the_reference_within_the_thick_air_budget() {
@@ -288,12 +292,10 @@ fn venus_and_titan_match_the_reference_within_the_thick_air_budget() {
             100.0 * median,
             100.0 * worst
         );
-        assert!(median < THICK_MEDIAN, "{}: median {median}", body.name);
+        assert!(median < body.median_budget, "{}: median {median}", body.name);
     }
 }
 
 /// The thick airs' budget, as the largest channel's error over the largest channel: each view
-/// within this plus twice the reference's noise there ...
+/// within this plus twice the reference's noise there (docs/ATMOSPHERE.md, "Thick airs").
 const THICK_VIEW: f64 = 0.30;
-/// ... and the median of the 23 views within this (docs/ATMOSPHERE.md, "Thick airs").
-const THICK_MEDIAN: f64 = 0.12;

@@ -6,8 +6,9 @@
 //! `Rgba16Float` texels — copied into those textures for the next order — while adding them, in
 //! `f32`, into a buffer of per-texel sums. A last dispatch (`atmosphere/multiscattering_sum.wgsl`)
 //! writes the sum of the orders, and the geometric tail of those after the last (in a thick air
-//! the diffusion tail a dispatch of `atmosphere/multiscattering_diffusion.wgsl` added before it),
-//! into the build set's textures ([`MediumLuts`], copied into
+//! instead one more order, marched from the last plus its discrete-ordinates tail, which a
+//! dispatch of `atmosphere/multiscattering_ordinates.wgsl` wrote as an order's moments), into the
+//! build set's textures ([`MediumLuts`], copied into
 //! [`AtmosphereLuts::multiscattering`](super::AtmosphereLuts::multiscattering) when done). A
 //! buffer rather than storage textures: seven moments are more storage textures than GL-class
 //! devices bind at once.
@@ -35,15 +36,16 @@ pub(super) enum Tail {
     /// As a geometric series from the last two orders (`atmosphere/multiscattering_sum.wgsl`).
     #[default]
     Geometric,
-    /// By the diffusion approximation (`atmosphere/multiscattering_diffusion.wgsl`).
-    Diffusion,
+    /// As one more order marched from the last one plus the later orders by discrete ordinates
+    /// in a plane-parallel column (`atmosphere/multiscattering_ordinates.wgsl`).
+    Ordinates,
 }
 
 impl Tail {
-    /// The tail of an air: diffusion when it is thick
+    /// The tail of an air: discrete ordinates when it is thick
     /// ([`is_thick_air`](crate::gpu_types::medium::is_thick_air)).
     pub(super) fn for_thickness(thick: bool) -> Self {
-        if thick { Self::Diffusion } else { Self::Geometric }
+        if thick { Self::Ordinates } else { Self::Geometric }
     }
 }
 
@@ -70,7 +72,7 @@ const ORDER_SUMS_BYTES: u64 = std::mem::size_of::<OrderSumsGpu>() as u64;
 /// Invocations per workgroup of the sum (`atmosphere/multiscattering_sum.wgsl`).
 const SUM_WORKGROUP: u32 = 256;
 
-/// The orders' compute stages (order 1, later orders, the diffusion tail, the sums with and
+/// The orders' compute stages (order 1, later orders, the discrete-ordinates tail, the sums with and
 /// without the geometric tail), their buffers and the ground irradiance row.
 #[derive(Debug)]
 pub(super) struct MultiscatteringStages {
@@ -78,7 +80,7 @@ pub(super) struct MultiscatteringStages {
     /// Order 1 with the forward peaks split off (`SPLIT_PEAK`), for a thick air.
     first_thick: ComputeStage,
     next: ComputeStage,
-    diffusion: ComputeStage,
+    ordinates: ComputeStage,
     sum: ComputeStage,
     sum_without_tail: ComputeStage,
     /// An order's output, or the sums', packed texels.
@@ -169,25 +171,27 @@ impl MultiscatteringStages {
                 &[("TAIL", f64::from(u8::from(tail)))],
             )
         };
-        let diffusion_entries = [
+        let ordinates_entries = [
             uniform_entry(binding::PARAMS),
             texture_entry(binding::PREVIOUS_GROUND_IRRADIANCE, true),
+            storage_buffer_entry(binding::MULTISCATTERING_OUT),
             storage_buffer_entry(binding::MULTISCATTERING_ORDERS),
         ];
-        let diffusion_resources = [
+        let ordinates_resources = [
             (binding::PARAMS, luts.params.as_entire_binding()),
             (
                 binding::PREVIOUS_GROUND_IRRADIANCE,
                 wgpu::BindingResource::TextureView(&ground.view),
             ),
+            (binding::MULTISCATTERING_OUT, output.as_entire_binding()),
             (binding::MULTISCATTERING_ORDERS, orders.as_entire_binding()),
         ];
-        let diffusion = ComputeStage::with_constants(
+        let ordinates = ComputeStage::with_constants(
             device,
-            "AtmospherePass multiple-scattering diffusion tail",
-            &shaders::ATMOSPHERE_MULTISCATTERING_DIFFUSION,
-            &diffusion_entries,
-            &diffusion_resources,
+            "AtmospherePass multiple-scattering discrete-ordinates tail",
+            &shaders::ATMOSPHERE_MULTISCATTERING_ORDINATES,
+            &ordinates_entries,
+            &ordinates_resources,
             &[],
         );
         Self {
@@ -198,7 +202,7 @@ impl MultiscatteringStages {
                 true,
             ),
             next: order("AtmospherePass multiple-scattering LUT, later orders", false, false),
-            diffusion,
+            ordinates,
             sum: sum("AtmospherePass multiple-scattering sum", true),
             sum_without_tail: sum("AtmospherePass multiple-scattering sum without the tail", false),
             output,
@@ -220,7 +224,7 @@ impl MultiscatteringStages {
         let (width, height) = MULTISCATTERING_SIZE;
         // One workgroup per texel, and a row more for the ground's irradiance.
         let stage = match (first, tail) {
-            (true, Tail::Diffusion) => &self.first_thick,
+            (true, Tail::Ordinates) => &self.first_thick,
             (true, _) => &self.first,
             (false, _) => &self.next,
         };
@@ -231,9 +235,13 @@ impl MultiscatteringStages {
     /// Encodes the sum of the orders so far into `luts`' moments and sky irradiance, with `tail`,
     /// the light of the orders after them.
     pub(super) fn record_sum(&self, encoder: &mut wgpu::CommandEncoder, luts: &MediumLuts, tail: Tail) {
-        if tail == Tail::Diffusion {
-            // One invocation per column of mu_s.
-            self.diffusion.dispatch(encoder, (1, 1, 1));
+        if tail == Tail::Ordinates {
+            // One invocation per column of mu_s: the last order and the tail as an order's
+            // moments, from which one more order is marched (the transport sweep) and summed.
+            self.ordinates.dispatch(encoder, (1, 1, 1));
+            self.record_copy(encoder, luts, true);
+            let (width, height) = MULTISCATTERING_SIZE;
+            self.next.dispatch(encoder, (width, height + 1, 1));
         }
         let stage = if tail == Tail::Geometric {
             &self.sum

@@ -19,7 +19,8 @@
 // off, a texel's orders may still grow at n, and its own ratio would sum them as if they never
 // stopped. Measured against more orders marched in docs/ATMOSPHERE.md, "Multiple scattering".
 // In a thick air (Venus, Titan) the ratio has not settled after the orders marched: there
-// multiscattering_diffusion.wgsl adds the tail to the sums and this runs without TAIL.
+// multiscattering_ordinates.wgsl and one more order marched add the tail to the sums and this
+// runs without TAIL.
 
 #import atmosphere/bindings
 #import atmosphere/luts
