@@ -69,6 +69,10 @@ const FILES: &[(&str, &str)] = &[
         "atmosphere/multiscattering_ordinates",
         include_str!("atmosphere/multiscattering_ordinates.wgsl"),
     ),
+    (
+        "atmosphere/multiscattering_curvature",
+        include_str!("atmosphere/multiscattering_curvature.wgsl"),
+    ),
     ("atmosphere/sky_view_lut", include_str!("atmosphere/sky_view_lut.wgsl")),
     ("atmosphere/sky", include_str!("atmosphere/sky.wgsl")),
     ("atmosphere/sky_lighting", include_str!("atmosphere/sky_lighting.wgsl")),
@@ -224,6 +228,8 @@ pub static ATMOSPHERE_MULTISCATTERING_SUM: Shader = entry!("atmosphere/multiscat
 /// The atmosphere's multiple-scattering LUTs: the orders after the last marched in a thick air,
 /// by discrete ordinates.
 pub static ATMOSPHERE_MULTISCATTERING_ORDINATES: Shader = entry!("atmosphere/multiscattering_ordinates");
+/// The atmosphere's multiple-scattering LUTs: how ln Ψ bends between a thick air's rows.
+pub static ATMOSPHERE_MULTISCATTERING_CURVATURE: Shader = entry!("atmosphere/multiscattering_curvature");
 /// The atmosphere's sky-view LUT pass.
 pub static ATMOSPHERE_SKY_VIEW_LUT: Shader = entry!("atmosphere/sky_view_lut");
 /// The atmosphere's sky pass.
@@ -273,7 +279,7 @@ pub static ENVMAP_WRITE: Shader = entry!("envmap/write");
 /// Every entry module composed by firmament: the passes' and the user includes'
 /// ([`FIRMAMENT_AERIAL_PERSPECTIVE_WGSL`]; [`FIRMAMENT_LIGHTING_WGSL`] is a file of its own,
 /// `include/firmament_lighting`, imports nothing and so needs no composing).
-pub static ENTRIES: [&Shader; 26] = [
+pub static ENTRIES: [&Shader; 27] = [
     &SKY_GRADIENT,
     &TONEMAP,
     &EMPIRICAL_SKY,
@@ -281,6 +287,7 @@ pub static ENTRIES: [&Shader; 26] = [
     &ATMOSPHERE_MULTISCATTERING_LUT,
     &ATMOSPHERE_MULTISCATTERING_SUM,
     &ATMOSPHERE_MULTISCATTERING_ORDINATES,
+    &ATMOSPHERE_MULTISCATTERING_CURVATURE,
     &ATMOSPHERE_SKY_VIEW_LUT,
     &ATMOSPHERE_SKY,
     &ATMOSPHERE_SKY_LIGHTING,

@@ -40,7 +40,7 @@ const BODIES: [Body; 2] = [
         sun: presets::venus_sun,
         orbit: 300_000.0,
         paths: 32_768,
-        median_budget: 0.125,
+        median_budget: 0.07,
     },
     Body {
         name: "titan",

@@ -3,7 +3,7 @@
 //! | LUT | size | format | axes |
 //! |---|---|---|---|
 //! | transmittance (stored as the optical depth) | 256 × 64 | Rgba32Float | Bruneton's (x_mu, x_r) on the LUT sphere |
-//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh layer, over Ψ summed over wavelengths) | 32 × 32, seven layers of one array | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] (a thick air's rows at `lut_rows`) |
+//! | multiple scattering (the moments Ψ, zz, xx, xz, x, z, stored as ln Ψ (alpha: a thick air's second difference of ln Ψ down the column) and the rest over Ψ; spherical-harmonic band 4 in the alphas of zz, xx, xz, x, z and band 3 in a seventh layer, over Ψ summed over wavelengths) | 32 × 32, seven layers of one array | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping, dense at the horizon), h ∈ [0, H] (a thick air's rows at `lut_rows`) |
 //! | sky irradiance (stored as its logarithm, as Ψ) | 32 × 32 | Rgba16Float | mu_s ∈ [−1, 1] (√ mapping), h ∈ [0, H] (as above) |
 //! | sky view (rgb over 2^a) | 192·8 × 108 | Rgba16Float | one tile per sun: azimuth from the sun ∈ [0, π], Hillaire's zenith mapping |
 //! | aerial perspective (scattering, transmittance) | 32 × 32 × 32, as 32 slices side by side | Rgba16Float | screen u, v; distance into the air = range · w² |

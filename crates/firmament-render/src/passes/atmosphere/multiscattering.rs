@@ -81,6 +81,8 @@ pub(super) struct MultiscatteringStages {
     first_thick: ComputeStage,
     next: ComputeStage,
     ordinates: ComputeStage,
+    /// ln Ψ's curvature down a thick air's columns, for the lookups between rows.
+    curvature: ComputeStage,
     sum: ComputeStage,
     sum_without_tail: ComputeStage,
     /// An order's output, or the sums', packed texels.
@@ -194,6 +196,14 @@ impl MultiscatteringStages {
             &ordinates_resources,
             &[],
         );
+        let curvature = ComputeStage::with_constants(
+            device,
+            "AtmospherePass multiple-scattering curvature of a thick air",
+            &shaders::ATMOSPHERE_MULTISCATTERING_CURVATURE,
+            &sum_entries[..1],
+            &sum_resources[..1],
+            &[],
+        );
         Self {
             first: order("AtmospherePass multiple-scattering LUT, order 1", true, false),
             first_thick: order(
@@ -203,6 +213,7 @@ impl MultiscatteringStages {
             ),
             next: order("AtmospherePass multiple-scattering LUT, later orders", false, false),
             ordinates,
+            curvature,
             sum: sum("AtmospherePass multiple-scattering sum", true),
             sum_without_tail: sum("AtmospherePass multiple-scattering sum without the tail", false),
             output,
@@ -229,7 +240,16 @@ impl MultiscatteringStages {
             (false, _) => &self.next,
         };
         stage.dispatch(encoder, (width, height + 1, 1));
+        self.record_curvature(encoder, tail);
         self.record_copy(encoder, luts, true);
+    }
+
+    /// Encodes ln Ψ's curvature down the columns of the output in a thick air (its rows are far
+    /// apart in optical depth); a thin air's stays 0.
+    fn record_curvature(&self, encoder: &mut wgpu::CommandEncoder, tail: Tail) {
+        if tail == Tail::Ordinates {
+            self.curvature.dispatch(encoder, (1, 1, 1));
+        }
     }
 
     /// Encodes the sum of the orders so far into `luts`' moments and sky irradiance, with `tail`,
@@ -239,6 +259,7 @@ impl MultiscatteringStages {
             // One invocation per column of mu_s: the last order and the tail as an order's
             // moments, from which one more order is marched (the transport sweep) and summed.
             self.ordinates.dispatch(encoder, (1, 1, 1));
+            self.record_curvature(encoder, tail);
             self.record_copy(encoder, luts, true);
             let (width, height) = MULTISCATTERING_SIZE;
             self.next.dispatch(encoder, (width, height + 1, 1));
@@ -249,6 +270,7 @@ impl MultiscatteringStages {
             &self.sum_without_tail
         };
         stage.dispatch(encoder, (MOMENT_TEXELS.div_ceil(SUM_WORKGROUP), 1, 1));
+        self.record_curvature(encoder, tail);
         self.record_copy(encoder, luts, false);
     }
 

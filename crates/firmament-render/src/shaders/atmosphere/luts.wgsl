@@ -178,7 +178,7 @@ fn moment_ratio(moment: vec3<f32>, psi: vec3<f32>) -> vec3<f32> {
 }
 
 // The moments stored in the seven layers of `moments` (in `Moments` order; band 4 in the alphas
-// of the five after psi, band 3 in the seventh) at uv, filtered.
+// of the five after psi, band 3 in the seventh, ln Ψ's curvature in psi's alpha) at uv, filtered.
 fn sample_moments(moments: texture_2d_array<f32>, uv: vec2<f32>) -> Moments {
     let t_psi = textureSampleLevel(moments, lut_sampler, uv, 0, 0.0);
     let t_zz = textureSampleLevel(moments, lut_sampler, uv, 1, 0.0);
@@ -187,7 +187,10 @@ fn sample_moments(moments: texture_2d_array<f32>, uv: vec2<f32>) -> Moments {
     let t_x = textureSampleLevel(moments, lut_sampler, uv, 4, 0.0);
     let t_z = textureSampleLevel(moments, lut_sampler, uv, 5, 0.0);
     var m: Moments;
-    m.psi = decode_log(t_psi.rgb);
+    // Between two rows ln Ψ follows a quadratic: the alpha holds its second difference in a thick
+    // air (multiscattering_curvature.wgsl), 0 in a thin one.
+    let row = fract(max(uv.y * MULTISCATTERING_LUT_SIZE.y - 0.5, 0.0));
+    m.psi = decode_log(t_psi.rgb - 0.5 * row * (1.0 - row) * t_psi.a);
     m.zz = t_zz.rgb * m.psi;
     m.xx = t_xx.rgb * m.psi;
     m.xz = t_xz.rgb * m.psi;

@@ -167,8 +167,9 @@ fn column_matrix(column: Column, legendre: Legendre, odd: bool) -> mat4x4<f32> {
 }
 
 // Order n's Legendre moments m_0 … m_4 about the vertical (travel directions) at fine node j of
-// column x, at one wavelength: Ψ log-linear between rows, the others' ratios to Ψ linear (as the
-// LUT is read). Bands 3 and 4 are kept summed over wavelengths and share Ψ's spectrum.
+// column x, at one wavelength: Ψ log-linear between rows, the others' ratios to Ψ linear (the
+// LUT's reads bend ln Ψ, multiscattering_curvature.wgsl; reading three more rows here stalled
+// llvmpipe's compiler). Bands 3 and 4 are kept summed over wavelengths and share Ψ's spectrum.
 fn last_order_at(x: u32, j: u32, channel: u32) -> array<f32, 5> {
     let y0 = min(j / REFINE, ROWS - 2u);
     let t = f32(j - y0 * REFINE) / f32(REFINE);
