@@ -200,8 +200,8 @@ impl MultiscatteringStages {
             device,
             "AtmospherePass multiple-scattering curvature of a thick air",
             &shaders::ATMOSPHERE_MULTISCATTERING_CURVATURE,
-            &sum_entries[..1],
-            &sum_resources[..1],
+            &[storage_buffer_entry(binding::MULTISCATTERING_OUT)],
+            &[(binding::MULTISCATTERING_OUT, output.as_entire_binding())],
             &[],
         );
         Self {

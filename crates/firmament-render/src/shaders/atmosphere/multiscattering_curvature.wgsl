@@ -7,8 +7,8 @@
 // and so in a thin air) gets ln Ψ's second difference over the rows below and above it, the mean
 // over wavelengths; the ground and top rows take their neighbour's. `sample_moments` (luts.wgsl)
 // subtracts t·(1 − t)/2 of it from the linear interpolation: a quadratic through three rows.
-// Linear interpolation of ln Ψ between a thick air's 32 rows lost 4–5 % of the light in each
-// order's march (docs/ATMOSPHERE.md, "Thick airs").
+// Read linearly, each order's march read the order before it low between rows, and the losses
+// compounded over the orders (docs/ATMOSPHERE.md, "Thick airs").
 
 #import atmosphere/bindings
 #import atmosphere/common
