@@ -5,6 +5,7 @@ use glam::{DQuat, DVec3};
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
 use crate::atmosphere::rings::Rings;
+use crate::atmosphere::surface::Surface;
 use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
 use crate::classic::scene::ObjectLayer;
@@ -64,6 +65,9 @@ pub struct AtmosphereSky {
     /// The planet's rings, if it has any ([`crate::atmosphere::rings`]): drawn lit by the suns,
     /// dimming what lies behind them and shadowing the globe.
     pub rings: Option<Rings>,
+    /// The planet's surface, if the ground is more than the medium's `ground_albedo` everywhere
+    /// ([`crate::atmosphere::surface`]): albedo and water over the globe, the suns' glint.
+    pub surface: Option<Surface>,
 }
 
 impl AtmosphereSky {
@@ -88,6 +92,9 @@ impl AtmosphereSky {
         self.eclipsers.iter().try_for_each(Eclipser::validate)?;
         if let Some(rings) = &self.rings {
             rings.validate(&self.atmosphere.planet)?;
+        }
+        if let Some(surface) = &self.surface {
+            surface.validate()?;
         }
         crate::atmosphere::clouds::validate_layers(&self.clouds)
     }

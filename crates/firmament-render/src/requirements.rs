@@ -30,7 +30,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 /// | limit | firmament's use | where |
 /// |---|---|---|
 /// | `max_bind_groups` | 2 | objects: their own group and the sun shadow maps' |
-/// | `max_sampled_textures_per_shader_stage` | 8 | the clouds' march: their coverage maps and shadow map, the transmittance and irradiance LUTs, the aerial-perspective volume's two atlases, the depth buffer and the HDR image |
+/// | `max_sampled_textures_per_shader_stage` | 9 | the clouds' march: their coverage maps and shadow map, the transmittance and irradiance LUTs, the aerial-perspective volume's two atlases, the depth buffer, the HDR image and the planet's surface map (WebGPU's default is 16) |
 /// | `max_samplers_per_shader_stage` | 2 | objects: their texture's sampler and the shadow maps' comparison sampler |
 /// | `max_storage_buffers_per_shader_stage` | 2 | lens flares: their records and their state (occlusion, binning, elements) |
 /// | `max_storage_textures_per_shader_stage` | 2 | the aerial-perspective volume: scattering and transmittance |
@@ -61,7 +61,7 @@ pub const TIMESTAMP_FEATURES: wgpu::Features =
 pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits {
         max_bind_groups: 2,
-        max_sampled_textures_per_shader_stage: 8,
+        max_sampled_textures_per_shader_stage: 9,
         max_samplers_per_shader_stage: 2,
         max_storage_buffers_per_shader_stage: 2,
         max_storage_textures_per_shader_stage: 2,

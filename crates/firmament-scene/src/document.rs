@@ -608,7 +608,8 @@ fn absolute_asset_paths(table: &mut toml::Table, base_dir: &Path) -> Result<(), 
 }
 
 /// The string values that name files, with their key paths: `objects.N.mesh.path`,
-/// `objects.N.texture.file`, `flare.elements.N.file` and `clouds.N.coverage_map`.
+/// `objects.N.texture.file`, `flare.elements.N.file`, `clouds.N.coverage_map`,
+/// `planet.albedo_map` and `planet.water_map`.
 fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
     let mut paths = Vec::new();
     for (section, value) in table.iter_mut() {
@@ -635,6 +636,13 @@ fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
                         {
                             paths.push((format!("flare.elements.{i}.file"), path));
                         }
+                    }
+                }
+            }
+            ("planet", toml::Value::Table(planet)) => {
+                for (key, value) in planet.iter_mut() {
+                    if let ("albedo_map" | "water_map", toml::Value::String(path)) = (key.as_str(), value) {
+                        paths.push((format!("planet.{key}"), path));
                     }
                 }
             }

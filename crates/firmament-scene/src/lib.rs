@@ -88,7 +88,8 @@ pub use error::SceneError;
 pub use model::{
     AtmosphereModelName, AtmosphereSection, Body, CameraSection, CloudEntry, DisplaySection, EmpiricalSection,
     ExposureModeName, GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection,
-    RenderSection, RingBandEntry, RingsSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, TimeSection,
+    RenderSection, RingBandEntry, RingsSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, SurfaceName,
+    TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

@@ -15,7 +15,7 @@ mod shadows;
 use serde::Deserialize;
 
 pub use self::atmosphere::{
-    AtmosphereModelName, AtmosphereSection, Body, EmpiricalSection, MiePhaseName, PlanetSection, SunEntry,
+    AtmosphereModelName, AtmosphereSection, Body, EmpiricalSection, MiePhaseName, PlanetSection, SunEntry, SurfaceName,
 };
 pub use self::clouds::CloudEntry;
 pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
@@ -107,8 +107,9 @@ impl Scene {
     }
 
     /// Every file the scene reads — mesh files (`objects[i].mesh.path`), texture files
-    /// (`objects[i].texture.file`), flare images (`flare.elements[i].file`) and cloud coverage
-    /// maps (`clouds[i].coverage_map`) — as its key and
+    /// (`objects[i].texture.file`), flare images (`flare.elements[i].file`), cloud coverage
+    /// maps (`clouds[i].coverage_map`) and surface maps (`planet.albedo_map`,
+    /// `planet.water_map`) — as its key and
     /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),
     /// absolute ones as written.
     pub fn asset_paths(&self) -> Vec<(String, std::path::PathBuf)> {
@@ -137,6 +138,14 @@ impl Scene {
         for (i, layer) in self.clouds.iter().enumerate() {
             if let Some(file) = &layer.coverage_map {
                 paths.push((format!("clouds[{i}].coverage_map"), file.as_str()));
+            }
+        }
+        for (key, file) in [
+            ("planet.albedo_map", &self.planet.albedo_map),
+            ("planet.water_map", &self.planet.water_map),
+        ] {
+            if let Some(file) = file {
+                paths.push((key.to_owned(), file.as_str()));
             }
         }
         paths

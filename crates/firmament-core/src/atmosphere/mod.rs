@@ -22,6 +22,7 @@ pub mod reference;
 pub mod rings;
 pub mod spectrum;
 pub mod star;
+pub mod surface;
 
 pub use eclipse::Eclipser;
 pub use medium::{DensityLayer, DensityProfile, Medium, MediumTerm, Phase};

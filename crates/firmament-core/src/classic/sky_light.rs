@@ -56,7 +56,8 @@ impl<'a> SkyLight<'a> {
         };
         let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
             .with_eclipsers(&sky.eclipsers)
-            .with_rings(sky.rings.as_ref());
+            .with_rings(sky.rings.as_ref())
+            .with_surface(sky.surface.as_ref());
         Self {
             sky,
             beams: reference.clone().with_clouds(&sky.clouds),
@@ -158,12 +159,19 @@ impl<'a> SkyLight<'a> {
 
 impl SkyLight<'_> {
     /// The ground under a camera at `camera` (world frame, metres): the surface patch in the
-    /// medium's ground albedo and the light it bounces up ([`Ground`]); `None` below the surface.
-    /// The sky's irradiance is the same estimate as [`Self::lighting`]'s ambient (same seed).
+    /// ground's albedo there (the planet surface's under the camera, or the medium's ground
+    /// albedo) and the light it bounces up ([`Ground`]); `None` below the surface. The sky's
+    /// irradiance is the same estimate as [`Self::lighting`]'s ambient (same seed).
     pub fn ground(&self, camera: DVec3) -> Option<Ground> {
         let atmosphere = &self.sky.atmosphere;
         let irradiance = self.irradiance(camera);
-        let albedo = atmosphere.medium.ground_albedo;
+        let albedo = match &self.sky.surface {
+            Some(surface) => {
+                let planet = &atmosphere.planet;
+                surface.at(planet.up(planet.to_planet_frame(camera))).albedo
+            }
+            None => atmosphere.medium.ground_albedo,
+        };
         // The albedo as linear sRGB: what it reflects of this light, channel by channel (exact for
         // a grey ground, whatever the light's colour).
         let lit = self.rgb(irradiance.direct + irradiance.sky);
@@ -237,6 +245,7 @@ mod tests {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let lit = sky_lighting(&high, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         let sun = lit.lights[0].light.diffuse;
@@ -259,6 +268,7 @@ mod tests {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let dark = sky_lighting(&set, DVec3::new(0.0, 0.0, 2.0), Shading::Phong, SpecularModel::Blinn);
         assert_eq!(dark.lights[0].light.diffuse.truncate(), DVec3::ZERO);
@@ -278,6 +288,7 @@ mod tests {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let light = SkyLight::new(&sky);
         let street = light.sun_colors(DVec3::new(0.0, 0.0, 2.0))[0];
@@ -301,6 +312,7 @@ mod tests {
                 clouds,
                 eclipsers: Vec::new(),
                 rings: None,
+                surface: None,
             }
         };
         // 1000 m of 0.001 m⁻¹ seen from 2 m: the beam's path through the shell between 1000 and

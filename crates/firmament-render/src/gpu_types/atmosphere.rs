@@ -8,6 +8,7 @@ use bytemuck::{Pod, Zeroable};
 use firmament_core::atmosphere::{Atmosphere, Spectrum};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::rings::{RING_TABLE_ENTRIES, Rings};
+use firmament_core::atmosphere::surface::{Surface, glint};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
 use glam::DVec3;
@@ -183,6 +184,10 @@ pub struct AtmosphereViewUniforms {
     /// The rings' normal optical depth at `inner + k·(outer − inner)/(N − 1)`, four to a vector
     /// ([`Rings::optical_depth_table`]).
     pub ring_depth: [[f32; 4]; RING_TABLE_ENTRIES / 4],
+    /// The planet's surface: x = 1 when the ground is read from the surface map (0: the
+    /// medium's `ground_albedo` everywhere, no water); y = the sea's mean square slope for the
+    /// suns' glint ([`glint::slope_variance`]); zw unused.
+    pub surface: [f32; 4],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
@@ -287,6 +292,14 @@ impl AtmosphereViewUniforms {
             rings,
             ring_albedo,
             ring_depth,
+            surface: surface_fields(sky.surface.as_ref()),
         }
     }
+}
+
+/// The surface's part of [`AtmosphereViewUniforms`]: the flag and the glint's slope variance.
+fn surface_fields(surface: Option<&Surface>) -> [f32; 4] {
+    surface.map_or([0.0; 4], |s| {
+        [1.0, glint::slope_variance(s.wind_speed_mps) as f32, 0.0, 0.0]
+    })
 }

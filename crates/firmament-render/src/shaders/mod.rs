@@ -48,6 +48,7 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/common", include_str!("atmosphere/common.wgsl")),
     ("atmosphere/luts", include_str!("atmosphere/luts.wgsl")),
     ("atmosphere/rings", include_str!("atmosphere/rings.wgsl")),
+    ("atmosphere/surface", include_str!("atmosphere/surface.wgsl")),
     ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),
@@ -1125,7 +1126,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 eclipsers,
                 rings,
                 ring_albedo,
-                ring_depth
+                ring_depth,
+                surface
             ]
         );
     }

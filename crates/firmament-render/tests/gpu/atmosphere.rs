@@ -77,6 +77,7 @@ fn transmittance_lut_texels_match_the_reference() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());
@@ -179,6 +180,7 @@ fn sky_comparisons_with(
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let reference = Reference::new(atmosphere.clone(), &[sun], settings);
     let conversion = atmosphere.spectral_conversion();
@@ -444,6 +446,7 @@ fn several_suns_add_up() {
                 clouds: Vec::new(),
                 eclipsers: Vec::new(),
                 rings: None,
+                surface: None,
             },
             view,
             16,
@@ -488,6 +491,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let bright = render(&mut gpu, &sky(sun), view, 16, 12);
     let dim = render(&mut gpu, &sky(moon), view, 16, 12);
@@ -526,6 +530,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let au = presets::ASTRONOMICAL_UNIT;
     let center = atmosphere.planet.center;
@@ -567,6 +572,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let mean = |image: &Image<f32>| {
         let mut sum = DVec3::ZERO;
@@ -620,6 +626,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     // Looking at the planet's equator from 3 radii, pole up, so the flattening shows.
     let position = DVec3::new(0.0, -20_000_000.0, 0.0);

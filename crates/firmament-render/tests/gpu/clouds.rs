@@ -97,11 +97,13 @@ fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
             ..clear.clone()
         };
         // An odd image: its centre pixel looks exactly along the camera, at the sun.
@@ -131,6 +133,7 @@ fn pixels_whose_rays_miss_every_layer_are_left_alone() {
         clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
         ..sky.clone()
     };
     let camera = camera_at(DVec3::new(0.0, 0.0, 100.0), direction(0.0, -30.0), 20.0);
@@ -161,11 +164,13 @@ fn a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance() {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
             ..clear.clone()
         };
         // The ground 3 m away, 40° down.
@@ -205,6 +210,7 @@ fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
             clouds: vec![layer.clone()],
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
             ..clear.clone()
         };
         let gpu_lost = centre_radiance(&mut gpu, &clear, eye, view) - centre_radiance(&mut gpu, &cloudy, eye, view);
@@ -296,6 +302,7 @@ fn cloud_radiance_survey() {
                 clouds: vec![layer.clone()],
                 eclipsers: Vec::new(),
                 rings: None,
+                surface: None,
                 ..crate::support::street_sky(0.0, elevation)
             };
             for (eye, view, what) in [

@@ -50,6 +50,7 @@ fn frame(view: DVec3, far: Option<f64>) -> Frame {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         }),
         display: DisplaySettings::default(),
         objects: Default::default(),

@@ -340,6 +340,7 @@ fn a_sun_on_the_horizon_is_half_hidden_by_the_planet() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let camera = Camera::from_heading_pitch(DVec3::new(0.0, 0.0, height), 0.0, 0.0);
     let sun = FlareSource {

@@ -26,6 +26,7 @@ mod shadows;
 mod sky;
 mod sky_lighting;
 mod support;
+mod surface;
 mod thick_airs;
 mod thick_slab;
 mod user_material;

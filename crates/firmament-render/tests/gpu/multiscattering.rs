@@ -50,6 +50,7 @@ fn tail_errors(atmosphere: Atmosphere) -> [(f64, f64); 2] {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let mut pass = AtmospherePass::new(&ctx.device);
     pass.prepare(&ctx.queue, &sky, &Camera::default());

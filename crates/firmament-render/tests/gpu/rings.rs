@@ -30,6 +30,7 @@ fn dimmed_saturn_sky(sun: DVec3, rings: Option<Rings>, dimming: f64) -> Atmosphe
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings,
+        surface: None,
     }
 }
 

@@ -106,6 +106,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let got = lighting(&gpu.ctx, &mut pass, &sky, &camera).sky_irradiance(DVec3::Z);
         let conversion = atmosphere.spectral_conversion();
@@ -172,6 +173,7 @@ fn sun_colors_match_the_reference() {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let got = lighting(ctx, &mut pass, &sky, &camera);
         assert_eq!(got.sun_count(), 2);
@@ -299,6 +301,7 @@ fn the_projection_matches_the_sky_the_gpu_draws() {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         let got = lighting(&gpu.ctx, &mut pass, &sky, &camera(position, DVec3::Y)).sky_sh();
         let want = project(&render_cube(&mut gpu, &sky, position));
@@ -338,6 +341,7 @@ fn a_user_shader_reads_the_lighting() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let expected = lighting(ctx, &mut pass, &sky, &street_camera());
     let normals = normals();
@@ -483,6 +487,7 @@ fn no_suns_give_no_light() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let camera = street_camera();
     assert_eq!(lighting(ctx, &mut pass, &lit, &camera).sun_count(), 1);
@@ -506,6 +511,7 @@ fn a_far_camera_gets_sunlight_only() {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     let au = 1.495_978_707e11;
     let got = lighting(ctx, &mut pass, &sky, &camera(DVec3::new(0.0, 0.0, au), DVec3::Y));

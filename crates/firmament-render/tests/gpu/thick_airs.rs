@@ -109,6 +109,7 @@ fn sky(body: &Body, sun_elevation: f64) -> AtmosphereSky {
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     }
 }
 

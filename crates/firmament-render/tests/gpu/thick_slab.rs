@@ -283,6 +283,7 @@ fn slab_sky(depth: f64, single_scattering_albedo: f64, sun_zenith: f64, albedo: 
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     }
 }
 

@@ -10,6 +10,7 @@ mod empirical;
 mod medium;
 mod planet;
 mod suns;
+mod surface;
 mod terms;
 
 pub use empirical::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
@@ -33,7 +34,20 @@ const SURFACE_TOLERANCE: f64 = 1e-3;
 pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
     let body = scene.planet.body;
     let planet = planet::planet(&scene.planet)?;
-    let (medium, wavelengths) = medium::medium(&scene.atmosphere, body)?;
+    let (mut medium, wavelengths) = medium::medium(&scene.atmosphere, body)?;
+    let surface = surface::surface(scene)?;
+    if let Some(surface) = &surface {
+        if let Some(albedo) = &scene.atmosphere.ground_albedo {
+            return Err(SceneError::invalid(
+                "atmosphere.ground_albedo",
+                format!("{albedo:?}"),
+                "has no effect with a planet surface (planet.surface or planet.albedo_map), whose albedo map \
+                 gives the ground's albedo: remove one",
+            ));
+        }
+        // The multiple-scattering LUTs assume one albedo everywhere: the surface's mean.
+        medium.ground_albedo = surface.mean_albedo();
+    }
     let atmosphere = Atmosphere {
         planet,
         medium,
@@ -50,6 +64,7 @@ pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
         clouds,
         eclipsers: Vec::new(),
         rings: rings(scene)?,
+        surface,
     };
     sky.validate()
         .map_err(|e| from_core(e, |field| scene_key(field, scene)))?;

@@ -309,6 +309,7 @@ mod tests {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         };
         // The world is east-north-up at (0°, 0°) on the ground.
         earth.atmosphere.planet = earth.atmosphere.planet.posed_at(0.0, 0.0);

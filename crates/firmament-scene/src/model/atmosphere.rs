@@ -86,6 +86,36 @@ pub struct PlanetSection {
     /// Longitude of the world origin, degrees east, finite.
     #[serde(rename = "longitude")]
     pub longitude_deg: f64,
+    /// A built-in surface: `"earth"` (Natural Earth's land and ice, dark seas) or
+    /// `"procedural"` (seeded continents, seas and ice caps); not with `albedo_map`. Absent and
+    /// without `albedo_map`: the atmosphere's `ground_albedo` everywhere, no water.
+    #[serde(default)]
+    pub surface: Option<SurfaceName>,
+    /// An equirectangular image of the ground's albedo (colours read as sRGB-encoded albedo; top
+    /// row at latitude 90°, left column at longitude −180°); a path relative to the scene file.
+    #[serde(default)]
+    pub albedo_map: Option<String>,
+    /// With `albedo_map`: an equirectangular image of where the ground is water (each texel's
+    /// mean of red, green and blue, 0 land … 1 water), for the suns' glint; without it, no water.
+    #[serde(default)]
+    pub water_map: Option<String>,
+    /// The seed of `surface = "procedural"`, an integer >= 0 (default 1).
+    #[serde(default)]
+    pub surface_seed: Option<i64>,
+    /// Wind speed over the water, m/s, in [0, 30] (default 7): how rough the sea is, so how wide
+    /// and dim the suns' glint; needs a surface.
+    #[serde(default)]
+    pub wind_speed: Option<f64>,
+}
+
+/// The built-in surfaces `planet.surface` names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SurfaceName {
+    /// Earth from Natural Earth's data (`firmament-scene/data/earth-surface.png`).
+    Earth,
+    /// Continents, seas and ice caps from seeded noise (`planet.surface_seed`).
+    Procedural,
 }
 
 /// The aerosol phase functions a scene can choose.

@@ -55,8 +55,13 @@ fn every_atmosphere_preset_parses_validates_and_converts() {
             planet.altitude(planet.to_planet_frame(DVec3::ZERO)).abs() < 1e-6,
             "{name}"
         );
-        // The body's preset medium comes through unchanged.
-        assert_eq!(sky.atmosphere.medium, scene.planet.body.atmosphere().medium, "{name}");
+        // The body's preset medium comes through unchanged, but for the ground's albedo under a
+        // surface: the surface's mean.
+        let mut medium = scene.planet.body.atmosphere().medium;
+        if let Some(surface) = &sky.surface {
+            medium.ground_albedo = surface.mean_albedo();
+        }
+        assert_eq!(sky.atmosphere.medium, medium, "{name}");
     }
     let binary = sky_of(&preset("binary-sunset", &[]).expect("valid"));
     assert_eq!(binary.suns.len(), 2);

@@ -69,8 +69,8 @@ fn the_cloud_presets_have_their_layers() {
 
     let orbit = sky_of(&preset("earth-orbit", &[]).expect("valid"));
     assert_eq!(orbit.clouds.len(), 1);
-    assert_eq!(orbit.clouds[0].kind, CloudKind::Stratocumulus);
-    assert_eq!(orbit.clouds[0].coverage, 0.5);
+    assert_eq!(orbit.clouds[0].kind, CloudKind::Cumulus);
+    assert_eq!(orbit.clouds[0].coverage, 0.1);
 
     let binary = sky_of(&preset("binary-sunset", &[]).expect("valid"));
     assert_eq!((binary.suns.len(), binary.clouds.len()), (2, 1));

@@ -14,4 +14,5 @@ mod object_scenes;
 mod scene_files;
 mod shadow_scenes;
 mod support;
+mod surface_scenes;
 mod time_scenes;

@@ -118,7 +118,8 @@ pub(crate) fn run(args: &RenderArgs) -> Result<()> {
         };
         let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
             .with_eclipsers(&sky.eclipsers)
-            .with_rings(sky.rings.as_ref());
+            .with_rings(sky.rings.as_ref())
+            .with_surface(sky.surface.as_ref());
         let conversion = sky.atmosphere.spectral_conversion();
         let radiance: Vec<LinearRgb> = reference
             .image(&frame.camera, width, height)

@@ -145,6 +145,7 @@ fn samples(args: &SkySampleArgs) -> Result<Samples> {
         clouds: scene_sky.clouds,
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     };
     if !sky.clouds.is_empty() && !args.reference {
         bail!(
@@ -268,7 +269,8 @@ fn reference_sample(
     let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings)
         .with_clouds(&sky.clouds)
         .with_eclipsers(&sky.eclipsers)
-        .with_rings(sky.rings.as_ref());
+        .with_rings(sky.rings.as_ref())
+        .with_surface(sky.surface.as_ref());
     let planet = &sky.atmosphere.planet;
     let ray = Ray {
         origin: eye,

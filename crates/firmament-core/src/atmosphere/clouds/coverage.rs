@@ -1,8 +1,8 @@
 //! A layer's coverage over the planet: an equirectangular map.
 
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::sync::Arc;
 
+use crate::atmosphere::surface::map::equirect_bilinear;
 use crate::error::CoreError;
 
 /// An equirectangular map of a layer's coverage over the planet: longitude −180° … 180° from
@@ -66,26 +66,13 @@ impl CoverageMap {
         &self.values
     }
 
-    /// Texel `(column, row)`.
-    fn texel(&self, column: u32, row: u32) -> f64 {
-        f64::from(self.values[row as usize * self.width as usize + column as usize])
-    }
-
     /// The coverage at geodetic `latitude` and `longitude` (radians; any longitude, wrapped),
     /// bilinear between texel centres, 0–1.
     pub fn sample(&self, latitude_rad: f64, longitude_rad: f64) -> f64 {
-        let (w, h) = (f64::from(self.width), f64::from(self.height));
-        let u = (longitude_rad + PI).rem_euclid(TAU) / TAU;
-        let x = u * w - 0.5;
-        let y = ((FRAC_PI_2 - latitude_rad) / PI * h - 0.5).clamp(0.0, h - 1.0);
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let column = |c: f64| c.rem_euclid(w) as u32 % self.width;
-        let (c0, c1) = (column(x0), column(x0 + 1.0));
-        let r0 = y0 as u32;
-        let r1 = (r0 + 1).min(self.height - 1);
-        let row = |r: u32| self.texel(c0, r) + (self.texel(c1, r) - self.texel(c0, r)) * fx;
-        let value = row(r0) + (row(r1) - row(r0)) * fy;
+        let value: f64 = equirect_bilinear(self.width, self.height, latitude_rad, longitude_rad)
+            .iter()
+            .map(|(index, weight)| weight * f64::from(self.values[*index]))
+            .sum();
         value.clamp(0.0, 1.0)
     }
 }

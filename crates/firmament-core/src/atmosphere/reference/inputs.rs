@@ -6,6 +6,7 @@
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::rings::Rings;
 use crate::atmosphere::spectrum::Spectrum;
+use crate::atmosphere::surface::Surface;
 use crate::atmosphere::{Atmosphere, Eclipser, Planet, Sun};
 use crate::geometry::Ray;
 use crate::occluder::Occluder;
@@ -110,4 +111,7 @@ pub struct Reference {
     pub(super) eclipsers: Vec<Eclipser>,
     /// The planet's rings, whose shadow dims the suns ([`Reference::with_rings`]).
     pub(super) rings: Option<Rings>,
+    /// The ground's albedo and water over the globe ([`Reference::with_surface`]); without one
+    /// the medium's `ground_albedo` everywhere, no water.
+    pub(super) surface: Option<Surface>,
 }

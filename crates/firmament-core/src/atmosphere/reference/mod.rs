@@ -73,6 +73,7 @@ use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::eclipse::visible_fraction;
 use crate::atmosphere::rings::Rings;
 use crate::atmosphere::spectrum::Spectrum;
+use crate::atmosphere::surface::{GroundSample, Surface};
 use crate::atmosphere::{Atmosphere, Eclipser, Sun};
 use crate::camera::Camera;
 use crate::geometry::Ray;
@@ -147,6 +148,7 @@ impl Reference {
             clouds: Vec::new(),
             eclipsers: Vec::new(),
             rings: None,
+            surface: None,
         }
     }
 
@@ -203,6 +205,54 @@ impl Reference {
     pub fn with_rings(mut self, rings: Option<&Rings>) -> Self {
         self.rings = rings.cloned();
         self
+    }
+
+    /// Sets the planet's surface ([`crate::atmosphere::surface`]): the ground's albedo wherever
+    /// light meets it is the surface's there (not the medium's `ground_albedo`), and its water
+    /// adds each sun's glint to the sunlight it reflects towards the eye or the next event. A
+    /// path's bounce off the ground stays Lambertian: the sky's and the air's light reflected
+    /// specularly by the water is left out, as on the GPU.
+    pub fn with_surface(mut self, surface: Option<&Surface>) -> Self {
+        self.surface = surface.cloned();
+        self
+    }
+
+    /// The ground at planet-frame point `p` with geodetic up `up`.
+    pub(super) fn ground_at(&self, up: DVec3) -> GroundSample {
+        match &self.surface {
+            Some(surface) => surface.at(up),
+            None => GroundSample {
+                albedo: self.atmosphere.medium.ground_albedo,
+                water: 0.0,
+            },
+        }
+    }
+
+    /// Sunlight the ground under `from` (a point 1 mm above it, geodetic up `up`) reflects
+    /// towards `to_eye`, W·m⁻²·sr⁻¹·nm⁻¹, with each sun's transmittance to `from` given by
+    /// `transmittance`; suns an occluder hides give nothing when `occluders` (single scattering
+    /// sees the occluders, multiple scattering does not: see the module docs).
+    pub(super) fn ground_reflected(
+        &self,
+        from: DVec3,
+        up: DVec3,
+        to_eye: DVec3,
+        occluders: bool,
+        mut transmittance: impl FnMut(&Sun) -> Spectrum,
+    ) -> Spectrum {
+        let ground = self.ground_at(up);
+        let mut radiance = Spectrum::ZERO;
+        for sun in &self.suns {
+            if up.dot(sun.direction) <= 0.0 || (occluders && self.occluded(from, sun.direction)) {
+                continue;
+            }
+            let factor = match &self.surface {
+                Some(surface) => surface.reflectance_factor(&ground, up, sun.direction, to_eye),
+                None => ground.albedo * (up.dot(sun.direction) / std::f64::consts::PI),
+            };
+            radiance += sun.irradiance * transmittance(sun) * self.sun_visible(from, sun) * factor;
+        }
+        radiance
     }
 
     /// The fraction of sun `index`'s disc (in the order given to [`Reference::new`]) that the
@@ -525,9 +575,11 @@ impl Reference {
         }
         let ground_point = ray.at(segment.end);
         let up = planet.up(ground_point);
-        let irradiance = self.direct_irradiance(ground_point, up);
-        let ground = end_transmittance * medium.ground_albedo * irradiance / std::f64::consts::PI;
-        (single, ground, Spectrum::ZERO)
+        let from = ground_point + up * 1e-3;
+        let reflected = self.ground_reflected(from, up, -ray.direction, true, |sun| {
+            self.transmittance_to_space(from, sun.direction)
+        });
+        (single, end_transmittance * reflected, Spectrum::ZERO)
     }
 
     /// Simpson panels (even) for a piece `[a, b]` of a view ray lying in the cloud layers of the

@@ -420,11 +420,11 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
                 }
                 events += 1;
                 grounded = true;
-                let (start, direct) = ground_event(reference, ray.at(segment.end), rng);
+                let (start, direct, albedo) = ground_event(reference, &ray, segment.end, rng);
                 if !along_segment {
                     tally.add(min_order, events, weight * direct, grounded);
                 }
-                weight *= medium.ground_albedo;
+                weight *= albedo;
                 ray = Ray {
                     origin: start,
                     direction: cosine_sample(planet.up(start), rng),
@@ -444,21 +444,17 @@ fn trace(reference: &Reference, mut ray: Ray, mut weight: Spectrum, start: PathS
     }
 }
 
-/// The ground at planet-frame point `p`: the point just above it to continue from, and the
-/// sunlight it reflects towards any direction (albedo/π × direct irradiance).
-fn ground_event(reference: &Reference, p: DVec3, rng: &mut Pcg64Mcg) -> (DVec3, Spectrum) {
+/// The ground where `ray` meets it at `t`: the point just above it to continue from, the
+/// sunlight it reflects back along the ray (the albedo's share, albedo/π × direct irradiance,
+/// and the water's glint) and its albedo (a bounce's weight).
+fn ground_event(reference: &Reference, ray: &Ray, t: f64, rng: &mut Pcg64Mcg) -> (DVec3, Spectrum, Spectrum) {
+    let p = ray.at(t);
     let up = reference.atmosphere.planet.up(p);
     let start = p + up * 1e-3;
-    let mut direct = Spectrum::ZERO;
-    for sun in &reference.suns {
-        let cos = up.dot(sun.direction);
-        if cos > 0.0 {
-            direct += sun.irradiance
-                * transmittance_to_sun(reference, start, sun.direction, rng)
-                * (cos * reference.sun_visible(start, sun));
-        }
-    }
-    (start, direct * reference.atmosphere.medium.ground_albedo / PI)
+    let direct = reference.ground_reflected(start, up, -ray.direction, false, |sun| {
+        transmittance_to_sun(reference, start, sun.direction, rng)
+    });
+    (start, direct, reference.ground_at(up).albedo)
 }
 
 /// The ground branch of a split: reflect at `ground.origin` (a ground point) and trace on.
@@ -471,7 +467,7 @@ fn reflect_and_trace(
     rng: &mut Pcg64Mcg,
 ) -> Tally {
     let mut tally = Tally::ZERO;
-    let (start, direct) = ground_event(reference, ground.origin, rng);
+    let (start, direct, albedo) = ground_event(reference, &ground, 0.0, rng);
     let order = events + 1;
     // Along segments, the segment that ended here already counted the ground's sunlight.
     if reference.settings.line_samples == 0 {
@@ -484,7 +480,7 @@ fn reflect_and_trace(
             origin: start,
             direction,
         },
-        weight * reference.atmosphere.medium.ground_albedo,
+        weight * albedo,
         PathStart {
             grounded: true,
             ..PathStart::after(order, min_order)
@@ -579,7 +575,7 @@ fn line_light(reference: &Reference, ray: &Ray, segment: Segment, rng: &mut Pcg6
         }
     }
     let ground = if segment.ends_on_ground {
-        ground_event(reference, ray.at(end), rng).1 * (-depth[TABLE_STEPS]).exp()
+        ground_event(reference, ray, end, rng).1 * (-depth[TABLE_STEPS]).exp()
     } else {
         Spectrum::ZERO
     };

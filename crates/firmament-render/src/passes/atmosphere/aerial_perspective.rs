@@ -157,6 +157,7 @@ pub(super) struct AerialPerspectiveResources<'a> {
     pub(super) view: &'a wgpu::Buffer,
     pub(super) luts: &'a luts::AtmosphereLuts,
     pub(super) sampler: &'a wgpu::Sampler,
+    pub(super) surface: &'a super::surface::SurfaceTexture,
 }
 
 impl<'a> AerialPerspectiveResources<'a> {

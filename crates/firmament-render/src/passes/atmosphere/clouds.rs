@@ -89,7 +89,7 @@ fn layer_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         uniform_entry(binding::VIEW),
         uniform_entry(binding::CLOUDS),
         texture_array_entry(binding::CLOUD_COVERAGE_MAPS),
-        sampler_entry(binding::CLOUD_MAP_SAMPLER),
+        sampler_entry(binding::MAP_SAMPLER),
     ]
 }
 
@@ -107,6 +107,7 @@ fn entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         storage_entry(binding::HDR_OUT, crate::targets::HDR_FORMAT),
         texture_entry(binding::CLOUD_SHADOW_MAP, false),
     ]);
+    all.push(super::surface::SurfaceTexture::texture_entry());
     all
 }
 
@@ -289,7 +290,7 @@ impl CloudStages {
                 wgpu::BindingResource::TextureView(&self.maps_view),
             ),
             (
-                binding::CLOUD_MAP_SAMPLER,
+                binding::MAP_SAMPLER,
                 wgpu::BindingResource::Sampler(&self.map_sampler),
             ),
         ]
@@ -331,6 +332,7 @@ impl CloudStages {
                 wgpu::BindingResource::TextureView(&self.shadow_map_view),
             ),
         ]);
+        all.push(resources.surface.texture_resource());
         all
     }
 

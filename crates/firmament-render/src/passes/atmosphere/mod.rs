@@ -36,6 +36,7 @@ mod multiscattering;
 mod rebuild;
 mod sky_lighting;
 mod stages;
+mod surface;
 
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
@@ -58,6 +59,7 @@ use luts::MediumLuts;
 use rebuild::{BuildStep, Rebuild};
 pub use sky_lighting::sky_lighting_layout_entry;
 use sky_lighting::{SkyLightingResources, SkyLightingStage};
+use surface::SurfaceTexture;
 use stages::{
     ComputeStage, Stage, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
@@ -124,6 +126,8 @@ pub struct AtmospherePass {
     aerial: AerialPerspectiveStages,
     clouds: CloudStages,
     lighting: SkyLightingStage,
+    /// The planet's surface map, read by every stage that draws the ground.
+    surface: SurfaceTexture,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
@@ -187,7 +191,8 @@ impl AtmospherePass {
         );
         let multiscattering = MultiscatteringStages::new(device, &build, &sampler);
         let view_entries = view_entries();
-        let view_resources = view_resources(&params, &view, &luts, &sampler);
+        let surface = SurfaceTexture::new(device);
+        let view_resources = view_resources(&params, &view, &luts, &sampler, &surface);
         // The view resources that the bindings in `entries` name.
         let resources_for = |entries: &[wgpu::BindGroupLayoutEntry]| -> Vec<(u32, wgpu::BindingResource<'_>)> {
             view_resources
@@ -240,6 +245,7 @@ impl AtmospherePass {
                 view: &view,
                 luts: &luts,
                 sampler: &sampler,
+                surface: &surface,
             },
             color,
         );
@@ -250,12 +256,14 @@ impl AtmospherePass {
                 view: &view,
                 luts: &luts,
                 sampler: &sampler,
+                surface: &surface,
             },
         );
         Self {
             aerial,
             clouds: CloudStages::new(device),
             lighting,
+            surface,
             sampler,
             luts,
             params,
@@ -280,6 +288,7 @@ impl AtmospherePass {
     /// way (with `sky`'s suns and the planet's pose), so the sky stays whole.
     pub fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky, camera: &Camera) {
         self.clouds.prepare(queue, sky);
+        self.surface.prepare(queue, sky.surface.as_ref());
         if !self.rebuild.is_newest(&sky.atmosphere) {
             let planet = &sky.atmosphere.planet;
             let thick = is_thick_air(&sky.atmosphere.medium, planet.atmosphere_height);
@@ -300,6 +309,7 @@ impl AtmospherePass {
                     clouds: Vec::new(),
                     eclipsers: Vec::new(),
                     rings: None,
+                    surface: sky.surface.clone(),
                 };
                 &live_sky
             }
@@ -412,6 +422,7 @@ impl AtmospherePass {
             view: &self.view,
             luts: &self.luts,
             sampler: &self.sampler,
+            surface: &self.surface,
         };
         self.aerial.bind_depth(device, &resources, depth);
     }
@@ -528,11 +539,12 @@ impl AtmospherePass {
             view: &self.view,
             luts: &self.luts,
             sampler: &self.sampler,
+            surface: &self.surface,
         };
         self.aerial.bind_target(device, &aerial_resources, color, depth);
         self.clouds.bind_target(device, &aerial_resources, color, depth);
         let color = &color.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler);
+        let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler, &self.surface);
         resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
         resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
         match &mut self.sky_compute {
@@ -628,6 +640,7 @@ impl AtmospherePass {
             view: &self.view,
             luts: &self.luts,
             sampler: &self.sampler,
+            surface: &self.surface,
         };
         self.clouds.bind_caller(device, &resources, depth, self.color);
     }
@@ -658,7 +671,7 @@ impl AtmospherePass {
 }
 
 /// The layout entries of every stage that looks through the camera: the medium, the view, the
-/// LUTs and their sampler.
+/// LUTs and their sampler, the surface map and its sampler.
 fn view_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
     let mut entries = vec![
         uniform_entry(binding::PARAMS),
@@ -669,6 +682,7 @@ fn view_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         texture_entry(binding::SKY_VIEW, true),
     ];
     entries.push(moments_entry(binding::MULTISCATTERING));
+    entries.extend(SurfaceTexture::entries());
     entries
 }
 
@@ -678,6 +692,7 @@ fn view_resources<'a>(
     view: &'a wgpu::Buffer,
     luts: &'a AtmosphereLuts,
     sampler: &'a wgpu::Sampler,
+    surface: &'a SurfaceTexture,
 ) -> Vec<(u32, wgpu::BindingResource<'a>)> {
     let mut resources = vec![
         (binding::PARAMS, params.as_entire_binding()),
@@ -700,5 +715,6 @@ fn view_resources<'a>(
             binding::MULTISCATTERING,
             wgpu::BindingResource::TextureView(&luts.multiscattering.view),
         ));
+    resources.extend(surface.resources());
     resources
 }

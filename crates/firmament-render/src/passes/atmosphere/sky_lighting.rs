@@ -50,6 +50,7 @@ pub(super) struct SkyLightingResources<'a> {
     pub(super) view: &'a wgpu::Buffer,
     pub(super) luts: &'a AtmosphereLuts,
     pub(super) sampler: &'a wgpu::Sampler,
+    pub(super) surface: &'a super::surface::SurfaceTexture,
 }
 
 impl SkyLightingStage {
@@ -62,36 +63,45 @@ impl SkyLightingStage {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let entries = [
+        let mut entries = vec![
             uniform_entry(binding::PARAMS),
             uniform_entry(binding::VIEW),
             texture_entry(binding::TRANSMITTANCE, false),
+            texture_entry(binding::IRRADIANCE, true),
             texture_entry(binding::SKY_VIEW, true),
             sampler_entry(binding::SAMPLER),
             uniform_entry(binding::SKY_LIGHTING_PARAMS),
             storage_buffer_entry(binding::SKY_LIGHTING_OUT),
         ];
+        // The ground the sky-view LUT leaves out when the planet has a surface.
+        entries.extend(super::surface::SurfaceTexture::entries());
         let luts = resources.luts;
+        let mut bound = vec![
+            (binding::PARAMS, resources.params.as_entire_binding()),
+            (binding::VIEW, resources.view.as_entire_binding()),
+            (
+                binding::TRANSMITTANCE,
+                wgpu::BindingResource::TextureView(&luts.transmittance.view),
+            ),
+            (
+                binding::IRRADIANCE,
+                wgpu::BindingResource::TextureView(&luts.irradiance.view),
+            ),
+            (
+                binding::SKY_VIEW,
+                wgpu::BindingResource::TextureView(&luts.sky_view.view),
+            ),
+            (binding::SAMPLER, wgpu::BindingResource::Sampler(resources.sampler)),
+            (binding::SKY_LIGHTING_PARAMS, params.as_entire_binding()),
+            (binding::SKY_LIGHTING_OUT, output.as_entire_binding()),
+        ];
+        bound.extend(resources.surface.resources());
         let stage = ComputeStage::new(
             device,
             "AtmospherePass sky lighting",
             &shaders::ATMOSPHERE_SKY_LIGHTING,
             &entries,
-            &[
-                (binding::PARAMS, resources.params.as_entire_binding()),
-                (binding::VIEW, resources.view.as_entire_binding()),
-                (
-                    binding::TRANSMITTANCE,
-                    wgpu::BindingResource::TextureView(&luts.transmittance.view),
-                ),
-                (
-                    binding::SKY_VIEW,
-                    wgpu::BindingResource::TextureView(&luts.sky_view.view),
-                ),
-                (binding::SAMPLER, wgpu::BindingResource::Sampler(resources.sampler)),
-                (binding::SKY_LIGHTING_PARAMS, params.as_entire_binding()),
-                (binding::SKY_LIGHTING_OUT, output.as_entire_binding()),
-            ],
+            &bound,
         );
         Self { stage, params, output }
     }

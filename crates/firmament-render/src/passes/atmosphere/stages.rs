@@ -27,7 +27,8 @@ pub(super) mod binding {
     pub(crate) const PREVIOUS_GROUND_IRRADIANCE: u32 = 14;
     pub(crate) const CLOUDS: u32 = 15;
     pub(crate) const CLOUD_COVERAGE_MAPS: u32 = 16;
-    pub(crate) const CLOUD_MAP_SAMPLER: u32 = 17;
+    pub(crate) const MAP_SAMPLER: u32 = 17;
+    pub(crate) const SURFACE_MAP: u32 = 18;
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_OUT: u32 = 20;
     pub(crate) const HDR_IN: u32 = 23;
@@ -102,7 +103,8 @@ mod tests {
             ("previous_ground_irradiance", binding::PREVIOUS_GROUND_IRRADIANCE),
             ("clouds", binding::CLOUDS),
             ("cloud_coverage_maps", binding::CLOUD_COVERAGE_MAPS),
-            ("cloud_map_sampler", binding::CLOUD_MAP_SAMPLER),
+            ("map_sampler", binding::MAP_SAMPLER),
+            ("surface_map", binding::SURFACE_MAP),
             ("cloud_shadow_out", binding::CLOUD_SHADOW_OUT),
             ("cloud_shadow_map", binding::CLOUD_SHADOW_MAP),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),

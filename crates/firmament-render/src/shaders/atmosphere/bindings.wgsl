@@ -5,7 +5,7 @@
 //
 // Conventions: as atmosphere/common.wgsl (planet frame, metres, spectra per model wavelength).
 // Each pipeline's layout holds only the bindings its entry points use; the others are declared
-// here unused, which WGSL and wgpu allow. A new binding takes a free number (18, 21, 22, 27 or from 29) here and in `stages.rs`.
+// here unused, which WGSL and wgpu allow. A new binding takes a free number (21, 22, 27 or from 31) here and in `stages.rs`.
 
 #import clouds/density
 
@@ -91,6 +91,10 @@ struct AtmosphereView {
     ring_albedo: vec4<f32>,      // rgb single-scattering albedo
     // normal optical depth at inner + k·(outer − inner)/(RING_TABLE_ENTRIES − 1), four to a vector
     ring_depth: array<vec4<f32>, RING_TABLE_VECTORS>,
+    // The planet's surface (atmosphere/surface.wgsl): x = 1 to read the ground from `surface_map`
+    // (0: `ground_albedo` everywhere, no water); y = the sea's mean square slope (Cox–Munk); zw
+    // unused
+    surface: vec4<f32>,
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).
@@ -119,10 +123,16 @@ struct SkyLighting {
 // The cloud layers (clouds/density.wgsl declares their struct).
 @group(0) @binding(15) var<uniform> clouds: CloudsGpu;
 // Their coverage maps, one array layer per layer that has one (`codes.w`), R16Float, resampled to
-// passes/atmosphere/clouds.rs COVERAGE_MAP_SIZE; read at cloud_coverage_map_uv with
-// `cloud_map_sampler` (linear, repeating in longitude, clamped at the poles).
+// passes/atmosphere/clouds.rs COVERAGE_MAP_SIZE; read at equirect_uv (common/ellipsoid.wgsl) with
+// `map_sampler`.
+// Linear, repeating in longitude, clamped at the poles: for every equirectangular map (the cloud
+// coverage maps, the surface map).
 @group(0) @binding(16) var cloud_coverage_maps: texture_2d_array<f32>;
-@group(0) @binding(17) var cloud_map_sampler: sampler;
+@group(0) @binding(17) var map_sampler: sampler;
+// The planet's surface (atmosphere/surface.wgsl): an equirectangular map, Rgba16Float, of linear
+// albedo (rgb) and water fraction (a), resampled to passes/atmosphere/surface.rs SURFACE_MAP_SIZE;
+// read at equirect_uv (common/ellipsoid.wgsl) with `map_sampler`.
+@group(0) @binding(18) var surface_map: texture_2d<f32>;
 // The clouds' shadow map (clouds/shadow.wgsl): per sun a square of texels across its rays around
 // the camera, the suns' squares side by side; written by clouds/shadow_map.wgsl, read by the
 // march (unfilterable: textureLoad).

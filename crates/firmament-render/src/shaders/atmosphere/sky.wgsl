@@ -134,7 +134,7 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
     var through = vec3<f32>(0.0);
     var hits_ground = false;
     if SKY_MODE == SKY_MODE_LUT {
-        radiance = lut_radiance(ray.direction);
+        radiance = sky_radiance(ray.direction);
         // The transmittance only matters behind the air: most pixels skip its lookups.
         if behind_air {
             through = lut_transmittance(ray.direction);
@@ -146,7 +146,7 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
     } else {
         let blend = view.local_up.w;
         let marched = marched_sky(ray);
-        radiance = mix(lut_radiance(ray.direction), marched.radiance, blend);
+        radiance = mix(sky_radiance(ray.direction), marched.radiance, blend);
         if behind_air {
             through = mix(lut_transmittance(ray.direction), marched.transmittance, blend);
         }

@@ -3,7 +3,7 @@
 // shaders/include/firmament_lighting.wgsl reads (see passes/atmosphere/sky_lighting.rs).
 //
 // Conventions: as atmosphere/view.wgsl; output directions in the world frame.
-// - Sky: the radiance the sky pass draws from the sky-view LUT (`lut_radiance`: every sun's tile,
+// - Sky: the radiance the sky pass draws from the sky-view LUT (`sky_radiance`: every sun's tile,
 //   sky and lit ground, no sun discs) at the centres of GRID_AZIMUTH × GRID_ROWS equal-area cells
 //   around the camera's local up (rows uniform in cos θ, so every cell spans 4π / cells sr),
 //   projected onto the real spherical harmonics of bands 0–2 of the *world* direction (Ramamoorthi
@@ -83,7 +83,7 @@ fn cs_main(@builtin(local_invocation_index) t: u32) {
             let z = 1.0 - (f32(row) + 0.5) * (2.0 / f32(GRID_ROWS));
             let phi = (f32(column) + 0.5) * (2.0 * PI / f32(GRID_AZIMUTH));
             let d = up * z + (tangent * cos(phi) + bitangent * sin(phi)) * safe_sqrt(1.0 - z * z);
-            let radiance = lut_radiance(d);
+            let radiance = sky_radiance(d);
             let basis = sh_basis(normalize((lighting.planet_to_world * vec4<f32>(d, 0.0)).xyz));
             for (var k = 0u; k < SH_COEFFICIENTS; k++) {
                 sums[k] += radiance * basis[k];

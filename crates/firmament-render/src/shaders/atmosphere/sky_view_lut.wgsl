@@ -2,7 +2,8 @@
 //
 // Conventions: as atmosphere/view.wgsl. The target is SKY_VIEW_LUT_SIZE.x · MAX_SUNS wide: tile i
 // (x in [i·W, (i+1)·W)) holds the light scattered towards the camera from sun i alone (all
-// orders, and the ground that sun lights), over (azimuth relative to the sun, non-linear zenith
+// orders, and the ground that sun lights unless the planet has a surface: sky_view.wgsl's
+// sky_radiance reads that per ray), over (azimuth relative to the sun, non-linear zenith
 // angle) — see `sky_view_uv`. A compute pass, one invocation per texel; only the first
 // `sun_count` tiles are dispatched (on the Rust side). rgb = spectral radiance over 2^a, a = `sky_view_exponent(sun)` (so
 // dim suns and deep twilight keep their precision).
@@ -11,6 +12,7 @@
 #import atmosphere/bindings
 #import atmosphere/common
 #import atmosphere/view
+#import atmosphere/surface
 
 const STEPS: i32 = 32;
 
@@ -32,7 +34,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let inside = top.x <= 0.0;
     let t0 = max(top.x, 0.0);
     let t1 = select(max(top.y, 0.0), ground.x, hits_ground);
-    let result = march(o, d, t0, max(t1, t0), hits_ground, sun, 1u, STEPS, inside);
+    let result = march(o, d, t0, max(t1, t0), hits_ground && !has_surface(), sun, 1u, STEPS, inside);
     let k = sky_view_exponent(sun);
     textureStore(sky_view_out, id.xy, vec4<f32>(result.radiance * exp2(-k), k));
 }

@@ -12,6 +12,7 @@
 #import atmosphere/common
 #import atmosphere/luts
 #import atmosphere/eclipse
+#import atmosphere/surface
 
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
 
@@ -129,18 +130,36 @@ fn view_ray(ndc: vec2<f32>) -> ViewRay {
     return planet_view_ray(ndc, planet, atmosphere.radii.xyz, top_radii());
 }
 
-// The radiance of the lit ground at p (altitude h, normal `up`) from suns [first, first + count):
-// direct sunlight and sky light (a Lambertian surface of the ground albedo), both dimmed by any
-// eclipse at p.
-fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
+// The radiance the lit ground at p (altitude h, normal `up`) sends towards `to_eye` from suns
+// [first, first + count): direct sunlight and sky light on its Lambertian albedo, and each sun's
+// glint on its water (atmosphere/surface.wgsl), all dimmed by any eclipse at p.
+fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, to_eye: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
+    let ground = ground_at(up);
     var irradiance = vec3<f32>(0.0);
+    var glint = vec3<f32>(0.0);
     for (var i = first; i < first + count; i++) {
         let sun = view.suns[i];
-        let mu_s = dot(up, sun.direction.xyz);
-        let direct = transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * max(mu_s, 0.0);
-        irradiance += sun_irradiance_at(p, i) * (direct + sky_irradiance(h, mu_s));
+        let s = sun.direction.xyz;
+        let mu_s = dot(up, s);
+        let beam = transmittance_to_sun(h, mu_s, abs(sun.direction.w));
+        let direct = beam * max(mu_s, 0.0);
+        let e = sun_irradiance_at(p, i);
+        irradiance += e * (direct + sky_irradiance(h, mu_s));
+        glint += e * beam * glint_factor(ground, up, s, to_eye);
     }
-    return atmosphere.ground_albedo.rgb / PI * irradiance;
+    return ground.albedo / PI * irradiance + glint;
+}
+
+// The air's transmittance along a view ray from `start` (a point of it in the air: the camera,
+// or where it enters the air from outside) to the ground point `ground` (altitude and up
+// `at_ground`): Bruneton 2017's ratio of two transmittances to the top, both looking back up
+// the ray.
+fn transmittance_to_ground(d: vec3<f32>, start: vec3<f32>, at_ground: AltitudeUp) -> vec3<f32> {
+    let entry = altitude_up(start);
+    let r_start = atmosphere.lut.x + clamp(entry.h, 0.0, atmosphere.lut.y - atmosphere.lut.x);
+    let through = transmittance_to_top(atmosphere.lut.x + max(at_ground.h, 0.0), dot(at_ground.up, -d))
+        / max(transmittance_to_top(r_start, dot(entry.up, -d)), vec3<f32>(1e-30));
+    return min(through, vec3<f32>(1.0));
 }
 
 // The medium at one point of a view ray along d: its extinction, the extinction scattered light
@@ -205,7 +224,7 @@ fn march(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, ground: bool, first: u32,
     if ground {
         let end = o + d * t1;
         let here = altitude_up(end);
-        result.radiance += diffuse_transmittance * ground_radiance(end, max(here.h, 0.0), here.up, first, count);
+        result.radiance += diffuse_transmittance * ground_radiance(end, max(here.h, 0.0), here.up, -d, first, count);
     }
     return result;
 }

@@ -398,18 +398,9 @@ fn cloud_density(layer: CloudLayerGpu, p: vec3<f32>, h: f32) -> f32 {
 }
 
 // The same with the coverage there given, 0–1 (the layer's coverage times its map's value, read by
-// the caller at cloud_coverage_map_uv): the core's CloudLayer::density_with_coverage.
+// the caller at equirect_uv): the core's CloudLayer::density_with_coverage.
 fn cloud_density_with_coverage(layer: CloudLayerGpu, p: vec3<f32>, h: f32, coverage_here: f32) -> f32 {
     let t = cloud_coverage_threshold(layer, coverage_here);
     let t_core = cloud_coverage_threshold(layer, coverage_here * layer.column.w);
     return cloud_density_at(layer, p, h, coverage_here, t, t_core);
-}
-
-// Where a coverage map is read for the point whose geodetic up is `up` (planet frame, unit):
-// u = (longitude + π)/2π, v = (π/2 − latitude)/π, for a sampler with linear filtering, Repeat in u
-// and ClampToEdge in v (the core's CoverageMap::sample: texel centres, wrapping in longitude).
-fn cloud_coverage_map_uv(up: vec3<f32>) -> vec2<f32> {
-    let latitude = asin(clamp(up.z, -1.0, 1.0));
-    let longitude = atan2(up.y, up.x);
-    return vec2<f32>(longitude * 0.15915494 + 0.5, 0.5 - latitude * 0.31830989);
 }

@@ -25,7 +25,7 @@ fn cloud_extinction_lod(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32
     var t = layer.coverage.y;
     var t_core = layer.coverage.z;
     if layer.codes.z != 0u {
-        let map = textureSampleLevel(cloud_coverage_maps, cloud_map_sampler, cloud_coverage_map_uv(up), i32(layer.codes.w), 0.0).r;
+        let map = textureSampleLevel(cloud_coverage_maps, map_sampler, equirect_uv(up), i32(layer.codes.w), 0.0).r;
         coverage *= map;
         t = cloud_coverage_threshold(layer, coverage);
         t_core = cloud_coverage_threshold(layer, coverage * layer.column.w);

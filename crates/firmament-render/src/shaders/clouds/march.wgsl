@@ -40,6 +40,7 @@
 #import atmosphere/luts
 #import atmosphere/view
 #import atmosphere/eclipse
+#import atmosphere/surface
 #import atmosphere/aerial_lookup
 #import clouds/density
 #import clouds/extinction
@@ -223,8 +224,9 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
 
 // The sunlight the clouds take off the ground where the ray meets it before `far` (spectral
 // radiance towards the camera; zero when it meets no ground, or geometry first): for each sun,
-// the albedo over π times its irradiance after the air on the ground, times 1 − e^(−τ) of the
-// clouds towards it, dimmed by the air between the camera and the ground.
+// what the ground there reflects of it towards the camera (albedo over π, and the glint on its
+// water) times its irradiance after the air, times 1 − e^(−τ) of the clouds towards it, dimmed
+// by the air between the camera and the ground.
 fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<f32> {
     let ground = hits.ground;
     if !(ground.x <= ground.y && ground.x > ray.near && ground.x < far) {
@@ -233,7 +235,9 @@ fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<
     let g = ray.origin + ray.direction * ground.x;
     let at_ground = altitude_up(g);
     let h = max(at_ground.h, 0.0);
+    let surface = ground_at(at_ground.up);
     var lost = vec3<f32>(0.0);
+    var lost_glint = vec3<f32>(0.0);
     for (var i = 0u; i < view.sun_count.x; i++) {
         let sun = view.suns[i];
         let s = sun.direction.xyz;
@@ -243,19 +247,18 @@ fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<
         }
         let shade = 1.0 - exp(-cloud_depth_to_sun(g, s, ground.x * footprint));
         if shade > 0.0 {
-            lost += sun_irradiance_at(g, i) * transmittance_to_sun(h, mu_s, abs(sun.direction.w)) * (mu_s * shade);
+            let beam = sun_irradiance_at(g, i) * transmittance_to_sun(h, mu_s, abs(sun.direction.w));
+            lost += beam * (mu_s * shade);
+            lost_glint += beam * (shade * glint_factor(surface, at_ground.up, s, -ray.direction));
         }
     }
     if all(lost <= vec3<f32>(0.0)) {
         return lost;
     }
-    // The air between: from the ground back up along the ray to where the air starts, over the
-    // same from the start (Bruneton 2017's ratio; the start is the top of the air from outside).
-    let start = altitude_up(ray.origin + ray.direction * max(hits.top.x, ray.near));
-    let r_start = atmosphere.lut.x + clamp(start.h, 0.0, atmosphere.lut.y - atmosphere.lut.x);
-    let through_air = transmittance_to_top(atmosphere.lut.x + h, dot(at_ground.up, -ray.direction))
-        / max(transmittance_to_top(r_start, dot(start.up, -ray.direction)), vec3<f32>(1e-30));
-    return atmosphere.ground_albedo.rgb / PI * lost * min(through_air, vec3<f32>(1.0));
+    // The air between: from where the air starts (the top of the air from outside).
+    let start = ray.origin + ray.direction * max(hits.top.x, ray.near);
+    let through_air = transmittance_to_ground(ray.direction, start, at_ground);
+    return (surface.albedo / PI * lost + lost_glint) * through_air;
 }
 
 // The clouds' optical depth between planet-frame point p and sun `sun` (direction s), from the

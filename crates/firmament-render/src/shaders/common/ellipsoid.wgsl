@@ -1,4 +1,5 @@
-// common/ellipsoid.wgsl — shared: ray/ellipsoid intersection.
+// common/ellipsoid.wgsl — shared: ray/ellipsoid intersection, and where an equirectangular map
+// is read.
 //
 // Conventions: any frame whose axes are the ellipsoid's (the planet frame), metres; `a` the
 // semi-axes; `c` = |o/a|² − 1 of the ray origin o (negative inside, positive outside).
@@ -29,4 +30,14 @@ fn ellipsoid_hits(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, c: f32) -> vec2<f32>
 fn ellipsoid_c(o: vec3<f32>, a: vec3<f32>) -> f32 {
     let os = o / a;
     return dot(os, os) - 1.0;
+}
+
+// Where an equirectangular map over the planet (a cloud layer's coverage, the surface) is read
+// for the point whose geodetic up is `up` (planet frame, unit): u = (longitude + π)/2π,
+// v = (π/2 − latitude)/π, for a sampler with linear filtering, Repeat in u and ClampToEdge in v
+// (the core's CoverageMap and SurfaceMap: texel centres, wrapping in longitude).
+fn equirect_uv(up: vec3<f32>) -> vec2<f32> {
+    let latitude = asin(clamp(up.z, -1.0, 1.0));
+    let longitude = atan2(up.y, up.x);
+    return vec2<f32>(longitude * 0.15915494 + 0.5, 0.5 - latitude * 0.31830989);
 }

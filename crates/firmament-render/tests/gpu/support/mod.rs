@@ -88,6 +88,7 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
         clouds: Vec::new(),
         eclipsers: Vec::new(),
         rings: None,
+        surface: None,
     }
 }
 

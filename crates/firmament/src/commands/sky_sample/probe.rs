@@ -141,6 +141,7 @@ pub(crate) fn sample_sky(
     };
     let mut black_ground = sky.clone();
     black_ground.atmosphere.medium.ground_albedo = Spectrum::ZERO;
+    black_ground.surface = None;
     let without_ground = render(&black_ground, SkyMethod::March, Luts::Whole)?;
     let mut marched = [Spectrum::ZERO; 3];
     for (radiance, orders) in marched.iter_mut().zip([0, 1, 3]) {
