@@ -15,6 +15,10 @@
 //! — exact for a uniform sky and ground (Siegel & Howell, "Thermal Radiation Heat Transfer",
 //! view factor of a tilted plane). The ground's radiance is its albedo × the irradiance on it
 //! (sun, shadowed where objects shadow it, plus sky) / π.
+//!
+//! Over a planet with a surface ([`crate::atmosphere::surface`]) the patch carries the surface's
+//! albedo as a texture ([`surface_texture`]), so where the sky pass takes over at its edge the
+//! ground keeps its colours; the light it bounces up is the albedo at the camera's foot point's.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -111,7 +115,8 @@ fn build_patch(radius: f64, extent: f64) -> Mesh {
         let n = DVec3::new(x, y, z + radius) / radius;
         mesh.positions.push([x as f32, y as f32, z as f32]);
         mesh.normals.push(n.normalize().as_vec3().to_array());
-        mesh.tex_coords.push([0.0, 0.0]);
+        mesh.tex_coords
+            .push([surface_texture_coord(x / extent), surface_texture_coord(y / extent)]);
     };
     push(0.0, 0.0);
     let ratio = (extent / INNER_RING_M).powf(1.0 / f64::from(RINGS - 1));
@@ -132,6 +137,23 @@ fn build_patch(radius: f64, extent: f64) -> Mesh {
         }
     }
     mesh
+}
+
+/// Texels across the surface texture of a ground patch ([`surface_texture`]).
+pub const SURFACE_TEXTURE_SIDE: u32 = 32;
+
+/// Where the patch point at `x` (−1 … 1: across its square, in units of its extent) reads a
+/// surface texture: from the first texel's centre to the last's, so that GL's repeat never
+/// blends in the far side.
+fn surface_texture_coord(x: f64) -> f32 {
+    let n = f64::from(SURFACE_TEXTURE_SIDE);
+    ((0.5 + 0.5 * (n - 1.0) * (x.clamp(-1.0, 1.0) + 1.0)) / n) as f32
+}
+
+/// The patch point (−1 … 1, in units of its extent) at texel `i`'s centre: the inverse of
+/// [`surface_texture_coord`].
+fn surface_texel_point(i: u32) -> f64 {
+    2.0 * f64::from(i) / f64::from(SURFACE_TEXTURE_SIDE - 1) - 1.0
 }
 
 /// The ground patch under a camera at world point `camera` over `planet` (posed in the world
@@ -162,6 +184,61 @@ pub fn ground_object(planet: &Planet, camera: DVec3, albedo: DVec4) -> Option<(S
         ..Material::default()
     };
     Some((SceneObject::new(mesh, model, material), up, height))
+}
+
+/// Lays `surface`'s albedo over the ground patch `object` (made by [`ground_object`] for the
+/// same `planet`): a [`SURFACE_TEXTURE_SIDE`]² texture of the map over the patch's square, and
+/// the material's ambient and diffuse colours set to its largest albedo per channel, the texels
+/// being the albedo over it (GL's modulate multiplies them; 8-bit texels keep their precision
+/// relative to the patch's brightest ground). `as_rgb` turns an albedo per model wavelength into
+/// the linear sRGB albedo the object pass lights.
+pub fn surface_texture(
+    planet: &Planet,
+    surface: &crate::atmosphere::surface::Surface,
+    object: &mut SceneObject,
+    as_rgb: impl Fn(crate::atmosphere::Spectrum) -> DVec3,
+) {
+    let n = SURFACE_TEXTURE_SIDE;
+    let extent = object
+        .mesh
+        .positions
+        .iter()
+        .map(|p| f64::from(p[0]).abs().max(f64::from(p[1]).abs()))
+        .fold(0.0, f64::max);
+    let rotation = planet.orientation.normalize();
+    // Texel (s, t), bottom row first as in GL, at the patch point (x, y) of its centre.
+    let albedos: Vec<DVec3> = (0..n * n)
+        .map(|k| {
+            let (s, t) = (k % n, k / n);
+            let (x, y) = (surface_texel_point(s) * extent, surface_texel_point(t) * extent);
+            let world = object.model.transform_point3(DVec3::new(x, y, 0.0));
+            let planet_point = rotation.inverse() * (world - planet.center);
+            as_rgb(surface.at(planet.up(planet_point)).albedo)
+        })
+        .collect();
+    let scale = albedos.iter().fold(DVec3::splat(1e-4), |m, a| m.max(*a));
+    let texels = albedos
+        .iter()
+        .map(|a| {
+            let v = (*a / scale * 255.0).round().clamp(DVec3::ZERO, DVec3::splat(255.0));
+            [v.x as u8, v.y as u8, v.z as u8, 255]
+        })
+        .collect();
+    let material = Material {
+        ambient: scale.extend(1.0),
+        diffuse: scale.extend(1.0),
+        ..object.front
+    };
+    object.front = material;
+    object.back = material;
+    object.texture = Some(super::scene::ObjectTexture {
+        image: Arc::new(crate::texture::TextureImage {
+            width: n,
+            height: n,
+            texels,
+        }),
+        filter: crate::texture::TextureFilter::Linear,
+    });
 }
 
 #[cfg(test)]
@@ -213,5 +290,48 @@ mod tests {
         let planet = Planet::sphere(1000.0, 10.0);
         let r = mean_radius_of_curvature(&planet, DVec3::new(0.6, 0.0, 0.8));
         assert!((r - 1000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_surface_s_albedo_lies_on_the_patch_where_the_map_has_it() {
+        use crate::atmosphere::surface::{Surface, SurfaceMap};
+        // West of longitude 0 albedo 0.4, east of it 0.1 (two texels; bilinear between their
+        // centres at ∓90°, so 0.25 ∓ 0.15·λ/90° near 0°), water nowhere.
+        let map = SurfaceMap::new(2, 1, vec![[0.4, 0.4, 0.4, 0.0], [0.1, 0.1, 0.1, 0.0]]).unwrap();
+        let surface = Surface::new(map);
+        let planet = Planet::sphere(6.36e6, 6e4).posed_at(0.0, 0.0);
+        let camera = DVec3::new(0.0, 0.0, 5000.0);
+        let (mut object, _, _) = ground_object(&planet, camera, DVec4::splat(0.3)).unwrap();
+        surface_texture(&planet, &surface, &mut object, |a| a);
+        let texture = object.texture.as_ref().expect("a texture");
+        let scale = object.front.diffuse;
+        // Every texel times the material is the map at the texel's centre (world → planet).
+        let n = SURFACE_TEXTURE_SIDE;
+        let extent = MAX_GROUND_EXTENT_M;
+        for (s, t) in [(0, 0), (n - 1, 5), (7, n - 1), (n / 2, n / 2)] {
+            let (x, y) = (surface_texel_point(s) * extent, surface_texel_point(t) * extent);
+            let world = object.model.transform_point3(DVec3::new(x, y, 0.0));
+            let up = planet.up(planet.to_planet_frame(world));
+            let want = surface.at(up).albedo.x;
+            let got = f64::from(texture.image.texel(s, t).unwrap()[0]) / 255.0 * scale.x;
+            assert!(
+                (got - want).abs() < 0.5 / 255.0 * scale.x + 1e-9,
+                "({s}, {t}): {got} vs {want}"
+            );
+        }
+        // East (the patch's +x at longitude 0 looks along the world's east) is darker.
+        let row = |s: u32| texture.image.texel(s, n / 2).unwrap()[0];
+        assert!(row(0) != row(n - 1));
+        // The mesh reads the texture between its first and last texel centres, the rim at them.
+        let (first, last) = (0.5 / n as f32, 1.0 - 0.5 / n as f32);
+        assert!(
+            object
+                .mesh
+                .tex_coords
+                .iter()
+                .all(|uv| uv.iter().all(|v| (first - 1e-6..=last + 1e-6).contains(v)))
+        );
+        assert!((surface_texture_coord(1.0) - last).abs() < 1e-7 && (surface_texture_coord(-1.0) - first).abs() < 1e-7);
+        assert!((surface_texel_point(n - 1) - 1.0).abs() < 1e-12);
     }
 }

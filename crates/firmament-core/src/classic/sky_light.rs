@@ -19,12 +19,12 @@
 
 use glam::{DVec3, DVec4};
 
-use super::ground::{Ground, ground_object};
+use super::ground::{Ground, ground_object, surface_texture};
 use super::lighting::{Light, LightModel, SpecularModel};
 use super::scene::{ClassicLighting, LightSpace, SceneLight, Shading};
 use super::shadow::ShadowLight;
-use crate::atmosphere::SpectralConversion;
 use crate::atmosphere::reference::{GroundIrradiance, Reference, ReferenceSettings};
+use crate::atmosphere::{SpectralConversion, Spectrum};
 use crate::frame::AtmosphereSky;
 
 /// Monte Carlo paths for the sky irradiance. Every point draws the same random numbers, so the
@@ -172,19 +172,23 @@ impl SkyLight<'_> {
             }
             None => atmosphere.medium.ground_albedo,
         };
-        // The albedo as linear sRGB: what it reflects of this light, channel by channel (exact for
-        // a grey ground, whatever the light's colour).
+        // An albedo as linear sRGB: what it reflects of this light, channel by channel (exact for
+        // a grey ground, whatever the light's colour), as the sky pass's spectral ground shows it.
         let lit = self.rgb(irradiance.direct + irradiance.sky);
-        let reflected = self.rgb(albedo * (irradiance.direct + irradiance.sky));
-        let mean = (albedo.x + albedo.y + albedo.z) / 3.0;
-        let channel = |r: f64, l: f64| if l > 0.0 { (r / l).clamp(0.0, 1.0) } else { mean };
-        let albedo_rgb = DVec4::new(
-            channel(reflected.x, lit.x),
-            channel(reflected.y, lit.y),
-            channel(reflected.z, lit.z),
-            1.0,
-        );
-        let (mut object, up, camera_height_m) = ground_object(&atmosphere.planet, camera, albedo_rgb)?;
+        let as_rgb = |albedo: Spectrum| {
+            let reflected = self.rgb(albedo * (irradiance.direct + irradiance.sky));
+            let mean = (albedo.x + albedo.y + albedo.z) / 3.0;
+            let channel = |r: f64, l: f64| if l > 0.0 { (r / l).clamp(0.0, 1.0) } else { mean };
+            DVec3::new(
+                channel(reflected.x, lit.x),
+                channel(reflected.y, lit.y),
+                channel(reflected.z, lit.z),
+            )
+        };
+        let (mut object, up, camera_height_m) = ground_object(&atmosphere.planet, camera, as_rgb(albedo).extend(1.0))?;
+        if let Some(surface) = &self.sky.surface {
+            surface_texture(&atmosphere.planet, surface, &mut object, as_rgb);
+        }
         // A centimetre above the foot point: on the surface itself, rounding decides whether the
         // path to a sun starts below the ground.
         object.light_colors = self.sun_colors_through_air(object.model.transform_point3(DVec3::Z * 0.01));
