@@ -125,9 +125,9 @@ struct SkyLighting {
 // Their coverage maps, one array layer per layer that has one (`codes.w`), R16Float, resampled to
 // passes/atmosphere/clouds.rs COVERAGE_MAP_SIZE; read at equirect_uv (common/ellipsoid.wgsl) with
 // `map_sampler`.
-// Linear, repeating in longitude, clamped at the poles: for every equirectangular map (the cloud
-// coverage maps, the surface map).
 @group(0) @binding(16) var cloud_coverage_maps: texture_2d_array<f32>;
+// Every equirectangular map's (the cloud coverage maps', the surface map's): linear, repeating in
+// longitude, clamped at the poles.
 @group(0) @binding(17) var map_sampler: sampler;
 // The planet's surface (atmosphere/surface.wgsl): an equirectangular map, Rgba16Float, of linear
 // albedo (rgb) and water fraction (a), resampled to passes/atmosphere/surface.rs SURFACE_MAP_SIZE;
