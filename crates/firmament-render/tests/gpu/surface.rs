@@ -220,3 +220,61 @@ fn the_ground_patch_wears_the_surface_as_the_sky_pass_does() {
     println!("patch against sky pass: median {median:.4}, worst {worst:.4}");
     assert!(median < 0.045 && worst < 0.06, "median {median}, worst {worst}");
 }
+
+/// Earth with a procedural surface seen from 1 AU and from 100 AU with a field of view 100×
+/// narrower: the same image, every pixel within 1/255 of the brightest (the budget; the
+/// map is read at each ray's ground point, found from its closest approach to the centre).
+#[test]
+fn a_surface_from_100_au_looks_as_from_1_au() {
+    use firmament_core::atmosphere::surface::procedural;
+    use firmament_core::frame::Sky;
+    use firmament_core::{Camera, Frame};
+    let mut gpu = gpu();
+    let sun = DVec3::new(0.2, 1.0, 0.4).normalize();
+    let sky = AtmosphereSky {
+        atmosphere: presets::earth(),
+        suns: vec![presets::earth_sun(sun)],
+        clouds: Vec::new(),
+        eclipsers: Vec::new(),
+        rings: None,
+        surface: Some(Surface::new(procedural::bake(5, 256, 128).expect("a map"))),
+    };
+    let au = presets::ASTRONOMICAL_UNIT;
+    let towards_eye = DVec3::new(0.3, 0.9, 0.2).normalize();
+    let size = 32;
+    let image = |gpu: &mut crate::support::Gpu, distance: f64| {
+        let eye = towards_eye * distance;
+        let camera = Camera::looking_at(eye, DVec3::ZERO, DVec3::Z).expect("a camera");
+        let fov = 2.4 * 6.4e6 / distance;
+        let frame = Frame::new(Camera { fov_y: fov, ..camera }, Sky::Atmosphere(sky.clone()));
+        let crate::support::Gpu { ctx, renderer } = gpu;
+        renderer.render_hdr(ctx, &frame, size, size).expect("render")
+    };
+    let near = image(&mut gpu, au);
+    let far = image(&mut gpu, 100.0 * au);
+    let value = |image: &firmament_render::headless::Image<f32>, x, y| {
+        let p = image.pixel(x, y).expect("inside");
+        DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+    };
+    let brightest = (0..size)
+        .flat_map(|y| (0..size).map(move |x| (x, y)))
+        .map(|(x, y)| value(&near, x, y).max_element())
+        .fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    let mut lit = 0;
+    for y in 0..size {
+        for x in 0..size {
+            let (a, b) = (value(&near, x, y), value(&far, x, y));
+            if a.max_element() > 0.05 * brightest {
+                lit += 1;
+            }
+            worst = worst.max((a - b).abs().max_element() / brightest);
+        }
+    }
+    println!(
+        "worst {:.2}/255 of the brightest pixel over {lit} lit pixels",
+        worst * 255.0
+    );
+    assert!(lit > size * size / 8, "{lit} lit pixels");
+    assert!(worst < 1.0 / 255.0, "worst {worst}");
+}
