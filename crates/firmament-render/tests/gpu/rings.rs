@@ -3,12 +3,11 @@
 //! `e^(−τ/μ)`, their lit face shows `Rings::radiance`, the globe's shadow darkens them and
 //! theirs darkens the globe.
 
-use crate::support::{centre_radiance, gpu};
+use crate::support::{centre_radiance, far_view_difference, gpu};
 
 use firmament_core::atmosphere::rings::Rings;
 use firmament_core::atmosphere::{Sun, presets};
-use firmament_core::frame::{AtmosphereSky, Sky};
-use firmament_core::{Camera, Frame};
+use firmament_core::frame::AtmosphereSky;
 use glam::DVec3;
 
 /// Saturn unposed (the world frame is the planet frame: z its pole, the rings in z = 0) lit by a
@@ -135,38 +134,8 @@ fn rings_from_100_au_look_as_from_1_au() {
     let mut gpu = gpu();
     let s = DVec3::new(1.0, 0.3, 0.6).normalize();
     let sky = saturn_sky(s, Some(Rings::saturn()));
-    let au = presets::ASTRONOMICAL_UNIT;
-    let towards_eye = DVec3::new(0.0, 0.94, 0.34);
     let size = 32;
-    let image = |gpu: &mut crate::support::Gpu, distance: f64| {
-        let eye = towards_eye * distance;
-        let camera = Camera::looking_at(eye, DVec3::ZERO, DVec3::Z).expect("a camera");
-        let fov = 2.4 * 1.37e8 / au * (au / distance);
-        let frame = Frame::new(Camera { fov_y: fov, ..camera }, Sky::Atmosphere(sky.clone()));
-        let crate::support::Gpu { ctx, renderer } = gpu;
-        renderer.render_hdr(ctx, &frame, size, size).expect("render")
-    };
-    let near = image(&mut gpu, au);
-    let far = image(&mut gpu, 100.0 * au);
-    let value = |image: &firmament_render::headless::Image<f32>, x, y| {
-        let p = image.pixel(x, y).expect("inside");
-        DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
-    };
-    let brightest = (0..size)
-        .flat_map(|y| (0..size).map(move |x| (x, y)))
-        .map(|(x, y)| value(&near, x, y).max_element())
-        .fold(0.0, f64::max);
-    let mut worst: f64 = 0.0;
-    let mut ringed = 0;
-    for y in 0..size {
-        for x in 0..size {
-            let (a, b) = (value(&near, x, y), value(&far, x, y));
-            if a.max_element() > 0.05 * brightest {
-                ringed += 1;
-            }
-            worst = worst.max((a - b).abs().max_element() / brightest);
-        }
-    }
+    let (worst, ringed) = far_view_difference(&mut gpu, &sky, DVec3::new(0.0, 0.94, 0.34), 1.37e8, size);
     println!(
         "worst {:.2}/255 of the brightest pixel over {ringed} lit pixels",
         worst * 255.0

@@ -4,7 +4,7 @@
 //! where the sky-view LUT used to hold it, and the glint through Earth's air against the path
 //! tracer.
 
-use crate::support::{centre_radiance, gpu, sky_reference};
+use crate::support::{centre_radiance, far_view_difference, gpu, sky_reference};
 
 use firmament_core::atmosphere::surface::{Surface, SurfaceMap};
 use firmament_core::atmosphere::{Planet, Spectrum, presets};
@@ -227,8 +227,6 @@ fn the_ground_patch_wears_the_surface_as_the_sky_pass_does() {
 #[test]
 fn a_surface_from_100_au_looks_as_from_1_au() {
     use firmament_core::atmosphere::surface::procedural;
-    use firmament_core::frame::Sky;
-    use firmament_core::{Camera, Frame};
     let mut gpu = gpu();
     let sun = DVec3::new(0.2, 1.0, 0.4).normalize();
     let sky = AtmosphereSky {
@@ -239,38 +237,9 @@ fn a_surface_from_100_au_looks_as_from_1_au() {
         rings: None,
         surface: Some(Surface::new(procedural::bake(5, 256, 128).expect("a map"))),
     };
-    let au = presets::ASTRONOMICAL_UNIT;
-    let towards_eye = DVec3::new(0.3, 0.9, 0.2).normalize();
     let size = 32;
-    let image = |gpu: &mut crate::support::Gpu, distance: f64| {
-        let eye = towards_eye * distance;
-        let camera = Camera::looking_at(eye, DVec3::ZERO, DVec3::Z).expect("a camera");
-        let fov = 2.4 * 6.4e6 / distance;
-        let frame = Frame::new(Camera { fov_y: fov, ..camera }, Sky::Atmosphere(sky.clone()));
-        let crate::support::Gpu { ctx, renderer } = gpu;
-        renderer.render_hdr(ctx, &frame, size, size).expect("render")
-    };
-    let near = image(&mut gpu, au);
-    let far = image(&mut gpu, 100.0 * au);
-    let value = |image: &firmament_render::headless::Image<f32>, x, y| {
-        let p = image.pixel(x, y).expect("inside");
-        DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
-    };
-    let brightest = (0..size)
-        .flat_map(|y| (0..size).map(move |x| (x, y)))
-        .map(|(x, y)| value(&near, x, y).max_element())
-        .fold(0.0, f64::max);
-    let mut worst: f64 = 0.0;
-    let mut lit = 0;
-    for y in 0..size {
-        for x in 0..size {
-            let (a, b) = (value(&near, x, y), value(&far, x, y));
-            if a.max_element() > 0.05 * brightest {
-                lit += 1;
-            }
-            worst = worst.max((a - b).abs().max_element() / brightest);
-        }
-    }
+    let towards_eye = DVec3::new(0.3, 0.9, 0.2).normalize();
+    let (worst, lit) = far_view_difference(&mut gpu, &sky, towards_eye, 6.4e6, size);
     println!(
         "worst {:.2}/255 of the brightest pixel over {lit} lit pixels",
         worst * 255.0

@@ -145,3 +145,49 @@ pub(crate) fn centre_radiance(
     let p = image.pixel(0, 0).expect("inside");
     glam::DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
 }
+
+/// `sky` seen from `towards_eye` × 1 AU and × 100 AU (world frame, towards the origin), each with
+/// a field of view of 2.4 body radii `radius_m` at its distance, `size` pixels square: the
+/// largest difference of any pixel over the near image's brightest, and how many of its pixels
+/// are brighter than 5 % of that.
+pub(crate) fn far_view_difference(
+    gpu: &mut Gpu,
+    sky: &firmament_core::frame::AtmosphereSky,
+    towards_eye: glam::DVec3,
+    radius_m: f64,
+    size: u32,
+) -> (f64, u32) {
+    use firmament_core::{Camera, Frame};
+    let au = firmament_core::atmosphere::presets::ASTRONOMICAL_UNIT;
+    let mut image = |distance: f64| {
+        let eye = towards_eye * distance;
+        let camera = Camera::looking_at(eye, glam::DVec3::ZERO, glam::DVec3::Z).expect("a camera");
+        let fov = 2.4 * radius_m / distance;
+        let frame = Frame::new(
+            Camera { fov_y: fov, ..camera },
+            firmament_core::frame::Sky::Atmosphere(sky.clone()),
+        );
+        let Gpu { ctx, renderer } = &mut *gpu;
+        renderer.render_hdr(ctx, &frame, size, size).expect("render")
+    };
+    let near = image(au);
+    let far = image(100.0 * au);
+    let value = |image: &firmament_render::headless::Image<f32>, x, y| {
+        let p = image.pixel(x, y).expect("inside");
+        glam::DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+    };
+    let pixels = || (0..size).flat_map(move |y| (0..size).map(move |x| (x, y)));
+    let brightest = pixels()
+        .map(|(x, y)| value(&near, x, y).max_element())
+        .fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    let mut lit = 0;
+    for (x, y) in pixels() {
+        let (a, b) = (value(&near, x, y), value(&far, x, y));
+        if a.max_element() > 0.05 * brightest {
+            lit += 1;
+        }
+        worst = worst.max((a - b).abs().max_element() / brightest);
+    }
+    (worst, lit)
+}
