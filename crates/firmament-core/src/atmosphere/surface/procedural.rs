@@ -5,7 +5,8 @@
 //! poles), hashed from the seed, summed over octaves (fractional Brownian motion). The land
 //! share is exact: the sea level is the map's [`LAND_SHARE`] quantile by area. Albedos are typical
 //! values of Earth's surfaces in linear sRGB (forest ~0.05–0.1, grassland ~0.15, desert ~0.3,
-//! snow and ice ~0.8; Liang, "Quantitative Remote Sensing of Land Surfaces", 2004, ch. 8).
+//! snow and ice ~0.8; the ranges of Liang, "Quantitative Remote Sensing of Land Surfaces", Wiley
+//! 2004).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
