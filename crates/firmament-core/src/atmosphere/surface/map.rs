@@ -19,6 +19,8 @@ pub struct SurfaceMap {
     width: u32,
     height: u32,
     texels: Arc<[[f32; 4]]>,
+    /// [`Self::mean`], taken once: a scene's surface is converted every frame.
+    mean: [f64; 4],
 }
 
 impl SurfaceMap {
@@ -45,10 +47,12 @@ impl SurfaceMap {
         if let Some(bad) = texels.iter().flatten().find(|v| !(0.0..=1.0).contains(*v)) {
             return invalid(bad.to_string(), "albedos and water fractions must be finite and in 0-1");
         }
+        let mean = area_mean(width, height, &texels);
         Ok(Self {
             width,
             height,
             texels: texels.into(),
+            mean,
         })
     }
 
@@ -87,20 +91,35 @@ impl SurfaceMap {
     /// The map's mean over the sphere, each texel weighted by its area (the cosine of its
     /// latitude): `[red, green, blue, water]`.
     pub fn mean(&self) -> [f64; 4] {
-        let mut sum = [0.0; 4];
-        let mut weights = 0.0;
-        for (row, texels) in self.texels.chunks(self.width as usize).enumerate() {
-            let latitude = FRAC_PI_2 - (row as f64 + 0.5) * PI / f64::from(self.height);
-            let weight = latitude.cos();
-            weights += weight * f64::from(self.width);
-            for texel in texels {
-                for (s, v) in sum.iter_mut().zip(texel) {
-                    *s += weight * f64::from(*v);
-                }
+        self.mean
+    }
+}
+
+/// The area-weighted mean of `width` × `height` texels (see [`SurfaceMap::mean`]).
+fn area_mean(width: u32, height: u32, texels: &[[f32; 4]]) -> [f64; 4] {
+    let mut sum = [0.0; 4];
+    let mut weights = 0.0;
+    for (row, texels) in texels.chunks(width as usize).enumerate() {
+        let latitude = FRAC_PI_2 - (row as f64 + 0.5) * PI / f64::from(height);
+        let weight = latitude.cos();
+        weights += weight * f64::from(width);
+        for texel in texels {
+            for (s, v) in sum.iter_mut().zip(texel) {
+                *s += weight * f64::from(*v);
             }
         }
-        sum.map(|s| s / weights)
     }
+    sum.map(|s| s / weights)
+}
+
+/// The geodetic (latitude, longitude), radians, of every texel centre of a `width` × `height`
+/// equirectangular map, row by row from the top, each row from longitude −180°: where a map is
+/// resampled onto a GPU texture of that size.
+pub fn texel_centres(width: u32, height: u32) -> impl Iterator<Item = (f64, f64)> {
+    (0..height).flat_map(move |row| {
+        let latitude = FRAC_PI_2 - (f64::from(row) + 0.5) * PI / f64::from(height);
+        (0..width).map(move |column| (latitude, -PI + (f64::from(column) + 0.5) * TAU / f64::from(width)))
+    })
 }
 
 /// The four texels (indices into a row-major `width` × `height` map, row 0 at latitude 90°) and

@@ -164,15 +164,9 @@ fn texture_array_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 /// bits.
 fn resampled(map: &CoverageMap) -> Vec<u16> {
     let (width, height) = COVERAGE_MAP_SIZE;
-    let mut texels = Vec::with_capacity((width * height) as usize);
-    for row in 0..height {
-        let latitude = std::f64::consts::FRAC_PI_2 - (f64::from(row) + 0.5) * std::f64::consts::PI / f64::from(height);
-        for column in 0..width {
-            let longitude = -std::f64::consts::PI + (f64::from(column) + 0.5) * std::f64::consts::TAU / f64::from(width);
-            texels.push(half::f16::from_f64(map.sample(latitude, longitude)).to_bits());
-        }
-    }
-    texels
+    firmament_core::atmosphere::surface::map::texel_centres(width, height)
+        .map(|(latitude, longitude)| half::f16::from_f64(map.sample(latitude, longitude)).to_bits())
+        .collect()
 }
 
 impl CloudStages {

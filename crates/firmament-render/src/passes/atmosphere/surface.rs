@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use firmament_core::atmosphere::surface::map::texel_centres;
 use firmament_core::atmosphere::surface::{Surface, SurfaceMap};
 
 use super::stages::{binding, sampler_entry, texture_entry};
@@ -106,15 +107,8 @@ impl SurfaceTexture {
 /// `map` resampled to [`SURFACE_MAP_SIZE`] (the core's bilinear lookup at the new texel centres),
 /// as half floats' bits, four to a texel.
 fn resampled(map: &SurfaceMap) -> Vec<u16> {
-    use std::f64::consts::{FRAC_PI_2, PI, TAU};
     let (width, height) = SURFACE_MAP_SIZE;
-    let mut texels = Vec::with_capacity((width * height * 4) as usize);
-    for row in 0..height {
-        let latitude = FRAC_PI_2 - (f64::from(row) + 0.5) * PI / f64::from(height);
-        for column in 0..width {
-            let longitude = -PI + (f64::from(column) + 0.5) * TAU / f64::from(width);
-            texels.extend(map.sample(latitude, longitude).map(|v| half::f16::from_f64(v).to_bits()));
-        }
-    }
-    texels
+    texel_centres(width, height)
+        .flat_map(|(latitude, longitude)| map.sample(latitude, longitude).map(|v| half::f16::from_f64(v).to_bits()))
+        .collect()
 }
