@@ -55,6 +55,9 @@ pub struct CloudLayerGpu {
     /// rise steeply): entry `i` at `[i / 4][i % 4]`
     /// ([`CloudLayer::mean_density_with_coverage`]; the level of detail from afar).
     pub mean_profile: [[f32; 4]; MEAN_PROFILE_ROWS],
+    /// From afar: the share of the coverage that counts as opaque cloud
+    /// ([`CloudLayer::cover_share`]), unused, unused, unused.
+    pub lod: [f32; 4],
 }
 
 /// Entries of [`CloudLayerGpu::mean_profile`].
@@ -164,6 +167,7 @@ impl CloudLayerGpu {
                 u.mean_profile[i / 4][i % 4] = mean as f32;
             }
         }
+        u.lod = [layer.cover_share() as f32, 0.0, 0.0, 0.0];
         u
     }
 }

@@ -132,6 +132,12 @@ pub fn wgsl() -> String {
         text.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
     text.push_str(&eclipse_quadrature_wgsl());
+    text.push_str(&format!(
+        "\n// How far apart, in column cells, a ray across a broken cloud layer meets independent\n\
+         // columns (firmament_core::atmosphere::clouds).\n\
+         const CLOUD_COLUMN_SPACING_CELLS: f32 = {:?};\n",
+        firmament_core::atmosphere::clouds::COLUMN_SPACING_CELLS as f32
+    ));
     text
 }
 

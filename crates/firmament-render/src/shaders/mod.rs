@@ -919,7 +919,8 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 edges,
                 detail,
                 quantiles,
-                mean_profile
+                mean_profile,
+                lod
             ]
         );
         assert_layout!(clouds, "CloudsGpu", CloudsGpu, [count, layers]);
@@ -934,6 +935,12 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
         assert_eq!(
             literal("CLOUD_QUANTILE_STEPS"),
             naga::Expression::Literal(naga::Literal::U32(QUANTILES as u32 - 1))
+        );
+        assert_eq!(
+            literal("CLOUD_COLUMN_SPACING_CELLS"),
+            naga::Expression::Literal(naga::Literal::F32(
+                firmament_core::atmosphere::clouds::COLUMN_SPACING_CELLS as f32
+            ))
         );
     }
 

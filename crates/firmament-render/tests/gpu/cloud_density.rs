@@ -26,7 +26,8 @@ use glam::Vec3;
 /// The kernel: for point `i`, `points[2i] = (p, h)` and `points[2i + 1] = (layer, coverage,
 /// evaluation, …)`; a negative coverage means the layer's own (`cloud_density`); evaluation 1
 /// asks for the average over columns at `h` (`cloud_mean_density_with_coverage`, `p` unused), 2
-/// for the layer's tabulated average at its own coverage (`cloud_mean_density`).
+/// for the layer's tabulated average at its own coverage (`cloud_mean_density`), 3 for the share
+/// of rays crossing `h` metres along the ground that meet cloud (`cloud_cover_seen`).
 const KERNEL: &str = r"
 @group(0) @binding(0) var<uniform> clouds: CloudsGpu;
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
@@ -41,7 +42,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let point = points[2u * i];
     let extra = points[2u * i + 1u];
     let layer = clouds.layers[min(u32(extra.x), MAX_CLOUD_LAYERS - 1u)];
-    if extra.z > 1.5 {
+    if extra.z > 2.5 {
+        densities[i] = cloud_cover_seen(layer, extra.y, point.w);
+    } else if extra.z > 1.5 {
         densities[i] = cloud_mean_density(layer, point.w);
     } else if extra.z > 0.5 {
         densities[i] = cloud_mean_density_with_coverage(layer, point.w, select(extra.y, layer.coverage.x, extra.y < 0.0));
@@ -72,6 +75,8 @@ enum Evaluation {
     Average,
     /// The same at the layer's own coverage, from its tabulated profile.
     Profile,
+    /// The share of rays meeting cloud from afar, `h` the crossing along the ground.
+    Cover,
 }
 
 /// A uniform number in [0, 1) for sample `i`, stream `k` (a fixed sequence).
@@ -188,6 +193,9 @@ fn samples(planet: &Planet, layers: &[CloudLayer], per_layer: u32) -> Vec<Sample
 fn reference(layers: &[CloudLayer], s: &Sample) -> f64 {
     let layer = &layers[s.layer];
     let (p, h) = (s.p.as_dvec3(), f64::from(s.h));
+    if s.evaluation == Evaluation::Cover {
+        return layer.cover_seen(s.coverage.map_or(layer.coverage, f64::from), h);
+    }
     if s.evaluation != Evaluation::Field {
         let coverage = s.coverage.map_or(layer.coverage, f64::from);
         return layer.mean_density_with_coverage(h, coverage);
@@ -422,4 +430,35 @@ fn the_shader_averages_the_columns_as_the_core_does() {
         worst_profile <= 0.03,
         "the tabulated averages differ from the core's by {worst_profile}"
     );
+}
+
+/// The level of detail's share of rays that meet cloud (`cloud_cover_seen`) against the core's
+/// `CloudLayer::cover_seen`, for every kind at four coverages and crossings from none to 40 km:
+/// within 1e-6 (`f32` powers).
+#[test]
+fn the_shader_counts_the_columns_a_ray_meets_as_the_core_does() {
+    let planet = Planet::sphere(6_371_000.0, 100_000.0);
+    let layers = layers(&planet, 3);
+    let mut samples = Vec::new();
+    for index in 0..layers.len() {
+        for k in 0..=40 {
+            for coverage in [0.05, 0.3, 0.7, 1.0] {
+                samples.push(Sample {
+                    p: Vec3::ZERO,
+                    h: 1_000.0 * k as f32,
+                    layer: index,
+                    coverage: Some(coverage),
+                    evaluation: Evaluation::Cover,
+                });
+            }
+        }
+    }
+    let got = evaluate(&layers, &planet, &samples);
+    let worst = samples
+        .iter()
+        .zip(&got)
+        .map(|(s, &g)| (f64::from(g) - reference(&layers, s)).abs())
+        .fold(0.0, f64::max);
+    println!("{} shares of rays meeting cloud: within {worst:.1e}", samples.len());
+    assert!(worst <= 1e-6, "the shader's shares differ from the core's by {worst}");
 }

@@ -378,3 +378,111 @@ fn the_objects_sunlight_passes_through_the_clouds_shadow_map() {
         "the ground loses {lost:.3} under the layer, the closed form {want:.3}"
     );
 }
+
+/// Transmittance (grey) of the reference's clouds between two world-frame points.
+fn cloud_transmittance(
+    reference: &firmament_core::atmosphere::reference::Reference,
+    planet: &Planet,
+    a: DVec3,
+    b: DVec3,
+) -> f64 {
+    (-reference
+        .optical_depth(planet.to_planet_frame(a), planet.to_planet_frame(b))
+        .max_element())
+    .exp()
+}
+
+/// A broken layer from afar, where every pixel spans more than one of its columns and the march
+/// takes their average: the ground seen through it keeps the light of the gaps. An absorbing
+/// cumulus layer (30 % cover, albedo 0) in airless air, seen from 300 km over a lit ground, two
+/// ways (straight down with the sun 40° from the zenith; 35° from the zenith with the sun 50°
+/// behind the camera): the share of the ground's light the image keeps against the mean of
+/// `e^(−τ_view − τ_sun)` over rays through the image — the same field's optical depths in `f64`
+/// towards the camera and towards the sun, taken through the columns themselves.
+#[test]
+fn a_broken_layer_seen_from_afar_keeps_the_light_of_its_gaps() {
+    use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
+    let mut gpu = gpu();
+    let layer = CloudLayer {
+        albedo: 0.0,
+        seed: 5,
+        ..CloudLayer::new(1_500.0, 3_000.0, 0.3, 0.05, CloudKind::Cumulus)
+    };
+    let cell = layer.column_cell_m().expect("cumulus has columns");
+    // 32 × 32 pixels, each about twice a column cell across at 300 km: 130 km of ground, over
+    // which the clouds' clusters average out.
+    let (size, fov_deg) = (32u32, 24.0f64);
+    let radius = 6_360_000.0;
+    for (view_zenith, sun) in [(0.0f64, direction(90.0, 50.0)), (35.0, direction(0.0, 40.0))] {
+        let clear = AtmosphereSky {
+            atmosphere: airless(),
+            suns: vec![presets::earth_sun(sun)],
+            clouds: Vec::new(),
+            eclipsers: Vec::new(),
+            rings: None,
+            surface: None,
+        };
+        let cloudy = AtmosphereSky {
+            clouds: vec![layer.clone()],
+            ..clear.clone()
+        };
+        // Looking north-east of the camera's foot (the sun's azimuth 0° is north: it stands
+        // behind the camera in the slanted view).
+        let forward = DVec3::new(0.0, view_zenith.to_radians().sin(), -view_zenith.to_radians().cos());
+        let eye = -forward * 300_000.0 / view_zenith.to_radians().cos();
+        let camera = camera_at(eye, forward, fov_deg);
+        let without = render(&mut gpu, clear.clone(), camera, size, size);
+        let with = render(&mut gpu, cloudy.clone(), camera, size, size);
+        let kept = with
+            .pixels
+            .chunks(4)
+            .zip(without.pixels.chunks(4))
+            .map(|(w, c)| f64::from(w[1]) / f64::from(c[1]))
+            .sum::<f64>()
+            / f64::from(size * size);
+        let planet = &cloudy.atmosphere.planet;
+        let reference = Reference::new(
+            cloudy.atmosphere.clone(),
+            &cloudy.suns,
+            ReferenceSettings {
+                paths: 1,
+                ..Default::default()
+            },
+        )
+        .with_clouds(&cloudy.clouds);
+        // Rays through the whole image on a jittered grid, each to the ground (the sphere below
+        // the world origin) and on to the sun.
+        let (grid, half) = (64u32, (0.5 * fov_deg).to_radians().tan());
+        let centre = DVec3::new(0.0, 0.0, -radius);
+        let (mut both, mut view_only, mut sun_only) = (0.0, 0.0, 0.0);
+        for i in 0..grid * grid {
+            let (u, v) = (
+                (f64::from(i % grid) + 0.5 + 0.4 * (f64::from(i * 7 % 5) / 5.0 - 0.4)) / f64::from(grid),
+                (f64::from(i / grid) + 0.5 + 0.4 * (f64::from(i * 3 % 7) / 7.0 - 0.43)) / f64::from(grid),
+            );
+            let d = (camera.forward() + camera.right() * (2.0 * u - 1.0) * half + camera.up() * (2.0 * v - 1.0) * half)
+                .normalize();
+            let oc = eye - centre;
+            let b = oc.dot(d);
+            let t = -b - (b * b - (oc.length_squared() - radius * radius)).sqrt();
+            let ground = eye + d * t;
+            let towards_camera = cloud_transmittance(&reference, planet, ground, eye);
+            let towards_sun = cloud_transmittance(&reference, planet, ground, ground + sun * 60_000.0);
+            both += towards_camera * towards_sun;
+            view_only += towards_camera;
+            sun_only += towards_sun;
+        }
+        let n = f64::from(grid * grid);
+        let (want, view_mean, sun_mean) = (both / n, view_only / n, sun_only / n);
+        let error = kept / want - 1.0;
+        println!(
+            "view zenith {view_zenith}°: the image keeps {kept:.4} of the ground's light, the columns {want:.4} \
+             (towards the camera {view_mean:.4}, the sun {sun_mean:.4}; cell {cell} m), error {:+.1} %",
+            100.0 * error
+        );
+        assert!(
+            error.abs() < 0.1,
+            "view zenith {view_zenith}°: the image keeps {kept:.4} of the ground's light, the columns {want:.4}"
+        );
+    }
+}

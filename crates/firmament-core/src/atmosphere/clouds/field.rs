@@ -177,21 +177,58 @@ pub(crate) fn mean_density(layer: &FieldLayer<'_>, h: f64, coverage: f64) -> f64
         return 0.0;
     }
     let x = (h - layer.bottom_m) / (layer.top_m - layer.bottom_m);
+    let sum: f64 = covered_columns(shape, coverage)
+        .map(|(share, s)| share * in_column(shape, s, x, || 0.5))
+        .sum();
+    layer.density_per_m * sum
+}
+
+/// The covered columns as the level of detail weighs them, at coverage `coverage` (0–1): the
+/// quantile table's intervals above the threshold (the column field uniform between entries),
+/// each as `(share of all columns, strength s at its middle)`.
+fn covered_columns(shape: &CloudShape, coverage: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
     let t = shape.coverage_threshold(coverage);
     let t_core = shape.core_threshold(coverage);
     let intervals = (shape.quantiles.len() - 1) as f64;
-    let mut sum = 0.0;
-    for pair in shape.quantiles.windows(2) {
+    shape.quantiles.windows(2).filter_map(move |pair| {
         let (lo, hi) = (pair[0], pair[1]);
         let from = lo.max(t);
-        if hi <= from {
-            continue;
-        }
-        let share = (hi - from) / (hi - lo) / intervals;
-        let s = ((0.5 * (from + hi) - t) / (t_core - t)).min(1.0);
-        sum += share * in_column(shape, s, x, || 0.5);
+        (hi > from).then(|| {
+            let share = (hi - from) / (hi - lo) / intervals;
+            (share, ((0.5 * (from + hi) - t) / (t_core - t)).min(1.0))
+        })
+    })
+}
+
+/// Steps over a layer's thickness in [`columns_straight_down`]: 16 across the thinnest fade.
+const COLUMN_STEPS: u32 = 512;
+
+/// The columns of `layer` with coverage `coverage` (0–1) seen straight down, as
+/// [`mean_density`] weighs them (the quantile table's intervals above the threshold, each at its
+/// middle, the detail at its mean): their mean optical depth through the layer and their mean
+/// transmittance, `(τ̄, mean e^(−τ))`. `(0, 1)` for no cloud; a uniform slab is one column.
+pub(crate) fn columns_straight_down(layer: &FieldLayer<'_>, coverage: f64) -> (f64, f64) {
+    let thickness = layer.top_m - layer.bottom_m;
+    let Some(shape) = layer.shape.filter(|_| layer.kind != CloudKind::Uniform) else {
+        let tau = layer.density_per_m * thickness;
+        return (tau, (-tau).exp());
+    };
+    if coverage.is_nan() || coverage <= 0.0 {
+        return (0.0, 1.0);
     }
-    layer.density_per_m * sum
+    let dx = 1.0 / f64::from(COLUMN_STEPS);
+    let (mut mean_tau, mut transmittance) = (0.0, 1.0);
+    for (share, s) in covered_columns(shape, coverage) {
+        let depth: f64 = (0..COLUMN_STEPS)
+            .map(|k| in_column(shape, s, (f64::from(k) + 0.5) * dx, || 0.5))
+            .sum::<f64>()
+            * dx
+            * layer.density_per_m
+            * thickness;
+        mean_tau += share * depth;
+        transmittance -= share * (1.0 - (-depth).exp());
+    }
+    (mean_tau, transmittance)
 }
 
 #[cfg(test)]

@@ -42,6 +42,11 @@ pub use quantiles::QUANTILES;
 pub use shape::CloudShape;
 pub use wind::wind_drift;
 
+/// How far apart, in column cells ([`CloudLayer::column_cell_m`]), a ray crossing a broken layer
+/// meets independent columns at a grazing look ([`CloudLayer::cover_seen`]): fitted to the
+/// field's mean transmittance (docs/CLOUDS.md, "Level of detail").
+pub const COLUMN_SPACING_CELLS: f64 = 1.0;
+
 /// The most cloud layers a sky may have (the GPU pass loops over a fixed-size array).
 pub const MAX_CLOUD_LAYERS: usize = 8;
 
@@ -191,6 +196,75 @@ impl CloudLayer {
     /// slab.
     pub fn mean_density_with_coverage(&self, h: f64, coverage: f64) -> f64 {
         field::mean_density(&self.field_layer(), h, coverage)
+    }
+
+    /// The size of the layer's columns, metres: its Worley cell (one tower per cell), or its
+    /// gradient noise's across cell for kinds without Worley; `None` for a
+    /// [`CloudKind::Uniform`] slab, which has no columns. The GPU's level of detail measures a
+    /// pixel's footprint in these.
+    pub fn column_cell_m(&self) -> Option<f64> {
+        let shape = self.kind.shape().filter(|_| self.kind != CloudKind::Uniform)?;
+        Some(if shape.worley_weight > 0.0 {
+            shape.worley_cell_m
+        } else {
+            shape.perlin_cell_m[0]
+        })
+    }
+
+    /// The share of rays through the layer that meet cloud where a pixel spans many columns,
+    /// 0–1, for a ray that crosses the layer over `horizontal_m` metres measured along the
+    /// ground, with `coverage` (0–1, the map's included) of the columns covered. The columns
+    /// are taken as independent (Cahalan et al. 1994's independent-pixel approximation, along
+    /// the ray), each covered with the chance `c = coverage ×`
+    /// [`cover_share`](Self::cover_share): a ray that crosses `n` of them meets none with
+    /// probability `(1 − c)ⁿ`. With `r` the crossing in units of [`COLUMN_SPACING_CELLS`]
+    /// cells, `n = 1 + r²/(1 + r)`: one column looking straight down, where the layer shows its
+    /// gaps; a column more every `COLUMN_SPACING_CELLS` cells at a grazing look, where it shows
+    /// cloud everywhere; slowly at first, as domed clouds with gaps between show their sides
+    /// only when seen well off the vertical. Fitted to the field's own mean transmittance
+    /// (docs/CLOUDS.md, "Level of detail"). 1 for a uniform slab. The GPU's `cloud_cover_seen`.
+    ///
+    /// From afar the GPU marches the columns' mean density over this share (the cloud the rays
+    /// that meet it see) and weights what it finds by it: the mean transmittance of the columns,
+    /// `1 − cover + cover·e^(−τ/cover)`, rather than the mean optical depth's `e^(−τ)`, which
+    /// would make a broken layer an even veil.
+    pub fn cover_seen(&self, coverage: f64, horizontal_m: f64) -> f64 {
+        let Some(cell) = self.column_cell_m() else {
+            return 1.0;
+        };
+        let c = (coverage * self.cover_share()).clamp(0.0, 1.0);
+        let r = horizontal_m.max(0.0) / (COLUMN_SPACING_CELLS * cell);
+        1.0 - (1.0 - c).powf(1.0 + r * r / (1.0 + r))
+    }
+
+    /// The share of the layer's `coverage` that counts as opaque cloud from afar, 0–1: covered
+    /// columns thin out towards their edges, so that straight down the layer lets more through
+    /// than its clear share. `c·coverage` with `c` such that `c` of the columns holding all the
+    /// cloud, `1 − c + c·e^(−τ̄/c)`, let through what the columns do, `mean e^(−τ)` (τ̄ their
+    /// mean optical depth; the columns as the level of detail averages them, at the layer's own
+    /// coverage). 1 for a uniform slab and for a layer without cloud.
+    pub fn cover_share(&self) -> f64 {
+        if self.kind == CloudKind::Uniform || self.coverage.is_nan() || self.coverage <= 0.0 {
+            return 1.0;
+        }
+        let (tau, transmittance) = field::columns_straight_down(&self.field_layer(), self.coverage);
+        let blocked = 1.0 - transmittance;
+        if tau.is_nan() || tau <= 0.0 || blocked.is_nan() || blocked <= 0.0 {
+            return 1.0;
+        }
+        // c·(1 − e^(−τ̄/c)) rises with c; at c = coverage it is at least `blocked` (Jensen: one
+        // optical depth for every covered column lets the least through).
+        let blocked_by = |c: f64| c * (1.0 - (-tau / c).exp());
+        let (mut lo, mut hi) = (0.0, self.coverage.min(1.0));
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if blocked_by(mid) < blocked {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi) / self.coverage
     }
 
     /// What the field reads of the layer.

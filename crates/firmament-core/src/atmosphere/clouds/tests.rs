@@ -404,3 +404,36 @@ fn sensitivity_to_half_a_metre() {
         assert!(p99 < 1e-2 && max < 0.1, "{kind:?}: {p99} {max}");
     }
 }
+
+#[test]
+fn a_broken_layer_seen_from_afar_covers_more_of_a_slanted_view() {
+    let cumulus = CloudLayer::new(1_500.0, 3_000.0, 0.3, 0.05, CloudKind::Cumulus);
+    let cell = cumulus.column_cell_m().expect("cumulus has columns");
+    assert_eq!(cell, super::shape::CUMULUS.worley_cell_m);
+    // Straight down a ray crosses one column: it meets opaque cloud as often as the layer
+    // covers, less its columns' thin edges.
+    let share = cumulus.cover_share();
+    assert!(share > 0.8 && share < 1.0, "{share}");
+    let c = 0.3 * share;
+    assert!((cumulus.cover_seen(0.3, 0.0) - c).abs() < 1e-15);
+    // Across 3 spacings, 1 + 9/4 columns.
+    let across = 3.0 * COLUMN_SPACING_CELLS * cell;
+    assert!((cumulus.cover_seen(0.3, across) - (1.0 - (1.0 - c).powf(3.25))).abs() < 1e-12);
+    // Grazing, nearly every ray meets some cloud; clear sky stays clear, overcast overcast.
+    assert!(cumulus.cover_seen(0.3, 100.0 * cell) > 1.0 - 1e-12);
+    assert_eq!(cumulus.cover_seen(0.0, 10.0 * cell), 0.0);
+    // A uniform slab has no columns: every ray meets it.
+    let slab = CloudLayer::new(1_000.0, 2_000.0, 0.3, 0.01, CloudKind::Uniform);
+    assert_eq!(slab.column_cell_m(), None);
+    assert_eq!(slab.cover_seen(0.3, 0.0), 1.0);
+    // Kinds without Worley cells measure columns in their gradient noise's.
+    for kind in CloudKind::ALL {
+        let layer = CloudLayer::new(1_000.0, 2_000.0, 0.5, 0.01, kind);
+        if let (Some(cell), Some(shape)) = (layer.column_cell_m(), kind.shape()) {
+            assert!(
+                cell == shape.worley_cell_m || cell == shape.perlin_cell_m[0],
+                "{kind:?}"
+            );
+        }
+    }
+}

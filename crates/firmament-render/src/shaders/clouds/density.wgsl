@@ -67,6 +67,9 @@ struct CloudLayerGpu {
     // fractions (i / 31)²: entry i at [i / 4][i % 4] (32 used; the core's
     // mean_density_with_coverage).
     mean_profile: array<vec4<f32>, 9>,
+    // From afar: the share of the coverage that counts as opaque cloud (the core's
+    // CloudLayer::cover_share), unused, unused, unused.
+    lod: vec4<f32>,
 }
 
 // Every layer of a sky (gpu_types::clouds::CloudsGpu).
@@ -403,4 +406,24 @@ fn cloud_density_with_coverage(layer: CloudLayerGpu, p: vec3<f32>, h: f32, cover
     let t = cloud_coverage_threshold(layer, coverage_here);
     let t_core = cloud_coverage_threshold(layer, coverage_here * layer.column.w);
     return cloud_density_at(layer, p, h, coverage_here, t, t_core);
+}
+
+// The size of the layer's columns, m: its Worley cell, or its gradient noise's across cell for
+// kinds without Worley (the core's CloudLayer::column_cell_m; a uniform slab has none).
+fn cloud_column_cell(layer: CloudLayerGpu) -> f32 {
+    return 1.0 / select(layer.column_scale.x, layer.column.x, layer.column.y > 0.0);
+}
+
+// The share of rays through the layer that meet cloud where a pixel spans many columns, for a
+// ray crossing it over `horizontal` metres along the ground with `coverage` of the columns
+// covered: 1 − (1 − c)ⁿ, c the coverage's opaque share, over n = 1 + r²/(1 + r) independent
+// columns, r the crossing in CLOUD_COLUMN_SPACING_CELLS cells; 1 for a uniform slab (the core's
+// CloudLayer::cover_seen).
+fn cloud_cover_seen(layer: CloudLayerGpu, coverage: f32, horizontal: f32) -> f32 {
+    let c = clamp(coverage * layer.lod.x, 0.0, 1.0);
+    if layer.codes.x == CLOUD_KIND_UNIFORM || c >= 1.0 {
+        return 1.0;
+    }
+    let r = max(horizontal, 0.0) / (CLOUD_COLUMN_SPACING_CELLS * cloud_column_cell(layer));
+    return 1.0 - pow(1.0 - c, 1.0 + r * r / (1.0 + r));
 }

@@ -14,6 +14,9 @@
 //   isotropic, as in a plane-parallel slab in the Eddington approximation (`cloud_source`);
 // - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below, each
 //   dimmed by the cloud between the sample and the layer's top or bottom.
+// From afar, where a pixel spans many of a layer's columns, the march, the light's way to the sun
+// and the ground's shadow take the columns as independent: a share of the rays meets cloud, the
+// rest none (march_stretch; docs/CLOUDS.md, "Level of detail").
 // The clouds' shadow on the ground: the sky draws the ground lit by the suns unshadowed, so where
 // a pixel's ray ends on the ground the sunlight the clouds take off it is subtracted first
 // (`ground_shadow`: the layers' optical depth towards each sun from the ground point, the
@@ -124,12 +127,15 @@ fn layer_stretches(ray: ViewRay, bottom: f32, top: f32, near: f32, far: f32) -> 
     return out;
 }
 
-// Optical depth from p towards the sun along s through `layer`: LIGHT_STEPS samples over
-// stretches doubling in length, out to where the ray leaves the layer's top.
-fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>, lod: f32) -> f32 {
+// Optical depth from p (geodetic up `up`) towards the sun along s through `layer`: LIGHT_STEPS
+// samples over stretches doubling in length, out to where the ray leaves the layer's top. From
+// afar (`lod`) the columns' average counts over the share of such ways that meet cloud
+// (cloud_cover_along): the view's sample lies in a cloud, and so does the start of its way out.
+fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, up: vec3<f32>, s: vec3<f32>, lod: f32) -> f32 {
     let top = layer.shell.y;
     let exit = cloud_shell_hits(p, s, top).y;
     let length_out = max(exit, 0.0);
+    let cover = cloud_cover_along(layer, up, s, length_out, lod);
     // Steps of 1, 2, 4, … units, summing to the way out.
     let unit = length_out / f32((1u << LIGHT_STEPS) - 1u);
     var depth = 0.0;
@@ -138,7 +144,7 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, s: vec3<f32>, lod: f
     for (var k = 0u; k < LIGHT_STEPS; k++) {
         let q = p + s * (t + 0.5 * dt);
         let here = altitude_up(q);
-        depth += cloud_extinction_lod(layer, q, here.h, here.up, false, lod) * dt;
+        depth += cloud_extinction_lod(layer, q, here.h, here.up, false, lod, cover) * dt;
         t += dt;
         dt *= 2.0;
     }
@@ -167,7 +173,7 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         if all(air <= vec3<f32>(0.0)) {
             continue;
         }
-        let tau = optical_depth_to_sun(layer, p, s, lod);
+        let tau = optical_depth_to_sun(layer, p, up, s, lod);
         // δ-scaling (Joseph, Wiscombe & Weinman 1976): the forward peak f = g² of the droplets'
         // light goes on with the sun's, so the sun's beam fades over (1 − f)·τ.
         let g = mean_cosine(layer.phase);
@@ -200,10 +206,13 @@ fn mean_cosine(phase: vec4<f32>) -> f32 {
     return phase.z * phase.x + (1.0 - phase.z) * phase.y;
 }
 
-// The layers' optical depth (grey) from the ground point p towards the sun along s, up to where
-// the ray leaves each layer's top, with the detail's mean.
-fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
-    var depth = 0.0;
+// The layers' transmittance (grey) from the ground point p towards the sun along s, up to where
+// the ray leaves each layer's top, with the detail's mean. From afar (a pixel spanning `span`
+// metres there) each layer's columns are independent: a share `cover` of the ways meets cloud
+// of optical depth τ/cover (cloud_cover_along), so the layer lets 1 − cover + cover·e^(−τ/cover)
+// through.
+fn cloud_transmittance_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
+    var transmittance = 1.0;
     for (var i = 0u; i < clouds.count.x; i++) {
         let layer = clouds.layers[i];
         let outer = cloud_shell_hits(p, s, layer.shell.y);
@@ -214,12 +223,16 @@ fn cloud_depth_to_sun(p: vec3<f32>, s: vec3<f32>, span: f32) -> f32 {
         if !(outer.x <= outer.y) || b <= a {
             continue;
         }
+        let lod = cloud_lod(layer, span);
+        let cover = cloud_cover_along(layer, altitude_up(p + s * (0.5 * (a + b))).up, s, b - a, lod);
         let dt = (b - a) / f32(GROUND_SHADOW_STEPS);
+        var depth = 0.0;
         for (var k = 0u; k < GROUND_SHADOW_STEPS; k++) {
-            depth += cloud_extinction_at(layer, p + s * (a + (f32(k) + 0.5) * dt), false, cloud_lod(layer, span)) * dt;
+            depth += cloud_extinction_at(layer, p + s * (a + (f32(k) + 0.5) * dt), false, lod, cover) * dt;
         }
+        transmittance *= 1.0 - cover + cover * exp(-depth);
     }
-    return depth;
+    return transmittance;
 }
 
 // The sunlight the clouds take off the ground where the ray meets it before `far` (spectral
@@ -245,7 +258,7 @@ fn ground_shadow(ray: ViewRay, hits: RayHits, far: f32, footprint: f32) -> vec3<
         if mu_s <= 0.0 {
             continue;
         }
-        let shade = 1.0 - exp(-cloud_depth_to_sun(g, s, ground.x * footprint));
+        let shade = 1.0 - cloud_transmittance_to_sun(g, s, ground.x * footprint);
         if shade > 0.0 {
             let beam = sun_irradiance_at(g, i) * transmittance_to_sun(h, mu_s, abs(sun.direction.w));
             lost += beam * (mu_s * shade);
@@ -315,12 +328,40 @@ fn pixel_jitter(pixel: vec2<f32>) -> f32 {
     return fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
 }
 
-// Marches one stretch of a layer from t0 to t1, adding to `acc`. Empty air is crossed in coarse
-// steps (a sixteenth of the layer's thickness, or of the stretch over COARSE_STEPS when that is
-// longer); the first coarse sample that finds cloud steps back and the cloud is marched in fine
-// steps, an eighth of a coarse one (or the stretch over FINE_STEPS), until FINE_TO_COARSE fine
-// samples in a row find none (Schneider & Vos 2015). Both counts are bounded by construction.
+// Marches one stretch of a layer from t0 to t1, adding to `acc`. Up close this is the field
+// (march_field); from afar, where a pixel spans many of the layer's columns, the columns are
+// independent (Cahalan et al. 1994's independent-pixel approximation): a share `cover` of the
+// rays meets cloud (cloud_cover_along: the layer's coverage looking down, nearly all of them at
+// a grazing look), of the columns' mean density over that share, and the rest meet none. So a
+// broken layer from orbit keeps the light of its gaps — the columns' mean transmittance, not the
+// transmittance of their mean optical depth (an even veil).
 fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, footprint: f32, acc: ptr<function, CloudSample>) {
+    if (*acc).transmittance < OPAQUE {
+        return;
+    }
+    let middle = 0.5 * (t0 + t1);
+    let up = altitude_up(ray.origin + ray.direction * middle).up;
+    let cover = cloud_cover_along(layer, up, ray.direction, t1 - t0, cloud_lod(layer, middle * footprint));
+    if cover >= 1.0 {
+        march_field(ray, layer, t0, t1, jitter, footprint, 1.0, acc);
+        return;
+    }
+    var part = CloudSample(vec3<f32>(0.0), 1.0, 0.0, 0.0);
+    march_field(ray, layer, t0, t1, jitter, footprint, cover, &part);
+    let seen = (*acc).transmittance * cover;
+    (*acc).radiance += seen * part.radiance;
+    (*acc).depth_sum += seen * part.depth_sum;
+    (*acc).weight_sum += seen * part.weight_sum;
+    (*acc).transmittance *= 1.0 - cover + cover * part.transmittance;
+}
+
+// Marches the field of one stretch of a layer from t0 to t1, adding to `acc`, the columns'
+// average (from afar) over `cover`. Empty air is crossed in coarse steps (a sixteenth of the
+// layer's thickness, or of the stretch over COARSE_STEPS when that is longer); the first coarse
+// sample that finds cloud steps back and the cloud is marched in fine steps, an eighth of a coarse
+// one (or the stretch over FINE_STEPS), until FINE_TO_COARSE fine samples in a row find none
+// (Schneider & Vos 2015). Both counts are bounded by construction.
+fn march_field(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, footprint: f32, cover: f32, acc: ptr<function, CloudSample>) {
     // Where a pixel spans more than a detail cell the detail is taken as its mean (a filter, and
     // cheaper): the light march always does.
     let detail_cell = 1.0 / layer.detail.x;
@@ -337,7 +378,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         }
         if !fine_mode {
             let p = ray.origin + ray.direction * t;
-            if cloud_extinction_at(layer, p, t * footprint < detail_cell, cloud_lod(layer, t * footprint)) > 0.0 {
+            if cloud_extinction_at(layer, p, t * footprint < detail_cell, cloud_lod(layer, t * footprint), cover) > 0.0 {
                 fine_mode = true;
                 empty = 0u;
                 t = max(t - coarse, t0);
@@ -351,7 +392,7 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         let p = ray.origin + ray.direction * tm;
         let here = altitude_up(p);
         let lod = cloud_lod(layer, tm * footprint);
-        let extinction = cloud_extinction_lod(layer, p, here.h, here.up, tm * footprint < detail_cell, lod);
+        let extinction = cloud_extinction_lod(layer, p, here.h, here.up, tm * footprint < detail_cell, lod, cover);
         t += dt;
         if extinction <= 0.0 {
             empty += 1u;
