@@ -70,6 +70,7 @@
 //! [`Mesh::validate`]: firmament_core::classic::mesh::Mesh::validate
 
 mod confine;
+mod file_cache;
 mod gltf;
 #[cfg(test)]
 mod hostile_tests;
@@ -81,11 +82,13 @@ mod texture_file;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
+use std::sync::Arc;
 
 pub use firmament_core::texture::MAX_TEXTURE_SIDE;
 use firmament_core::texture::TextureImage;
 
 pub use self::confine::{AssetLimits, Confinement};
+pub(crate) use self::file_cache::FileCache;
 use self::limits::Budget;
 pub use self::limits::{MAX_ASSET_BYTES, MAX_MODEL_INDICES, MAX_MODEL_MESHES, MAX_MODEL_TEXELS, MAX_MODEL_VERTICES};
 pub use self::mesh::LoadedMesh;
@@ -201,6 +204,24 @@ pub(crate) fn load_texture_within(
         texture_file::decode(&bytes, texture_file::FormatHint::from_path(path), &mut budget)
     })
     .map_err(asset_error(key, path))
+}
+
+/// Images decoded from files, while the files stay as they were.
+static TEXTURES: FileCache<TextureImage> = FileCache::new();
+
+/// [`load_texture_within`], decoded once while the file keeps its length and modification time
+/// and shared (never from the cache under a confinement: see [`FileCache`]).
+pub(crate) fn load_texture_shared(
+    key: &str,
+    path: &Path,
+    confinement: Option<&Confinement>,
+) -> Result<Arc<TextureImage>, SceneError> {
+    TEXTURES.get_or_make(
+        &[path],
+        confinement.is_none(),
+        |image| std::mem::size_of_val(image.texels.as_slice()),
+        || load_texture_within(key, path, confinement),
+    )
 }
 
 /// Decodes an image whose file contents are `bytes`, as [`load_texture`] does; `path` is the

@@ -226,7 +226,7 @@ fn texture(key: &str, entry: &TextureEntry, scene: &Scene) -> Result<ObjectTextu
         (Some(file), None) => {
             let key = format!("{key}.file");
             let resolved = scene.asset_file(&key, file)?;
-            assets::load_texture_within(&key, &resolved, scene.confinement.as_ref())?
+            assets::load_texture_shared(&key, &resolved, scene.confinement.as_ref())?
         }
         (None, Some(c)) => {
             let byte = |j: usize| -> Result<[u8; 4], SceneError> {
@@ -239,7 +239,7 @@ fn texture(key: &str, entry: &TextureEntry, scene: &Scene) -> Result<ObjectTextu
                 )?;
                 Ok(rgba.to_array().map(|v| (v * 255.0).round() as u8))
             };
-            TextureImage::checkerboard(c.size, c.squares, byte(0)?, byte(1)?).map_err(|e| core_error(key, e))?
+            Arc::new(TextureImage::checkerboard(c.size, c.squares, byte(0)?, byte(1)?).map_err(|e| core_error(key, e))?)
         }
         _ => {
             return Err(SceneError::invalid(
@@ -250,7 +250,7 @@ fn texture(key: &str, entry: &TextureEntry, scene: &Scene) -> Result<ObjectTextu
         }
     };
     Ok(ObjectTexture {
-        image: Arc::new(image),
+        image,
         filter: match entry.filter {
             FilterName::Nearest => TextureFilter::Nearest,
             FilterName::Linear => TextureFilter::Linear,

@@ -19,6 +19,7 @@
 //! [`wind_drift`] reduces the angle itself, so years of wind are fine.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use firmament_core::CoreError;
 use firmament_core::astro::time::J2000;
@@ -27,6 +28,7 @@ use firmament_core::atmosphere::clouds::{CloudLayer, CoverageMap, DualHenyeyGree
 use firmament_core::frame::AtmosphereSky;
 use glam::DVec3;
 
+use crate::assets::FileCache;
 use crate::checks::{check, in_range};
 use crate::error::SceneError;
 use crate::model::{CloudEntry, Scene};
@@ -127,7 +129,7 @@ fn layer(i: usize, entry: &CloudEntry, scene: &Scene, atmosphere: &Atmosphere) -
     if let Some(file) = &entry.coverage_map {
         let key = key("coverage_map");
         let path = scene.asset_file(&key, file)?;
-        layer.coverage_map = Some(coverage_map(&key, &path, scene)?);
+        layer.coverage_map = Some(coverage_map(&key, &path, scene)?.as_ref().clone());
     }
     Ok(layer)
 }
@@ -161,9 +163,22 @@ fn phase_function(key: &str, [g_forward, g_back, blend]: [f64; 3]) -> Result<Dua
     })
 }
 
+/// Coverage maps made from files, while the files stay as they were.
+static COVERAGE_MAPS: FileCache<CoverageMap> = FileCache::new();
+
+/// The coverage map in the image file at `path`, made once while the file stays as it was.
+fn coverage_map(key: &str, path: &Path, scene: &Scene) -> Result<Arc<CoverageMap>, SceneError> {
+    COVERAGE_MAPS.get_or_make(
+        &[path],
+        scene.confinement.is_none(),
+        |map| std::mem::size_of_val(map.values()),
+        || read_coverage_map(key, path, scene),
+    )
+}
+
 /// The coverage map in the image file at `path`: each texel's mean of red, green and blue as
 /// 0–1, its top row at latitude +90°, its left column at longitude −180°.
-fn coverage_map(key: &str, path: &Path, scene: &Scene) -> Result<CoverageMap, SceneError> {
+fn read_coverage_map(key: &str, path: &Path, scene: &Scene) -> Result<CoverageMap, SceneError> {
     let image = crate::assets::load_texture_within(key, path, scene.confinement.as_ref())?;
     let (width, height) = (image.width, image.height);
     // A texture's row 0 is the bottom of the picture; the map's row 0 is its top.

@@ -15,6 +15,7 @@ use firmament_core::atmosphere::surface::{
 use firmament_core::color::srgb_to_linear;
 use firmament_core::texture::TextureImage;
 
+use crate::assets::FileCache;
 use crate::checks::{check, in_range};
 use crate::error::SceneError;
 use crate::model::{Scene, SurfaceName};
@@ -45,7 +46,7 @@ pub(super) fn surface(scene: &Scene) -> Result<Option<Surface>, SceneError> {
     let map = match (section.surface, &section.albedo_map) {
         (Some(SurfaceName::Earth), _) => earth()?,
         (Some(SurfaceName::Procedural), _) => procedural_map(section.surface_seed.unwrap_or(1) as u64)?,
-        (None, Some(file)) => Arc::new(mapped(scene, file, section.water_map.as_deref())?),
+        (None, Some(file)) => mapped(scene, file, section.water_map.as_deref())?,
         (None, None) => {
             if let Some(wind) = section.wind_speed {
                 return refuse(
@@ -97,14 +98,44 @@ fn procedural_map(seed: u64) -> Result<Arc<SurfaceMap>, SceneError> {
     Ok(map)
 }
 
-/// The map of the scene's `albedo_map` file and, if given, its `water_map` file.
-fn mapped(scene: &Scene, albedo_file: &str, water_file: Option<&str>) -> Result<SurfaceMap, SceneError> {
-    let load = |key: &str, file: &str| -> Result<TextureImage, SceneError> {
-        let path = scene.asset_file(key, file)?;
-        crate::assets::load_texture_within(key, &path, scene.confinement.as_ref())
+/// Surface maps made from files, while the files stay as they were.
+static MAPPED: FileCache<SurfaceMap> = FileCache::new();
+
+/// The map of the scene's `albedo_map` file and, if given, its `water_map` file, made once while
+/// the files stay as they were.
+fn mapped(scene: &Scene, albedo_file: &str, water_file: Option<&str>) -> Result<Arc<SurfaceMap>, SceneError> {
+    let albedo_path = scene.asset_file("planet.albedo_map", albedo_file)?;
+    let water_path = water_file
+        .map(|file| scene.asset_file("planet.water_map", file))
+        .transpose()?;
+    let mut paths = vec![albedo_path.as_path()];
+    paths.extend(water_path.as_deref());
+    MAPPED.get_or_make(
+        &paths,
+        scene.confinement.is_none(),
+        |map| map.width() as usize * map.height() as usize * std::mem::size_of::<[f32; 4]>(),
+        || {
+            read_mapped(
+                scene,
+                (albedo_file, &albedo_path),
+                water_file.zip(water_path.as_deref()),
+            )
+        },
+    )
+}
+
+/// The map of the albedo image and the water image (each its scene value and resolved path).
+fn read_mapped(
+    scene: &Scene,
+    (albedo_file, albedo_path): (&str, &Path),
+    water: Option<(&str, &Path)>,
+) -> Result<SurfaceMap, SceneError> {
+    let load = |key: &str, path: &Path| -> Result<TextureImage, SceneError> {
+        crate::assets::load_texture_within(key, path, scene.confinement.as_ref())
     };
-    let albedo = load("planet.albedo_map", albedo_file)?;
-    let water = water_file.map(|file| load("planet.water_map", file)).transpose()?;
+    let water_file = water.map(|(file, _)| file);
+    let albedo = load("planet.albedo_map", albedo_path)?;
+    let water = water.map(|(_, path)| load("planet.water_map", path)).transpose()?;
     if let (Some(w), Some(file)) = (&water, water_file)
         && (w.width, w.height) != (albedo.width, albedo.height)
     {
