@@ -4,8 +4,6 @@
 //! into the caller's textures (`EnvironmentMapPass`) against the in-memory ones, and the
 //! textures it refuses.
 
-use std::f64::consts::TAU;
-
 use crate::support::{Gpu, direction, gpu, street_sky};
 
 use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
@@ -21,25 +19,6 @@ use glam::DVec3;
 fn street_frame(sky: &AtmosphereSky) -> Frame {
     let camera = Camera::from_heading_pitch(DVec3::new(0.0, 0.0, 1.7), 0.3, 0.1);
     Frame::new(camera, Sky::Atmosphere(sky.clone()))
-}
-
-/// An equirectangular map's irradiance on an upward normal: `∫ L·cos θ dω` over the upper
-/// hemisphere, each pixel weighted by its exact `∫ cos θ dω` (`(2π/W)·(sin² θ₁ − sin² θ₀)/2`).
-fn upper_irradiance(map: &Image<f32>) -> DVec3 {
-    let (w, h) = (map.width, map.height);
-    let theta = |j: u32| std::f64::consts::PI * f64::from(j) / f64::from(h);
-    (0..h / 2)
-        .map(|j| {
-            let weight = TAU / f64::from(w) * 0.5 * (theta(j + 1).sin().powi(2) - theta(j).sin().powi(2));
-            (0..w)
-                .map(|i| {
-                    let p = map.pixel(i, j).expect("inside");
-                    DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
-                })
-                .sum::<DVec3>()
-                * weight
-        })
-        .sum()
 }
 
 /// `Σ L·dω` over a whole equirectangular map.
@@ -77,7 +56,7 @@ fn the_maps_sky_irradiance_matches_the_reference() {
             .render_equirect(ctx, &frame, 256, SunDiscs::Omitted)
             .expect("render");
         assert_eq!((map.width, map.height), (256, 128));
-        let got = upper_irradiance(&map);
+        let got = crate::support::hemisphere_flux(&map, true);
         let conversion = sky.atmosphere.spectral_conversion();
         let reference = |seed| {
             let settings = ReferenceSettings {

@@ -191,3 +191,24 @@ pub(crate) fn far_view_difference(
     }
     (worst, lit)
 }
+
+/// An equirectangular map's flux through a horizontal plane: `∫ L·|cos θ| dω` over the upper
+/// hemisphere (the irradiance on an upward normal) or the lower one, each pixel weighted by its
+/// exact `∫ |cos θ| dω` (`(2π/W)·|sin² θ₁ − sin² θ₀|/2`).
+pub(crate) fn hemisphere_flux(map: &firmament_render::headless::Image<f32>, upper: bool) -> glam::DVec3 {
+    let (w, h) = (map.width, map.height);
+    let theta = |j: u32| std::f64::consts::PI * f64::from(j) / f64::from(h);
+    let rows = if upper { 0..h / 2 } else { h / 2..h };
+    rows.map(|j| {
+        let weight =
+            std::f64::consts::TAU / f64::from(w) * 0.5 * (theta(j + 1).sin().powi(2) - theta(j).sin().powi(2)).abs();
+        (0..w)
+            .map(|i| {
+                let p = map.pixel(i, j).expect("inside");
+                glam::DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+            })
+            .sum::<glam::DVec3>()
+            * weight
+    })
+    .sum()
+}
