@@ -237,12 +237,13 @@ impl CloudLayer {
         1.0 - (1.0 - c).powf(1.0 + r * r / (1.0 + r))
     }
 
-    /// The share of the layer's `coverage` that counts as opaque cloud from afar, 0–1: covered
-    /// columns thin out towards their edges, so that straight down the layer lets more through
-    /// than its clear share. `c·coverage` with `c` such that `c` of the columns holding all the
-    /// cloud, `1 − c + c·e^(−τ̄/c)`, let through what the columns do, `mean e^(−τ)` (τ̄ their
-    /// mean optical depth; the columns as the level of detail averages them, at the layer's own
-    /// coverage). 1 for a uniform slab and for a layer without cloud.
+    /// The share `s` of the layer's `coverage` that counts as opaque cloud from afar, 0–1:
+    /// covered columns thin out towards their edges, so that straight down the layer lets more
+    /// through than its clear share. With `c = s·coverage` of the columns holding all the cloud,
+    /// they let `1 − c + c·e^(−τ̄/c)` through, which `s` makes what the columns do, `mean
+    /// e^(−τ)` (τ̄ their mean optical depth; the columns as the level of detail averages them,
+    /// at the layer's own coverage, each integrated in 512 steps). 1 for a uniform slab and for
+    /// a layer without cloud.
     pub fn cover_share(&self) -> f64 {
         if self.kind == CloudKind::Uniform || self.coverage.is_nan() || self.coverage <= 0.0 {
             return 1.0;

@@ -419,7 +419,7 @@ fn a_broken_layer_seen_from_afar_covers_more_of_a_slanted_view() {
     // Across 3 spacings, 1 + 9/4 columns.
     let across = 3.0 * COLUMN_SPACING_CELLS * cell;
     assert!((cumulus.cover_seen(0.3, across) - (1.0 - (1.0 - c).powf(3.25))).abs() < 1e-12);
-    // Grazing, nearly every ray meets some cloud; clear sky stays clear, overcast overcast.
+    // Grazing, nearly every ray meets some cloud; a clear sky stays clear.
     assert!(cumulus.cover_seen(0.3, 100.0 * cell) > 1.0 - 1e-12);
     assert_eq!(cumulus.cover_seen(0.0, 10.0 * cell), 0.0);
     // A uniform slab has no columns: every ray meets it.

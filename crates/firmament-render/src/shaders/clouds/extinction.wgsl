@@ -76,9 +76,9 @@ fn cloud_lod(layer: CloudLayerGpu, span: f32) -> f32 {
 }
 
 // The share of the rays that meet cloud, as the march divides and weights the columns' average at
-// level of detail `lod` (cloud_extinction_lod's `cover`), for a way through the layer at `p` (up
-// `up`) along `d` over `way` metres: cloud_cover_seen from afar, 1 (the field) up close, linear
-// between.
+// level of detail `lod` (cloud_extinction_lod's `cover`), for a way through the layer along `d`
+// over `way` metres where the geodetic up is `up`: cloud_cover_seen from afar, 1 (the field) up
+// close, linear between.
 fn cloud_cover_along(layer: CloudLayerGpu, up: vec3<f32>, d: vec3<f32>, way: f32, lod: f32) -> f32 {
     if lod <= 0.0 {
         return 1.0;

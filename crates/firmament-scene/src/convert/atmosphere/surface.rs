@@ -3,7 +3,8 @@
 //!
 //! Built-in surfaces are made once per process and shared: Earth's map is decoded from the
 //! crate's `data/earth-surface.png` (its README says where it came from), a procedural one is
-//! baked per seed.
+//! baked per seed; a user's maps are made once while their files stay as they were
+//! ([`FileCache`]).
 
 use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
