@@ -12,7 +12,7 @@ use glam::DVec3;
 use crate::support::{Gpu, direction, gpu};
 
 /// Earth's sphere (Bruneton's radii) with no air at all: whatever dims the sun is cloud.
-fn airless() -> Atmosphere {
+pub(crate) fn airless() -> Atmosphere {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(6_360_000.0, 60_000.0).posed_at(0.0, 0.0);
     atmosphere.medium.terms[0].scattering = Spectrum::ZERO;
@@ -31,7 +31,7 @@ fn wide_sun(view_zenith_deg: f64) -> Sun {
     }
 }
 
-fn camera_at(position: DVec3, forward: DVec3, fov_y_degrees: f64) -> Camera {
+pub(crate) fn camera_at(position: DVec3, forward: DVec3, fov_y_degrees: f64) -> Camera {
     Camera::looking_at(position, position + forward, DVec3::Z)
         .or_else(|| Camera::looking_at(position, position + forward, DVec3::Y))
         .expect("a view direction")
@@ -483,87 +483,6 @@ fn a_broken_layer_seen_from_afar_keeps_the_light_of_its_gaps() {
         assert!(
             error.abs() < 0.1,
             "view zenith {view_zenith}°: the image keeps {kept:.4} of the ground's light, the columns {want:.4}"
-        );
-    }
-}
-
-/// Prints issue 26's check of the total reflectance of a thick uniform slab (1–2 km,
-/// Henyey–Greenstein g = 0.85, albedo 1, in a vacuum over a black ground) — its upward flux over
-/// the sun's `μ₀·E`, from a 256 × 128 map 3 km up, over a white ground's flux without the slab —
-/// against the path-traced reference by reciprocity (lit by a uniform sky of radiance 1 and seen
-/// from above at θ₀ the slab shows `R(μ₀)`; 16 384 paths, binomial noise ±0.4–0.6 %) and the
-/// δ-Eddington closed form. Not yet within the issue's 3 % (docs/CLOUDS.md, "Against closed
-/// forms and the reference"): `cargo test -p firmament-render --test gpu -- --ignored
-/// --nocapture thick_slab_reflectance_survey`, a minute.
-#[test]
-#[ignore = "a survey: the cloud model's reflectance is not yet within the issue's budget"]
-fn thick_slab_reflectance_survey() {
-    use firmament_core::atmosphere::clouds::DualHenyeyGreenstein;
-    use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
-    use firmament_core::geometry::Ray;
-    use firmament_render::envmap::SunDiscs;
-    let mut gpu = gpu();
-    let eye = DVec3::new(0.0, 0.0, 3_000.0);
-    for (tau, sun_zenith) in [(10.0f64, 0.0f64), (20.0, 30.0), (30.0, 60.0)] {
-        let layer = CloudLayer {
-            phase: DualHenyeyGreenstein {
-                g_forward: 0.85,
-                g_back: 0.0,
-                blend: 1.0,
-            },
-            ..CloudLayer::new(1_000.0, 2_000.0, 1.0, tau / 1_000.0, CloudKind::Uniform)
-        };
-        let mut black = airless();
-        black.medium.ground_albedo = Spectrum::ZERO;
-        let mut white = airless();
-        white.medium.ground_albedo = Spectrum::ONE;
-        let sun = presets::earth_sun(direction(0.0, 90.0 - sun_zenith));
-        let sky = |atmosphere: Atmosphere, clouds: Vec<CloudLayer>| AtmosphereSky {
-            atmosphere,
-            suns: vec![sun],
-            clouds,
-            eclipsers: Vec::new(),
-            rings: None,
-            surface: None,
-        };
-        let flux = |gpu: &mut Gpu, sky: AtmosphereSky| {
-            let frame = Frame::new(camera_at(eye, DVec3::X, 60.0), Sky::Atmosphere(sky));
-            let Gpu { ctx, renderer } = gpu;
-            let map = renderer
-                .render_equirect(ctx, &frame, 256, SunDiscs::Omitted)
-                .expect("render");
-            crate::support::hemisphere_flux(&map, false)
-        };
-        let reflected = flux(&mut gpu, sky(black.clone(), vec![layer.clone()]));
-        let lit = flux(&mut gpu, sky(white, Vec::new()));
-        let got = reflected.y / lit.y;
-        let reference = Reference::new(
-            black,
-            &[],
-            ReferenceSettings {
-                paths: 16_384,
-                background: Spectrum::ONE,
-                ..Default::default()
-            },
-        )
-        .with_clouds(&[layer]);
-        let down = -direction(0.0, 90.0 - sun_zenith);
-        let parts = reference.radiance(&Ray {
-            origin: eye,
-            direction: down,
-        });
-        let want = parts.total().y;
-        let noise = (want * (1.0 - want) / 16_384.0).sqrt();
-        let f = 0.85f64 * 0.85;
-        let (tau_scaled, g_scaled, mu0) = ((1.0 - f) * tau, (0.85 - f) / (1.0 - f), sun_zenith.to_radians().cos());
-        let gamma = 0.75 * (1.0 - g_scaled);
-        let gamma3 = (2.0 - 3.0 * g_scaled * mu0) / 4.0;
-        let eddington = (gamma * tau_scaled + (gamma3 - gamma * mu0) * (1.0 - (-tau_scaled / mu0).exp()))
-            / (1.0 + gamma * tau_scaled);
-        println!(
-            "tau {tau}, sun {sun_zenith}° from the zenith: GPU R {got:.4}, path tracer {want:.4} ± {noise:.4}, \
-             δ-Eddington {eddington:.4}: {:+.1} %",
-            100.0 * (got / want - 1.0)
         );
     }
 }

@@ -8,6 +8,7 @@ mod aerial_perspective;
 mod atmosphere;
 mod camera;
 mod cloud_density;
+mod cloud_slab;
 mod clouds;
 mod eclipse;
 mod embed_target;

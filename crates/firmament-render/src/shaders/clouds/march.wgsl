@@ -8,12 +8,16 @@
 // channel. Shells are the ellipsoid's semi-axes plus the altitude (within metres of the true
 // offset surface below 20 km on Earth; the density itself takes the sample's own altitude).
 //
-// Lighting of a sample (docs/CLOUDS.md, "How clouds are drawn"):
-// - each sun: E · T_air (transmittance LUT) times, with τ the cloud's optical depth towards the
-//   sun (a short march, LIGHT_STEPS), the δ-scaled beam p(ν)·e^(−(1 − g²)·τ) and diffuse light,
-//   isotropic, as in a plane-parallel slab in the Eddington approximation (`cloud_source`);
-// - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below, each
-//   dimmed by the cloud between the sample and the layer's top or bottom.
+// Lighting of a sample (docs/CLOUDS.md, "How clouds are drawn"), δ-scaled: the cloud's own light
+// fades along the view over (1 − ω·g²)·σ, and what it scatters is the source function of a
+// plane-parallel slab in scaled optical depth (`cloud_source`):
+// - each sun: E · T_air (transmittance LUT) times, with τ' the cloud's scaled optical depth
+//   towards the sun (a short march, LIGHT_STEPS), the beam p(ν)·e^(−τ') and the Eddington
+//   diffuse field scattered once more (`eddington_beam`);
+// - the sky's light from above (the sky-irradiance LUT) and the ground's bounce from below,
+//   diffuse light entering the slab's faces (`eddington_diffuse`).
+// What lies behind fades over the scaled extinction too, but a sun's disc over the whole
+// (`behind_transmittance`).
 // From afar, where a pixel spans many of a layer's columns, the march, the light's way to the sun
 // and the ground's shadow take the columns as independent: a share of the rays meets cloud, the
 // rest none (march_stretch; docs/CLOUDS.md, "Level of detail").
@@ -60,7 +64,8 @@ const FINE_STEPS: u32 = 128u;
 const FINE_TO_COARSE: u32 = 8u;
 // Samples along the way towards each sun, each twice as long as the one before.
 const LIGHT_STEPS: u32 = 6u;
-// Below this the cloud hides everything behind it: the march stops.
+// Below this (the scaled transmittance, which the cloud's own light fades by) the cloud hides
+// everything behind it: the march stops.
 const OPAQUE: f32 = 1e-3;
 
 // Whether cs_main writes the clouds as a layer to blend (a caller's target) rather than the
@@ -89,10 +94,12 @@ fn ray_hits(ray: ViewRay) -> RayHits {
 }
 
 // What the march gathers: the cloud's light reaching the camera's side of it (spectral radiance,
-// before the air in front), its transmittance, and its transmittance-weighted distance.
+// before the air in front), its transmittance (of what lies behind), the transmittance of its own
+// light (δ-scaled: cloud_source), and its transmittance-weighted distance.
 struct CloudSample {
     radiance: vec3<f32>,
     transmittance: f32,
+    scaled_transmittance: f32,
     depth_sum: f32,
     weight_sum: f32,
 }
@@ -154,13 +161,26 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, up: vec3<f32>, s: ve
 // The light a unit of cloud extinction at p (altitude h, up `up`) scatters towards −d (spectral,
 // per metre per unit extinction: multiply by the extinction), from every sun, the sky and the
 // ground; the way to each sun through the field at the view sample's level of detail `lod`.
+// δ-scaled (Joseph, Wiscombe & Weinman 1976): the droplets' forward peak f = g² goes on with the
+// light it scattered, so the march dims this light by the scaled extinction (1 − ω·f)·σ
+// (`delta_scaled`), and the diffuse light is the Eddington solution of a conservative
+// plane-parallel slab in scaled optical depth (`eddington_beam`, `eddington_diffuse`), the slab
+// guessed from the local extinction and the sun's way out; the once-scattered beam keeps the whole
+// phase function (Nakajima & Tanaka 1988's TMS correction).
 fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: vec3<f32>, extinction: f32, lod: f32) -> vec3<f32> {
     let albedo = layer.coverage.w;
+    let g = mean_cosine(layer.phase);
+    let f = g * g;
+    // The δ-scaled asymmetry of what is left, (g − f)/(1 − f).
+    let g_scaled = g / (1.0 + g);
+    let mu_out = dot(-d, up);
+    // The slab around the sample, in scaled optical depth: above and below it, straight up and down.
+    let scaled = (1.0 - f) * extinction;
+    let above = scaled * max(layer.shell.y - h, 0.0);
+    let below = scaled * max(h - layer.shell.x, 0.0);
     var source = vec3<f32>(0.0);
     var ground_irradiance = vec3<f32>(0.0);
     var sky_light = vec3<f32>(0.0);
-    // The cloud's optical depth below the sample, guessed from the local extinction.
-    let tau_below = extinction * max(h - layer.shell.x, 0.0);
     for (var i = 0u; i < view.sun_count.x; i++) {
         let sun = view.suns[i];
         let s = sun.direction.xyz;
@@ -173,32 +193,59 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
         if all(air <= vec3<f32>(0.0)) {
             continue;
         }
-        let tau = optical_depth_to_sun(layer, p, up, s, lod);
-        // δ-scaling (Joseph, Wiscombe & Weinman 1976): the forward peak f = g² of the droplets'
-        // light goes on with the sun's, so the sun's beam fades over (1 − f)·τ.
-        let g = mean_cosine(layer.phase);
-        let beam = exp(-(1.0 - g * g) * tau);
-        let single = dual_henyey_greenstein(layer.phase, dot(d, s), 1.0) * beam;
-        // Diffuse light, isotropic, as in a conservative slab (δ-Eddington) of vertical depth μ·τ:
-        // going down, the share that has reached this depth less the beam, times the chance it
-        // scattered again (its first scattering is the beam's term above); going up, what has
-        // reached it reflected by the cloud below. Radiance μ·E/π each (docs/CLOUDS.md).
-        let mu = max(mu_s, 0.0);
-        let reached = (1.0 - (0.5 - 0.75 * mu) * (1.0 - beam)) / (1.0 + 0.75 * (1.0 - g) * tau * mu);
-        let below = 0.75 * (1.0 - g) * tau_below;
-        let multiple = mu * (max(reached - beam, 0.0) * (1.0 - beam) + reached * below / (1.0 + below)) / PI;
-        source += irradiance * air * (single + multiple);
+        // The beam's scaled optical depth to the sun, and the same straight up (the slab's depth
+        // of the sample, exact in a uniform slab).
+        let tau = (1.0 - f) * optical_depth_to_sun(layer, p, up, s, lod);
+        let single = dual_henyey_greenstein(layer.phase, dot(d, s), 1.0) * exp(-tau);
+        let diffuse = (1.0 - f) * eddington_beam(max(mu_s, 0.0), max(mu_s, 0.0) * tau, below, g_scaled, mu_out);
+        source += irradiance * air * (single + diffuse);
     }
-    // Ambient light, isotropic: the sky's radiance from above (its irradiance over π) through the
-    // cloud above, the ground's from below through the cloud below, half a sphere each; the
-    // cloud between is guessed from the local extinction (no march).
-    let x_top = max(layer.shell.y - h, 0.0);
-    let x_bottom = max(h - layer.shell.x, 0.0);
-    let above = sky_light / PI * exp(-0.5 * extinction * x_top);
-    let below = atmosphere.ground_albedo.rgb * ground_irradiance / PI * exp(-0.5 * extinction * x_bottom);
-    // ∫ p L dω with p = 1/4π over two hemispheres of constant radiance.
-    source += (above + below) * 0.5;
+    // The sky's light from above and the ground's from below, each isotropic radiance (irradiance
+    // over π) entering its face of the slab.
+    let sky = eddington_diffuse(above, below, g_scaled, -mu_out);
+    let ground = eddington_diffuse(below, above, g_scaled, mu_out);
+    source += (1.0 - f) * (sky_light * sky + atmosphere.ground_albedo.rgb * ground_irradiance * ground) / PI;
     return albedo * source;
+}
+
+// The extinction that dims a cloud's own light, σ·(1 − ω·f) (see cloud_source), for extinction σ.
+fn delta_scaled(layer: CloudLayerGpu, extinction: f32) -> f32 {
+    let g = mean_cosine(layer.phase);
+    return extinction * (1.0 - layer.coverage.w * g * g);
+}
+
+// The diffuse radiance a unit of scaled extinction scatters towards direction cosine `mu_out` (to
+// the local up) at scaled optical depth `t` below the top of a conservative slab reaching
+// `t_below` further down, scaled asymmetry `g`, lit at cosine `mu0` by a sun of unit irradiance
+// (normal to the beam), per steradian: the Eddington solution I = I0 + μ·I1 (Shettle & Weinman
+// 1970; Joseph, Wiscombe & Weinman 1976) with Marshak's conditions (no diffuse light entering
+// at the top, a black ground below), scattered by the Eddington phase 1 + 3g·cos Θ:
+// I0 + g·mu_out·I1. Its reflectance I0(0) + 2/3·I1(0) over μ0/π is δ-Eddington's,
+// (γτ + (½ − ¾μ0)(1 − e^(−τ/μ0)))/(1 + γτ), γ = ¾(1 − g).
+fn eddington_beam(mu0: f32, t: f32, t_below: f32, g: f32, mu_out: f32) -> f32 {
+    if mu0 <= 0.0 {
+        return 0.0;
+    }
+    let f0 = 1.0 / PI;
+    let total = t + t_below;
+    let beam = exp(-t / mu0);
+    let beam_bottom = exp(-total / mu0);
+    let c1 = -f0 * (0.5 * mu0 + 0.75 * mu0 * mu0 + beam_bottom * (0.5 * mu0 - 0.75 * mu0 * mu0))
+        / (4.0 / 3.0 + (1.0 - g) * total);
+    let c2 = 2.0 / 3.0 * c1 + 0.75 * f0 * mu0 * mu0 + 0.5 * f0 * mu0;
+    let i1 = c1 + 0.75 * f0 * mu0 * beam;
+    let i0 = c2 + (1.0 - g) * c1 * t - 0.75 * f0 * mu0 * mu0 * beam;
+    return max(i0 + g * mu_out * i1, 0.0);
+}
+
+// The same for diffuse light of unit radiance entering one face of the slab, `t` into it and
+// `t_beyond` short of the other face (black, as Marshak's conditions take it), towards
+// `mu_in`, the cosine to the axis pointing into the slab: I0 = 1 − (⅔ + (1 − g)·t)/D and
+// I1 = 1/D along that axis, D = 4/3 + (1 − g)·(t + t_beyond), scattered as above.
+fn eddington_diffuse(t: f32, t_beyond: f32, g: f32, mu_in: f32) -> f32 {
+    let d = 4.0 / 3.0 + (1.0 - g) * (t + t_beyond);
+    let i0 = 1.0 - (2.0 / 3.0 + (1.0 - g) * t) / d;
+    return max(i0 + g * mu_in / d, 0.0);
 }
 
 // The phase function's mean cosine g.
@@ -336,7 +383,7 @@ fn pixel_jitter(pixel: vec2<f32>) -> f32 {
 // broken layer from orbit keeps the light of its gaps — the columns' mean transmittance, not the
 // transmittance of their mean optical depth (an even veil).
 fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32, footprint: f32, acc: ptr<function, CloudSample>) {
-    if (*acc).transmittance < OPAQUE {
+    if (*acc).scaled_transmittance < OPAQUE {
         return;
     }
     let middle = 0.5 * (t0 + t1);
@@ -346,13 +393,14 @@ fn march_stretch(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f
         march_field(ray, layer, t0, t1, jitter, footprint, 1.0, acc);
         return;
     }
-    var part = CloudSample(vec3<f32>(0.0), 1.0, 0.0, 0.0);
+    var part = CloudSample(vec3<f32>(0.0), 1.0, 1.0, 0.0, 0.0);
     march_field(ray, layer, t0, t1, jitter, footprint, cover, &part);
     let seen = (*acc).transmittance * cover;
-    (*acc).radiance += seen * part.radiance;
+    (*acc).radiance += (*acc).scaled_transmittance * cover * part.radiance;
     (*acc).depth_sum += seen * part.depth_sum;
     (*acc).weight_sum += seen * part.weight_sum;
     (*acc).transmittance *= 1.0 - cover + cover * part.transmittance;
+    (*acc).scaled_transmittance *= 1.0 - cover + cover * part.scaled_transmittance;
 }
 
 // Marches the field of one stretch of a layer from t0 to t1, adding to `acc`, the columns'
@@ -373,7 +421,7 @@ fn march_field(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32
     var fine_mode = false;
     var empty = 0u;
     for (var guard = 0u; guard < COARSE_STEPS + 2u * FINE_STEPS && t < t1; guard++) {
-        if (*acc).transmittance < OPAQUE {
+        if (*acc).scaled_transmittance < OPAQUE {
             return;
         }
         if !fine_mode {
@@ -401,13 +449,17 @@ fn march_field(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32
         }
         empty = 0u;
         let source = cloud_source(layer, p, here.h, here.up, ray.direction, extinction, lod) * extinction;
+        // The cloud's own light fades over the scaled extinction, what lies behind over the whole.
+        let scaled = delta_scaled(layer, extinction);
         let step = exp(-extinction * dt);
-        let scattered = select((source - source * step) / extinction, source * dt, extinction * dt < 1e-4);
-        (*acc).radiance += (*acc).transmittance * scattered;
+        let scaled_step = exp(-scaled * dt);
+        let scattered = select((source - source * scaled_step) / scaled, source * dt, scaled * dt < 1e-4);
+        (*acc).radiance += (*acc).scaled_transmittance * scattered;
         let lost = (*acc).transmittance * (1.0 - step);
         (*acc).depth_sum += lost * tm;
         (*acc).weight_sum += lost;
         (*acc).transmittance *= step;
+        (*acc).scaled_transmittance *= scaled_step;
     }
 }
 
@@ -416,6 +468,7 @@ fn march_clouds(ray: ViewRay, hits: RayHits, far: f32, jitter: f32, footprint: f
     var acc: CloudSample;
     acc.radiance = vec3<f32>(0.0);
     acc.transmittance = 1.0;
+    acc.scaled_transmittance = 1.0;
     acc.depth_sum = 0.0;
     acc.weight_sum = 0.0;
     // The ground ends every ray that meets it.
@@ -454,6 +507,22 @@ fn march_clouds(ray: ViewRay, hits: RayHits, far: f32, jitter: f32, footprint: f
         march_stretch(ray, clouds.layers[stretch.layer], stretch.t0, stretch.t1, jitter, footprint, &acc);
     }
     return acc;
+}
+
+// The transmittance of the clouds for what lies behind them along d, for a pixel `footprint`
+// radians across: the δ-scaled one (cloud_source) — the light the droplets' forward peak scatters
+// goes on as if unscattered, so a sky, a ground or an object behind keeps it — except on a sun's
+// disc, which that peak spreads into the aureole the march draws (the phase function's peak in
+// cloud_source), so the disc itself fades over the whole extinction.
+fn behind_transmittance(cloud: CloudSample, d: vec3<f32>, footprint: f32) -> f32 {
+    for (var i = 0u; i < view.sun_count.x; i++) {
+        let sun = view.suns[i];
+        let angle = atan2(length(cross(d, sun.direction.xyz)), dot(d, sun.direction.xyz));
+        if sun.direction.w > 0.0 && angle < sun.direction.w + footprint {
+            return cloud.transmittance;
+        }
+    }
+    return cloud.scaled_transmittance;
 }
 
 // The image at pixel `id` with the clouds laid over it, or with CLOUD_LAYER the clouds alone as a
@@ -513,13 +582,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         air_light = min(to_linear_srgb(firmament_aerial_scattering_at(aerial_scattering, lut_sampler, coordinates)), vec3<f32>(HDR_MAX));
     }
     let cloud_light = to_linear_srgb(cloud.radiance) * air_transmittance;
+    let through = behind_transmittance(cloud, ray.direction, footprint);
     if CLOUD_LAYER {
-        let layer = air_light * (1.0 - cloud.transmittance) - air_shade + cloud_light + cloud.transmittance * color.rgb;
-        textureStore(hdr_out, id.xy, vec4<f32>(min(layer, vec3<f32>(HDR_MAX)), cloud.transmittance));
+        let layer = air_light * (1.0 - through) - air_shade + cloud_light + through * color.rgb;
+        textureStore(hdr_out, id.xy, vec4<f32>(min(layer, vec3<f32>(HDR_MAX)), through));
         return;
     }
     let behind = max(color.rgb - air_light, vec3<f32>(0.0));
-    let out = max(air_light - air_shade, vec3<f32>(0.0)) + cloud_light + cloud.transmittance * behind;
+    let out = max(air_light - air_shade, vec3<f32>(0.0)) + cloud_light + through * behind;
     textureStore(hdr_out, id.xy, vec4<f32>(min(out, vec3<f32>(HDR_MAX)), color.a));
 }
 
