@@ -174,7 +174,8 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
     // The δ-scaled asymmetry of what is left, (g − f)/(1 − f).
     let g_scaled = g / (1.0 + g);
     let mu_out = dot(-d, up);
-    // The slab around the sample, in scaled optical depth: above and below it, straight up and down.
+    // The slab around the sample, in scaled optical depth: above and below it, straight up and down
+    // (conservative, as the Eddington solutions below take it: an albedo below 1 scales the result).
     let scaled = (1.0 - f) * extinction;
     let above = scaled * max(layer.shell.y - h, 0.0);
     let below = scaled * max(h - layer.shell.x, 0.0);
