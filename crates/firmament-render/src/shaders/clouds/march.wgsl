@@ -163,7 +163,7 @@ fn optical_depth_to_sun(layer: CloudLayerGpu, p: vec3<f32>, up: vec3<f32>, s: ve
 // ground; the way to each sun through the field at the view sample's level of detail `lod`.
 // δ-scaled (Joseph, Wiscombe & Weinman 1976): the droplets' forward peak f = g² goes on with the
 // light it scattered, so the march dims this light by the scaled extinction (1 − ω·f)·σ
-// (`delta_scaled`), and the diffuse light is the Eddington solution of a conservative
+// (`delta_scale`), and the diffuse light is the Eddington solution of a conservative
 // plane-parallel slab in scaled optical depth (`eddington_beam`, `eddington_diffuse`), the slab
 // guessed from the local extinction and the sun's way out; the once-scattered beam keeps the whole
 // phase function (Nakajima & Tanaka 1988's TMS correction).
@@ -209,10 +209,10 @@ fn cloud_source(layer: CloudLayerGpu, p: vec3<f32>, h: f32, up: vec3<f32>, d: ve
     return albedo * source;
 }
 
-// The extinction that dims a cloud's own light, σ·(1 − ω·f) (see cloud_source), for extinction σ.
-fn delta_scaled(layer: CloudLayerGpu, extinction: f32) -> f32 {
+// The share of a layer's extinction that dims the cloud's own light, 1 − ω·f (see cloud_source).
+fn delta_scale(layer: CloudLayerGpu) -> f32 {
     let g = mean_cosine(layer.phase);
-    return extinction * (1.0 - layer.coverage.w * g * g);
+    return 1.0 - layer.coverage.w * g * g;
 }
 
 // The diffuse radiance a unit of scaled extinction scatters towards direction cosine `mu_out` (to
@@ -418,6 +418,7 @@ fn march_field(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32
     let thickness = max(layer.shell.y - layer.shell.x, 1.0);
     let coarse = max(thickness / 16.0, length_in / f32(COARSE_STEPS));
     let fine = max(coarse / 8.0, length_in / f32(FINE_STEPS));
+    let scale = delta_scale(layer);
     var t = t0 + jitter * coarse;
     var fine_mode = false;
     var empty = 0u;
@@ -451,7 +452,7 @@ fn march_field(ray: ViewRay, layer: CloudLayerGpu, t0: f32, t1: f32, jitter: f32
         empty = 0u;
         let source = cloud_source(layer, p, here.h, here.up, ray.direction, extinction, lod) * extinction;
         // The cloud's own light fades over the scaled extinction, what lies behind over the whole.
-        let scaled = delta_scaled(layer, extinction);
+        let scaled = extinction * scale;
         let step = exp(-extinction * dt);
         let scaled_step = exp(-scaled * dt);
         let scattered = select((source - source * scaled_step) / scaled, source * dt, scaled * dt < 1e-4);
