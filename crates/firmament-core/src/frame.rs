@@ -62,6 +62,11 @@ pub struct AtmosphereSky {
     /// sun, the air, the ground and everything lit there get that much less of it
     /// ([`crate::atmosphere::eclipse`]).
     pub eclipsers: Vec<Eclipser>,
+    /// Airless bodies drawn beside the planet, world frame, 0 to
+    /// [`MAX_BODIES`](crate::atmosphere::body::MAX_BODIES) ([`crate::atmosphere::body`]): lit by
+    /// the suns, shadowed by the planet and each other. Each is also an eclipser, the first
+    /// `eclipsers` in the same order: add them with [`Self::add_body`].
+    pub bodies: Vec<crate::atmosphere::body::Body>,
     /// The planet's rings, if it has any ([`crate::atmosphere::rings`]): drawn lit by the suns,
     /// dimming what lies behind them and shadowing the globe.
     pub rings: Option<Rings>,
@@ -71,7 +76,14 @@ pub struct AtmosphereSky {
 }
 
 impl AtmosphereSky {
-    /// Checks the atmosphere, every sun, every eclipser and their numbers.
+    /// Adds `body`, and the same body among the eclipsers (after the bodies before it), so it
+    /// hides the suns from the air, the ground and the other bodies.
+    pub fn add_body(&mut self, body: crate::atmosphere::body::Body) {
+        self.eclipsers.insert(self.bodies.len(), body.eclipser());
+        self.bodies.push(body);
+    }
+
+    /// Checks the atmosphere, every sun, every eclipser and body and their numbers.
     pub fn validate(&self) -> Result<(), crate::error::CoreError> {
         self.atmosphere.validate()?;
         if self.suns.len() > MAX_SUNS {
@@ -90,6 +102,16 @@ impl AtmosphereSky {
             });
         }
         self.eclipsers.iter().try_for_each(Eclipser::validate)?;
+        crate::atmosphere::body::validate_bodies(&self.bodies, &self.atmosphere.planet)?;
+        if self.bodies.iter().zip(&self.eclipsers).any(|(b, e)| b.eclipser() != *e)
+            || self.eclipsers.len() < self.bodies.len()
+        {
+            return Err(crate::error::CoreError::Invalid {
+                field: "bodies",
+                value: format!("{} bodies, {} eclipsers", self.bodies.len(), self.eclipsers.len()),
+                rule: "each body must also be the eclipser of the same index (AtmosphereSky::add_body)",
+            });
+        }
         if let Some(rings) = &self.rings {
             rings.validate(&self.atmosphere.planet)?;
         }

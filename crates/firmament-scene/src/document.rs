@@ -491,6 +491,7 @@ const ENTRY_TEMPLATES: &[(&str, &str)] = &[
         "clouds",
         "bottom = 1500.0\ntop = 3000.0\ncoverage = 0.4\ndensity = 0.05\nkind = \"cumulus\"",
     ),
+    ("bodies", "preset = \"moon\"\nposition = [384400000.0, 0.0, 0.0]"),
 ];
 
 /// Required keys [`SceneDocument::add_entry`] fills at most (more would be a loop).

@@ -86,10 +86,10 @@ pub use convert::{
 pub use document::{SceneDocument, SceneOrigin, SceneSource, load, load_file};
 pub use error::SceneError;
 pub use model::{
-    AtmosphereModelName, AtmosphereSection, Body, CameraSection, CloudEntry, DisplaySection, EmpiricalSection,
-    ExposureModeName, GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName, PlanetSection,
-    RenderSection, RingBandEntry, RingsSection, Scene, SkyModelName, SkySection, SunEntry, SunSection, SurfaceName,
-    TimeSection,
+    AtmosphereModelName, AtmosphereSection, Body, BodyEntry, CameraSection, CloudEntry, DisplaySection,
+    EmpiricalSection, ExposureModeName, GradientSection, GroundSection, KeyframeSection, KeyframesBy, MiePhaseName,
+    PlanetSection, RenderSection, RingBandEntry, RingsSection, Scene, SkyModelName, SkySection, SunEntry, SunSection,
+    SurfaceName, TimeSection,
 };
 pub use model::{
     CheckerboardEntry, FilterName, FlareElementEntry, FlareKindName, FlarePresetName, FlareSection, FogCoordinateName,

@@ -5,6 +5,7 @@
 //! in the file stays as it is (`fov_y`, by `#[serde(rename)]`): messages name the file's keys.
 
 mod atmosphere;
+mod bodies;
 mod clouds;
 mod flare;
 mod medium_terms;
@@ -17,6 +18,7 @@ use serde::Deserialize;
 pub use self::atmosphere::{
     AtmosphereModelName, AtmosphereSection, Body, EmpiricalSection, MiePhaseName, PlanetSection, SunEntry, SurfaceName,
 };
+pub use self::bodies::BodyEntry;
 pub use self::clouds::CloudEntry;
 pub use self::flare::{FlareElementEntry, FlareKindName, FlarePresetName, FlareSection};
 pub use self::medium_terms::{LayerEntry, PhaseName, ProfileName, TermEntry};
@@ -65,6 +67,10 @@ pub struct Scene {
     /// The planet's rings (drawn by the physical atmosphere).
     #[serde(default)]
     pub rings: RingsSection,
+    /// Airless bodies beside the planet, 0 to 4 (drawn by the physical atmosphere; checked in
+    /// every scene). Like every array, a layer's list replaces the one below it as a whole.
+    #[serde(default)]
+    pub bodies: Vec<BodyEntry>,
     /// How objects are lit.
     pub lighting: LightingSection,
     /// The lights of classic lighting, 0 to 8, `glLight` style. A layer's list replaces the one

@@ -92,6 +92,11 @@ pub const PRESETS: &[Preset] = &[
         toml: include_str!("presets/earth-orbit.toml"),
     },
     Preset {
+        name: "earth-moon",
+        summary: "atmosphere: Earth and the Moon from cislunar space, both gibbous, the Moon in front",
+        toml: include_str!("presets/earth-moon.toml"),
+    },
+    Preset {
         name: "mars-noon",
         summary: "atmosphere: Mars at noon on the equator, the butterscotch sky and the dust's glow",
         toml: include_str!("presets/mars-noon.toml"),

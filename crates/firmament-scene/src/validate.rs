@@ -215,7 +215,12 @@ pub(crate) fn validate(scene: &Scene) -> Result<(), SceneError> {
         seen.push((t, i));
     }
 
-    let sky = atmosphere::sky(scene)?;
+    let mut sky = atmosphere::sky(scene)?;
+    let instant = match scene.date_time()? {
+        Some(civil) => Some(scene.instant(&civil)?),
+        None => None,
+    };
+    crate::convert::bodies::add_bodies(scene, instant.as_ref(), &mut sky)?;
     // The seed's values are checked whenever the scene picks the seed model; its planet (the
     // seed's radii) is then the one the camera must be above.
     let planet = match scene.atmosphere.model {

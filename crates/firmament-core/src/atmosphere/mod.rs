@@ -11,6 +11,7 @@
 //!   W·m⁻²·sr⁻¹·nm⁻¹, one value per model wavelength ([`spectrum::Spectrum`]).
 //! - Geometry is computed in the *planet frame* (see [`planet::Planet`]) in f64.
 
+pub mod body;
 pub mod clouds;
 pub mod eclipse;
 pub mod empirical;

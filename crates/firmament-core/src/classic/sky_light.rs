@@ -248,6 +248,7 @@ mod tests {
             suns: vec![presets::earth_sun(DVec3::new(0.0, 0.5, 1.0).normalize())],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -271,6 +272,7 @@ mod tests {
             suns: vec![presets::earth_sun(DVec3::new(0.0, 1.0, -0.2).normalize())],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -291,6 +293,7 @@ mod tests {
             )],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -315,6 +318,7 @@ mod tests {
                 suns: vec![presets::earth_sun(DVec3::new(0.0, z.sin(), z.cos()))],
                 clouds,
                 eclipsers: Vec::new(),
+                bodies: Vec::new(),
                 rings: None,
                 surface: None,
             }

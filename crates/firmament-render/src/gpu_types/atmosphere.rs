@@ -5,13 +5,14 @@
 //! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::atmosphere::{Atmosphere, Spectrum};
+use firmament_core::atmosphere::body::{Body, MAX_BODIES};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
+use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum};
 use firmament_core::atmosphere::rings::{RING_TABLE_ENTRIES, Rings};
 use firmament_core::atmosphere::surface::{Surface, glint};
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 pub use super::planet_view::FAR_CAMERA_RADII;
 use super::medium::{
@@ -143,6 +144,41 @@ pub(crate) struct OrderSumsGpu {
     pub(crate) last_irradiance: [f32; 4],
 }
 
+/// Mirrors `AtmosphereBody` in `shaders/atmosphere/bindings.wgsl`: an airless body beside the
+/// planet ([`Body`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
+pub struct AtmosphereBodyUniform {
+    /// Centre in the planet frame (m); `w` = the reflectance law ([`Reflectance::gpu_code`](firmament_core::atmosphere::body::Reflectance::gpu_code)).
+    pub center: [f32; 4],
+    /// Semi-axes along the body's axes (m).
+    pub radii: [f32; 4],
+    /// The body's x axis in the planet frame.
+    pub axis_x: [f32; 4],
+    /// Its y axis.
+    pub axis_y: [f32; 4],
+    /// Its polar z axis.
+    pub axis_z: [f32; 4],
+    /// Normal albedo per model wavelength.
+    pub albedo: [f32; 4],
+}
+
+impl AtmosphereBodyUniform {
+    /// `body` (world frame) as the shaders read it, in `planet`'s frame.
+    fn new(body: &Body, planet: &Planet) -> Self {
+        let local = body.to_planet_frame(planet);
+        let axes = DMat3::from_quat(local.orientation);
+        Self {
+            center: vec3_w(local.center, f64::from(local.reflectance.gpu_code())),
+            radii: vec3_w(local.radii, 0.0),
+            axis_x: vec3_w(axes.x_axis, 0.0),
+            axis_y: vec3_w(axes.y_axis, 0.0),
+            axis_z: vec3_w(axes.z_axis, 0.0),
+            albedo: spectrum_w(local.albedo, 0.0),
+        }
+    }
+}
+
 /// Mirrors `AtmosphereView` in `shaders/atmosphere/bindings.wgsl`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Pod, Zeroable)]
@@ -169,7 +205,8 @@ pub struct AtmosphereViewUniforms {
     /// reversed-Z, 1 for standard).
     pub aerial: [f32; 4],
     /// x = number of suns; y = number of eclipsing bodies; z = 1 when the sky-view LUT spans
-    /// the whole circle of azimuths (there are eclipsers), 0 for half of it.
+    /// the whole circle of azimuths (there are eclipsers), 0 for half of it; w = number of
+    /// bodies (the first `w` eclipsers).
     pub sun_count: [u32; 4],
     /// The suns; the first `sun_count` are used.
     pub suns: [AtmosphereSunUniform; MAX_SUNS],
@@ -188,6 +225,8 @@ pub struct AtmosphereViewUniforms {
     /// medium's `ground_albedo` everywhere, no water); y = the sea's mean square slope for the
     /// suns' glint ([`glint::slope_variance`]); zw unused.
     pub surface: [f32; 4],
+    /// The bodies beside the planet; the first `sun_count[3]` are used.
+    pub bodies: [AtmosphereBodyUniform; MAX_BODIES],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
@@ -266,6 +305,10 @@ impl AtmosphereViewUniforms {
         }
         let eclipser_count = sky.eclipsers.len().min(MAX_ECLIPSERS);
         let (rings, ring_albedo, ring_depth) = ring_fields(sky.rings.as_ref());
+        let mut bodies = [AtmosphereBodyUniform::zeroed(); MAX_BODIES];
+        for (slot, body) in bodies.iter_mut().zip(&sky.bodies) {
+            *slot = AtmosphereBodyUniform::new(body, planet);
+        }
         Self {
             view_to_planet: shape.view_to_planet,
             camera: vec3_w(o, altitude),
@@ -285,7 +328,7 @@ impl AtmosphereViewUniforms {
                 sky.suns.len().min(MAX_SUNS) as u32,
                 eclipser_count as u32,
                 u32::from(eclipser_count > 0),
-                0,
+                sky.bodies.len().min(MAX_BODIES) as u32,
             ],
             suns,
             eclipsers,
@@ -293,6 +336,7 @@ impl AtmosphereViewUniforms {
             ring_albedo,
             ring_depth,
             surface: surface_fields(sky.surface.as_ref()),
+            bodies,
         }
     }
 }

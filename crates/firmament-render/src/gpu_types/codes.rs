@@ -115,6 +115,12 @@ codes! {
     CLOUD_KIND_CIRRUS = 4;
     /// Cloud kind: a uniform slab, no noise.
     CLOUD_KIND_UNIFORM = 5;
+
+    /// A body's reflectance law (`AtmosphereBodyUniform::center.w`, in an `f32`;
+    /// `firmament_core`'s `Reflectance::gpu_code`): Lambert.
+    BODY_REFLECTANCE_LAMBERT = 0;
+    /// A body's reflectance law: Lommel–Seeliger.
+    BODY_REFLECTANCE_LOMMEL_SEELIGER = 1;
 }
 
 /// The WGSL of the shader module `generated/constants`: every code as a `const` of its Rust name,
@@ -181,6 +187,13 @@ mod tests {
         for (kind, code) in codes {
             assert_eq!(kind.code(), code, "{kind:?}");
         }
+    }
+
+    #[test]
+    fn the_reflectance_laws_are_the_cores() {
+        use firmament_core::atmosphere::body::Reflectance;
+        assert_eq!(Reflectance::Lambert.gpu_code(), BODY_REFLECTANCE_LAMBERT);
+        assert_eq!(Reflectance::LommelSeeliger.gpu_code(), BODY_REFLECTANCE_LOMMEL_SEELIGER);
     }
 
     #[test]

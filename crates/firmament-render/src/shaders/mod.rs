@@ -50,6 +50,7 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/rings", include_str!("atmosphere/rings.wgsl")),
     ("atmosphere/surface", include_str!("atmosphere/surface.wgsl")),
     ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
+    ("atmosphere/bodies", include_str!("atmosphere/bodies.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),
     ("atmosphere/aerial_lookup", include_str!("atmosphere/aerial_lookup.wgsl")),
@@ -1134,8 +1135,15 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 rings,
                 ring_albedo,
                 ring_depth,
-                surface
+                surface,
+                bodies
             ]
+        );
+        assert_layout!(
+            atmosphere,
+            "AtmosphereBody",
+            crate::gpu_types::atmosphere::AtmosphereBodyUniform,
+            [center, radii, axis_x, axis_y, axis_z, albedo]
         );
     }
 }

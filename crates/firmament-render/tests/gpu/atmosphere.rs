@@ -76,6 +76,7 @@ fn transmittance_lut_texels_match_the_reference() {
         suns: vec![],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -179,6 +180,7 @@ fn sky_comparisons_with(
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -445,6 +447,7 @@ fn several_suns_add_up() {
                 suns,
                 clouds: Vec::new(),
                 eclipsers: Vec::new(),
+                bodies: Vec::new(),
                 rings: None,
                 surface: None,
             },
@@ -490,6 +493,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
         suns: vec![s],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -529,6 +533,7 @@ fn a_planet_from_100_au_looks_as_from_1_au() {
         suns: vec![presets::earth_sun(direction(90.0, 20.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -571,6 +576,7 @@ fn crossing_the_top_of_the_atmosphere_does_not_pop() {
         suns: vec![presets::earth_sun(direction(90.0, 10.0))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -625,6 +631,7 @@ fn an_oblate_planet_from_space_matches_the_reference() {
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };

@@ -45,6 +45,7 @@ fn gpu_reflectance(gpu: &mut Gpu, tau: f64, sun_zenith: f64) -> f64 {
             suns: vec![sun],
             clouds,
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };

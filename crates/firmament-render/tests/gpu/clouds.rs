@@ -96,12 +96,14 @@ fn a_uniform_layer_dims_the_sun_by_its_closed_form_transmittance() {
             suns: vec![sun],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
             ..clear.clone()
@@ -132,6 +134,7 @@ fn pixels_whose_rays_miss_every_layer_are_left_alone() {
     let cloudy = AtmosphereSky {
         clouds: vec![CloudLayer::new(5_000.0, 6_000.0, 1.0, 0.02, CloudKind::Uniform)],
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
         ..sky.clone()
@@ -163,12 +166,14 @@ fn a_uniform_layer_shadows_the_ground_by_its_closed_form_transmittance() {
             suns: vec![presets::earth_sun(direction(90.0, 90.0 - zenith_deg))],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
         let cloudy = AtmosphereSky {
             clouds: vec![absorber.clone()],
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
             ..clear.clone()
@@ -209,6 +214,7 @@ fn the_grounds_cloud_shadow_is_the_references_in_the_air() {
         let cloudy = AtmosphereSky {
             clouds: vec![layer.clone()],
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
             ..clear.clone()
@@ -301,6 +307,7 @@ fn cloud_radiance_survey() {
             let sky = AtmosphereSky {
                 clouds: vec![layer.clone()],
                 eclipsers: Vec::new(),
+                bodies: Vec::new(),
                 rings: None,
                 surface: None,
                 ..crate::support::street_sky(0.0, elevation)
@@ -419,6 +426,7 @@ fn a_broken_layer_seen_from_afar_keeps_the_light_of_its_gaps() {
             suns: vec![presets::earth_sun(sun)],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };

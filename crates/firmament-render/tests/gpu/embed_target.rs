@@ -49,6 +49,7 @@ fn frame(view: DVec3, far: Option<f64>) -> Frame {
             suns: vec![presets::earth_sun(direction(90.0, 25.0))],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         }),

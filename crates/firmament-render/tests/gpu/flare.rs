@@ -339,6 +339,7 @@ fn a_sun_on_the_horizon_is_half_hidden_by_the_planet() {
         suns: vec![firmament_core::atmosphere::presets::earth_sun(sun_direction)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };

@@ -6,6 +6,7 @@
 
 mod aerial_perspective;
 mod atmosphere;
+mod bodies;
 mod camera;
 mod cloud_density;
 mod cloud_slab;

@@ -49,6 +49,7 @@ fn tail_errors(atmosphere: Atmosphere) -> [(f64, f64); 2] {
         suns: vec![],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };

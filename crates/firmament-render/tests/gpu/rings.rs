@@ -28,6 +28,7 @@ fn dimmed_saturn_sky(sun: DVec3, rings: Option<Rings>, dimming: f64) -> Atmosphe
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings,
         surface: None,
     }

@@ -105,6 +105,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
             }],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -172,6 +173,7 @@ fn sun_colors_match_the_reference() {
             suns: vec![sun(120.0, elevation), sun(250.0, 40.0)],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -300,6 +302,7 @@ fn the_projection_matches_the_sky_the_gpu_draws() {
             suns,
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };
@@ -340,6 +343,7 @@ fn a_user_shader_reads_the_lighting() {
         suns: vec![sun(120.0, 25.0), sun(250.0, 8.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -486,6 +490,7 @@ fn no_suns_give_no_light() {
         suns: vec![sun(0.0, 30.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };
@@ -510,6 +515,7 @@ fn a_far_camera_gets_sunlight_only() {
         suns: vec![sun(90.0, 30.0)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };

@@ -47,6 +47,7 @@ fn earth_with(surface: Surface, sun: DVec3, air: f64) -> AtmosphereSky {
         suns: vec![presets::earth_sun(world_sun)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: Some(surface),
     }
@@ -234,6 +235,7 @@ fn a_surface_from_100_au_looks_as_from_1_au() {
         suns: vec![presets::earth_sun(sun)],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: Some(Surface::new(procedural::bake(5, 256, 128).expect("a map"))),
     };

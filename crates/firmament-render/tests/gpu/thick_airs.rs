@@ -108,6 +108,7 @@ fn sky(body: &Body, sun_elevation: f64) -> AtmosphereSky {
         suns: vec![(body.sun)(direction(0.0, sun_elevation))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     }

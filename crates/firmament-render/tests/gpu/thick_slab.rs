@@ -282,6 +282,7 @@ fn slab_sky(depth: f64, single_scattering_albedo: f64, sun_zenith: f64, albedo: 
         suns: vec![sun],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     }

@@ -63,6 +63,7 @@ pub(crate) fn sky(scene: &Scene) -> Result<AtmosphereSky, SceneError> {
         suns,
         clouds,
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: rings(scene)?,
         surface,
     };

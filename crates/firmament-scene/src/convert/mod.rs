@@ -10,6 +10,7 @@
 //! instant).
 
 pub(crate) mod atmosphere;
+pub(crate) mod bodies;
 pub(crate) mod flare;
 mod lunar_eclipse;
 mod night;
@@ -20,8 +21,8 @@ pub use atmosphere::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};
 pub use night::MOON_DISPLAY_RADIANCE;
 pub use time::{add_seconds, parse_date_time};
 
-use firmament_core::astro::CivilDateTime;
 use firmament_core::astro::spa::SolarPosition;
+use firmament_core::astro::{CivilDateTime, Instant};
 use firmament_core::atmosphere::Planet;
 use firmament_core::auto_exposure::{AutoExposure, ExposureMode};
 use firmament_core::camera::orientation_from_heading_pitch_roll;
@@ -140,15 +141,21 @@ impl Scene {
     /// the real sun stood. At the scene's own moment the clouds have not drifted (see
     /// [`frame_at`](Self::frame_at)).
     pub fn atmosphere_sky(&self) -> Result<AtmosphereSky, SceneError> {
-        let real_sun = match self.date_time()? {
-            Some(civil) => Some(self.real_sun(&self.instant(&civil)?)?),
+        let instant = match self.date_time()? {
+            Some(civil) => Some(self.instant(&civil)?),
             None => None,
         };
-        self.atmosphere_sky_with(real_sun.as_ref())
+        let real_sun = instant.as_ref().map(|i| self.real_sun(i)).transpose()?;
+        self.atmosphere_sky_with(real_sun.as_ref(), instant.as_ref())
     }
 
-    /// [`Self::atmosphere_sky`] with the first sun moved to `real_sun` (refracted, as seen).
-    fn atmosphere_sky_with(&self, real_sun: Option<&SolarPosition>) -> Result<AtmosphereSky, SceneError> {
+    /// [`Self::atmosphere_sky`] with the first sun moved to `real_sun` (refracted, as seen) and
+    /// the bodies where they stand at `instant`.
+    fn atmosphere_sky_with(
+        &self,
+        real_sun: Option<&SolarPosition>,
+        instant: Option<&Instant>,
+    ) -> Result<AtmosphereSky, SceneError> {
         let mut sky = atmosphere::sky(self)?;
         if let Some(position) = real_sun {
             let direction = position.direction_enu(true);
@@ -157,6 +164,7 @@ impl Scene {
                 None => sky.suns.push(self.planet.body.sun(direction)),
             }
         }
+        bodies::add_bodies(self, instant, &mut sky)?;
         Ok(sky)
     }
 
@@ -266,13 +274,15 @@ impl Scene {
         let sky = match self.sky.model {
             SkyModelName::Gradient => Sky::Gradient(self.gradient_sky(moment.clock, real_sun.as_ref())?),
             SkyModelName::Atmosphere => {
-                let mut sky = self.atmosphere_sky_with(real_sun.as_ref())?;
+                let mut sky = self.atmosphere_sky_with(real_sun.as_ref(), moment.instant.as_ref())?;
                 match self.atmosphere.model {
                     AtmosphereModelName::Physical => {
                         atmosphere::clouds::drift(&mut sky, self.wind_seconds(&moment)?);
                         if let Some(instant) = &moment.instant {
                             night::add_moonlight(self, instant, &camera, &mut sky);
-                            night::add_eclipsing_moon(self, instant, &camera, &mut sky);
+                            if !bodies::has_moon(self) {
+                                night::add_eclipsing_moon(self, instant, &camera, &mut sky);
+                            }
                         }
                         Sky::Atmosphere(sky)
                     }

@@ -170,6 +170,18 @@ pub(crate) fn night_layer(scene: &Scene, instant: &Instant, camera: &Camera, sky
         }
         Sky::Clear(_) => return NightLayer::default(),
     };
+    if let Sky::Atmosphere(sky) = sky {
+        // The bodies hide the stars behind them; the Moon as a body replaces its disc.
+        let hidden = |d: DVec3| {
+            sky.bodies
+                .iter()
+                .any(|b| b.eclipser().hides(camera.position, d.normalize()))
+        };
+        layer.stars.retain(|star| !hidden(star.direction));
+        if super::bodies::has_moon(scene) {
+            layer.moon = None;
+        }
+    }
     match &mut layer.moon {
         Some(moon) if t.moon => {
             moon.direction = refracted(scene, instant, moon.direction);
@@ -203,7 +215,7 @@ fn earth_shadow(
 /// A topocentric East-North-Up direction lifted by the refraction of `[time]`'s air at its
 /// elevation (SPA's formula, as for the sun): the Moon stands against the Sun as it does in
 /// space, and an eclipse's discs line up.
-fn refracted(scene: &Scene, instant: &Instant, direction: DVec3) -> DVec3 {
+pub(super) fn refracted(scene: &Scene, instant: &Instant, direction: DVec3) -> DVec3 {
     let e0 = direction.z.clamp(-1.0, 1.0).asin();
     let lift = refraction_deg(e0.to_degrees(), &scene.spa_input(instant)).to_radians();
     let horizontal = DVec3::new(direction.x, direction.y, 0.0).normalize_or(DVec3::Y);
@@ -308,6 +320,7 @@ mod tests {
             suns: vec![],
             clouds: Vec::new(),
             eclipsers: Vec::new(),
+            bodies: Vec::new(),
             rings: None,
             surface: None,
         };

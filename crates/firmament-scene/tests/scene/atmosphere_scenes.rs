@@ -1,10 +1,10 @@
 //! Atmosphere scenes: `[planet]`, `[atmosphere]` and `[[suns]]` from presets and overrides to the
 //! core's `AtmosphereSky`, and every rule they break naming the key.
 
+use crate::support::{message, preset, sky_of};
 use firmament_core::atmosphere::star::blackbody_spectrum;
 use firmament_core::atmosphere::{Phase, Wavelengths, presets};
-use firmament_core::frame::{AtmosphereSky, Sky};
-use firmament_scene::{Body, Scene, SceneError, SceneSource, load};
+use firmament_scene::{Body, SceneSource, load};
 use glam::DVec3;
 
 const ATMOSPHERE_PRESETS: [&str; 10] = [
@@ -19,22 +19,6 @@ const ATMOSPHERE_PRESETS: [&str; 10] = [
     "titan-surface",
     "titan-orbit",
 ];
-
-fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
-    let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();
-    load(SceneSource::Preset(name), None, &sets)
-}
-
-fn sky_of(scene: &Scene) -> AtmosphereSky {
-    match scene.frame_at(None).expect("frame").sky {
-        Sky::Atmosphere(sky) => sky,
-        Sky::Gradient(_) | Sky::Empirical(_) | Sky::Clear(_) => panic!("expected an atmosphere sky"),
-    }
-}
-
-fn message(result: Result<Scene, SceneError>) -> String {
-    result.expect_err("should fail").to_string()
-}
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300)

@@ -4,6 +4,7 @@
 
 mod assets;
 mod atmosphere_scenes;
+mod body_scenes;
 mod builder;
 mod cloud_scenes;
 mod document;

@@ -2,26 +2,10 @@
 //! `planet.wind_speed` (issue 28, surfaces): the built-in surfaces, maps next to the scene file,
 //! the medium's albedo becoming the surface's mean, and every bad value naming its key and rule.
 
+use crate::support::{message, preset, sky_of};
 use firmament_core::atmosphere::surface::{DEFAULT_WIND_SPEED_MPS, SurfaceMap};
-use firmament_core::frame::{AtmosphereSky, Sky};
-use firmament_scene::{Scene, SceneError, SceneSource, load, load_file};
+use firmament_scene::load_file;
 use image::{ImageFormat, Rgba, RgbaImage};
-
-fn preset(name: &str, sets: &[&str]) -> Result<Scene, SceneError> {
-    let sets: Vec<String> = sets.iter().map(|s| (*s).to_owned()).collect();
-    load(SceneSource::Preset(name), None, &sets)
-}
-
-fn sky_of(scene: &Scene) -> AtmosphereSky {
-    match scene.frame_at(None).expect("frame").sky {
-        Sky::Atmosphere(sky) => sky,
-        Sky::Gradient(_) | Sky::Empirical(_) | Sky::Clear(_) => panic!("expected an atmosphere sky"),
-    }
-}
-
-fn message(result: Result<Scene, SceneError>) -> String {
-    result.expect_err("should fail").to_string()
-}
 
 /// A PNG whose texel at column `x`, row `y` (row 0 at the top) is `rgba(x, y)`.
 fn png(width: u32, height: u32, rgba: impl Fn(u32, u32) -> [u8; 4]) -> Vec<u8> {

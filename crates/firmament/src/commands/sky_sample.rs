@@ -144,6 +144,7 @@ fn samples(args: &SkySampleArgs) -> Result<Samples> {
         suns: vec![sun],
         clouds: scene_sky.clouds,
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     };

@@ -308,6 +308,7 @@ impl AtmospherePass {
                     suns: sky.suns.clone(),
                     clouds: Vec::new(),
                     eclipsers: Vec::new(),
+                    bodies: Vec::new(),
                     rings: None,
                     surface: sky.surface.clone(),
                 };

@@ -13,6 +13,9 @@
 const MAX_SUNS: u32 = 8u;
 // How many eclipsing bodies (firmament_core::atmosphere::eclipse::MAX_ECLIPSERS).
 const MAX_ECLIPSERS: u32 = 4u;
+// How many bodies beside the planet (firmament_core::atmosphere::body::MAX_BODIES); body i is
+// also eclipser i.
+const MAX_BODIES: u32 = 4u;
 // The rings' optical depth table: entries (firmament_core::atmosphere::rings::RING_TABLE_ENTRIES)
 // and the vectors that hold them.
 const RING_TABLE_ENTRIES: u32 = 128u;
@@ -57,6 +60,16 @@ struct AtmosphereParams {
     lut_rows: array<vec4<f32>, 8>,         // a thick air's LUT_ROWS row altitudes (m), ground to lut.w
 }
 
+// An airless body beside the planet (atmosphere/bodies.wgsl; firmament_core::atmosphere::body).
+struct AtmosphereBody {
+    center: vec4<f32>, // xyz centre, planet frame (m); w = reflectance law (BODY_REFLECTANCE_*)
+    radii: vec4<f32>,  // xyz semi-axes along the body's axes (m); w unused
+    axis_x: vec4<f32>, // the body's axes in the planet frame (unit); w unused
+    axis_y: vec4<f32>,
+    axis_z: vec4<f32>,
+    albedo: vec4<f32>, // rgb normal albedo per model wavelength; w unused
+}
+
 struct AtmosphereSun {
     direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad), < 0: no disc drawn
     irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
@@ -81,7 +94,8 @@ struct AtmosphereView {
     // standard)
     aerial: vec4<f32>,
     // x = number of suns; y = number of eclipsing bodies; z = 1: the sky-view LUT spans the
-    // whole circle of azimuths (with eclipsers), 0: half of it; w unused
+    // whole circle of azimuths (with eclipsers), 0: half of it; w = number of bodies (the first
+    // w eclipsers)
     sun_count: vec4<u32>,
     suns: array<AtmosphereSun, MAX_SUNS>,
     eclipsers: array<vec4<f32>, MAX_ECLIPSERS>, // xyz centre, planet frame (m); w = radius (m)
@@ -95,6 +109,7 @@ struct AtmosphereView {
     // (0: `ground_albedo` everywhere, no water); y = the sea's mean square slope (Cox–Munk); zw
     // unused
     surface: vec4<f32>,
+    bodies: array<AtmosphereBody, MAX_BODIES>,
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).

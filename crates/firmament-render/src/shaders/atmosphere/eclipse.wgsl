@@ -42,24 +42,33 @@ fn eclipse_hidden_fraction(d: f32, k: f32, u: f32) -> f32 {
     return clamp((covered + partial) / total, 0.0, 1.0);
 }
 
+// The fraction of sun i's light that reaches planet-frame point p past the ball `body` (xyz
+// centre, planet frame (m); w = radius (m)): 1 in full sunlight, 0 in the umbra or inside it.
+fn eclipser_visible_fraction(p: vec3<f32>, i: u32, body: vec4<f32>) -> f32 {
+    let s = view.suns[i].direction.xyz;
+    let alpha = abs(view.suns[i].direction.w);
+    let to_body = body.xyz - p;
+    let distance = length(to_body);
+    if distance <= body.w {
+        return 0.0;
+    }
+    // atan2 keeps the precision acos loses for small angles.
+    let separation = atan2(length(cross(to_body, s)), dot(to_body, s));
+    let beta = asin(body.w / distance);
+    if separation >= alpha + beta {
+        return 1.0;
+    }
+    return 1.0 - eclipse_hidden_fraction(separation / alpha, beta / alpha, view.suns[i].irradiance.w);
+}
+
 // The fraction of sun i's light that reaches planet-frame point p past every eclipsing body
 // (their fractions multiply): 1 in full sunlight, 0 in the umbra.
 fn sun_visible_fraction(p: vec3<f32>, i: u32) -> f32 {
     var visible = 1.0;
-    let s = view.suns[i].direction.xyz;
-    let alpha = abs(view.suns[i].direction.w);
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
-        let body = view.eclipsers[e];
-        let to_body = body.xyz - p;
-        let distance = length(to_body);
-        if distance <= body.w {
+        visible *= eclipser_visible_fraction(p, i, view.eclipsers[e]);
+        if visible == 0.0 {
             return 0.0;
-        }
-        // atan2 keeps the precision acos loses for small angles.
-        let separation = atan2(length(cross(to_body, s)), dot(to_body, s));
-        let beta = asin(body.w / distance);
-        if separation < alpha + beta {
-            visible *= 1.0 - eclipse_hidden_fraction(separation / alpha, beta / alpha, view.suns[i].irradiance.w);
         }
     }
     return visible;

@@ -21,6 +21,7 @@
 #import atmosphere/view
 #import atmosphere/eclipse
 #import atmosphere/rings
+#import atmosphere/bodies
 #import atmosphere/sky_view
 #import generated/constants
 
@@ -121,18 +122,22 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`: the air
-// (and lit ground), and behind it the suns' discs; the rings in front of the air or between it and
-// the discs (atmosphere/rings.wgsl).
+// (and lit ground), and behind it the suns' discs or a body (atmosphere/bodies.wgsl); the rings
+// in front of the air or between it and what lies behind (atmosphere/rings.wgsl). A body in
+// front of the air hides it.
 fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
     let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
-    let on_a_disc = any(discs > vec3<f32>(0.0));
-    let rings = ring_sample(ray.origin, ray.direction, ray.near);
-    let behind_air = rings.hit || on_a_disc;
+    let body = body_sample(ray.origin, ray.direction, ray.near);
+    // What lies beyond the air along the ray: a body, or else the discs (hidden by the bodies).
+    let beyond = select(discs, body.radiance, body.hit);
+    var rings = ring_sample(ray.origin, ray.direction, ray.near);
+    // Rings behind a body are hidden by it.
+    rings.hit = rings.hit && !(body.hit && body.t < rings.t);
+    let behind_air = rings.hit || body.hit || any(discs > vec3<f32>(0.0));
     var radiance: vec3<f32>;
     // The air's transmittance along the ray, where something lies behind it.
     var through = vec3<f32>(0.0);
-    var hits_ground = false;
     if SKY_MODE == SKY_MODE_LUT {
         radiance = sky_radiance(ray.direction);
         // The transmittance only matters behind the air: most pixels skip its lookups.
@@ -151,21 +156,27 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
             through = mix(lut_transmittance(ray.direction), marched.transmittance, blend);
         }
     }
+    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    let misses_air = top.x > top.y || top.y <= ray.near;
+    if body.hit && (misses_air || body.t < top.x) {
+        // The body stands between the camera and the air: none of the air shows.
+        radiance = vec3<f32>(0.0);
+        through = vec3<f32>(1.0);
+    }
     if rings.hit {
         let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
-        let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
         let blocked = ground.x <= ground.y && ground.x > ray.near && ground.x < rings.t;
         let in_front = top.x > top.y || rings.t < top.x;
         if in_front {
-            // The rings first, the air (and the ground, or the discs) behind them.
-            radiance = rings.radiance + rings.transmittance * (radiance + discs * through);
+            // The rings first, the air (and the ground, a body or the discs) behind them.
+            radiance = rings.radiance + rings.transmittance * (radiance + beyond * through);
         } else if !blocked {
-            radiance += through * (rings.radiance + rings.transmittance * discs);
+            radiance += through * (rings.radiance + rings.transmittance * beyond);
         } else {
-            radiance += discs * through;
+            radiance += beyond * through;
         }
     } else {
-        radiance += discs * through;
+        radiance += beyond * through;
     }
     // The half-float HDR target ends at 65504; a sun disc in cd/m² is far beyond.
     return vec4<f32>(min(to_linear_srgb(radiance), vec3<f32>(HDR_MAX)), 1.0);

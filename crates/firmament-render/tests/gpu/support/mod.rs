@@ -87,6 +87,7 @@ pub(crate) fn street_sky(sun_azimuth: f64, sun_elevation: f64) -> firmament_core
         suns: vec![presets::earth_sun(direction(sun_azimuth, sun_elevation))],
         clouds: Vec::new(),
         eclipsers: Vec::new(),
+        bodies: Vec::new(),
         rings: None,
         surface: None,
     }

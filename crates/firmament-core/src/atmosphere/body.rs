@@ -1,0 +1,268 @@
+//! Bodies beside the planet: airless worlds (the Moon, a moon, an asteroid) drawn in the same
+//! view as the planet, lit by every sun, shadowed by the planet, by its rings and by each other,
+//! and hiding the suns, the air and the stars behind them.
+//!
+//! # Model
+//! A body is an opaque ellipsoid (semi-axes `radii` along its own x, y and polar z axis, posed
+//! by `orientation`) with one normal albedo per model wavelength and a reflectance law:
+//!
+//! - **Lambert**: `L = (A/π)·E·μ₀`;
+//! - **Lommel–Seeliger**, the single-scattering law of a dark, porous regolith whose brightness
+//!   does not fall towards the limb (Hapke, *Theory of Reflectance and Emittance Spectroscopy*,
+//!   2nd ed. 2012, §9.2; Fairbairn 2005, *JRASC* 99, 92): `L = (A/π)·E·2μ₀/(μ₀ + μ)`,
+//!
+//! `E` the sun's irradiance, `μ₀` and `μ` the cosines of the incidence and emergence angles and
+//! `A` the **normal albedo** (the reflectance at normal incidence seen face-on, relative to a
+//! white Lambert surface): both laws give `A·E/π` there, and for Lommel–Seeliger `A` is also the
+//! geometric albedo. The night sky's Moon disc uses the same normalisation
+//! ([`crate::sky::night::lommel_seeliger`]).
+//!
+//! Each sun reaches a point of a body dimmed by the planet (an opaque ball of the planet's
+//! volumetric mean radius: a lunar eclipse's umbra is black here, not red, since the light bent
+//! through the planet's air is left out), by the rings' shadow and by every other body, as
+//! [`crate::atmosphere::eclipse`] computes for the air. Light from the planet (planet-shine on
+//! a body's night side) is left out.
+
+use std::f64::consts::PI;
+
+use glam::{DQuat, DVec3};
+
+use crate::atmosphere::eclipse::Eclipser;
+use crate::atmosphere::rings::Rings;
+use crate::atmosphere::{Planet, Spectrum, Sun};
+use crate::error::CoreError;
+use crate::geometry::{Ellipsoid, Ray};
+
+/// The most bodies a sky takes (they are its eclipsers too, and the GPU's uniform holds this
+/// many: [`crate::atmosphere::eclipse::MAX_ECLIPSERS`]).
+pub const MAX_BODIES: usize = crate::atmosphere::eclipse::MAX_ECLIPSERS;
+
+/// The Moon's mean radius, metres (IAU WGCCRE 2015: 1737.4 km).
+pub const MOON_RADIUS_M: f64 = 1_737_400.0;
+
+/// The Moon's geometric albedo in V, 0.12 (Allen's *Astrophysical Quantities*, 4th ed. 2000,
+/// §12.5), which for the Lommel–Seeliger law is also its normal albedo. The Moon's slight
+/// reddening is left out, as it is for moonlight.
+pub const MOON_ALBEDO: f64 = 0.12;
+
+/// How a body's surface sends back the light it receives (the module docs give both laws).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reflectance {
+    /// A matte diffuser: radiance `∝ μ₀`.
+    #[default]
+    Lambert,
+    /// A dark regolith: radiance `∝ 2μ₀/(μ₀ + μ)`, as bright at the limb as at the centre.
+    LommelSeeliger,
+}
+
+impl Reflectance {
+    /// The code the shaders read (`BODY_REFLECTANCE_*` in the generated constants).
+    pub const fn gpu_code(self) -> u32 {
+        match self {
+            Self::Lambert => 0,
+            Self::LommelSeeliger => 1,
+        }
+    }
+
+    /// The law's factor for incidence cosine `mu0` and emergence cosine `mu`: 1 at normal
+    /// incidence seen face-on, 0 on the night side.
+    pub fn factor(self, mu0: f64, mu: f64) -> f64 {
+        if mu0 <= 0.0 {
+            return 0.0;
+        }
+        match self {
+            Self::Lambert => mu0,
+            Self::LommelSeeliger => 2.0 * mu0 / (mu0 + mu.max(0.0)),
+        }
+    }
+}
+
+/// An airless body in the view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Centre, metres, in the frame the sky is given in (the world frame of
+    /// [`AtmosphereSky`](crate::frame::AtmosphereSky)).
+    pub center: DVec3,
+    /// Semi-axes along the body's x, y and polar z axis, metres, each > 0.
+    pub radii: DVec3,
+    /// Rotation from the body's axes to that frame.
+    pub orientation: DQuat,
+    /// Normal albedo per model wavelength, each in [0, 1].
+    pub albedo: Spectrum,
+    /// How the surface sends the light back.
+    pub reflectance: Reflectance,
+}
+
+impl Body {
+    /// The Moon at `center`: a ball of its mean radius, its geometric albedo, Lommel–Seeliger.
+    pub fn moon(center: DVec3) -> Self {
+        Self {
+            center,
+            radii: DVec3::splat(MOON_RADIUS_M),
+            orientation: DQuat::IDENTITY,
+            albedo: Spectrum::splat(MOON_ALBEDO),
+            reflectance: Reflectance::LommelSeeliger,
+        }
+    }
+
+    /// Checks the rules: centre finite, semi-axes finite and > 0 m, orientation a finite unit
+    /// quaternion, albedo in [0, 1].
+    pub fn validate(&self) -> Result<(), CoreError> {
+        if !self.center.is_finite() {
+            return Err(invalid(
+                "body.center",
+                format!("{:?}", self.center.to_array()),
+                "must be finite metres",
+            ));
+        }
+        if !(self.radii.is_finite() && self.radii.min_element() > 0.0) {
+            return Err(invalid(
+                "body.radii",
+                format!("{:?}", self.radii.to_array()),
+                "every semi-axis must be a finite length > 0 m",
+            ));
+        }
+        if !(self.orientation.is_finite() && (self.orientation.length() - 1.0).abs() < 1e-6) {
+            return Err(invalid(
+                "body.orientation",
+                format!("{:?}", self.orientation),
+                "must be a unit quaternion",
+            ));
+        }
+        if !self.albedo.to_array().iter().all(|a| (0.0..=1.0).contains(a)) {
+            return Err(invalid(
+                "body.albedo",
+                format!("{:?}", self.albedo.to_array()),
+                "every value must be in [0, 1]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The radius of the ball of the same volume, metres: what the body hides of a sun.
+    pub fn mean_radius(&self) -> f64 {
+        self.radii.element_product().cbrt()
+    }
+
+    /// The body as an opaque ball that eclipses the suns ([`Self::mean_radius`]).
+    pub fn eclipser(&self) -> Eclipser {
+        Eclipser {
+            center: self.center,
+            radius_m: self.mean_radius(),
+        }
+    }
+
+    /// The same body with its pose moved from the world frame into `planet`'s frame.
+    pub fn to_planet_frame(&self, planet: &Planet) -> Self {
+        Self {
+            center: planet.to_planet_frame(self.center),
+            orientation: (planet.orientation.inverse() * self.orientation).normalize(),
+            ..self.clone()
+        }
+    }
+
+    /// The distance along `ray` (same frame as the body) to where it first meets the surface
+    /// ahead of its origin, if it does.
+    pub fn hit(&self, ray: &Ray) -> Option<f64> {
+        let local = Ray::new(
+            self.orientation.inverse() * (ray.origin - self.center),
+            self.orientation.inverse() * ray.direction,
+        )?;
+        let hits = Ellipsoid {
+            center: DVec3::ZERO,
+            radii: self.radii,
+        }
+        .intersect(&local)?;
+        (hits.near > 0.0).then_some(hits.near)
+    }
+
+    /// The outward unit normal at surface point `p` (same frame as the body).
+    pub fn normal_at(&self, p: DVec3) -> DVec3 {
+        let local = self.orientation.inverse() * (p - self.center);
+        (self.orientation * (local / (self.radii * self.radii))).normalize()
+    }
+
+    /// The radiance the surface point `p` (same frame as the body, on the surface) sends
+    /// towards a viewer along `to_viewer` (unit), lit by `suns` (whose irradiance reaches it
+    /// times `light(sun)`, the share the shadows leave): spectral, the suns' irradiance units per
+    /// steradian.
+    pub fn radiance(&self, p: DVec3, to_viewer: DVec3, suns: &[Sun], light: impl Fn(&Sun) -> f64) -> Spectrum {
+        let n = self.normal_at(p);
+        let mu = n.dot(to_viewer);
+        let received = suns.iter().fold(Spectrum::ZERO, |sum, sun| {
+            let factor = self.reflectance.factor(n.dot(sun.direction.normalize()), mu);
+            if factor > 0.0 {
+                sum + sun.irradiance * (factor * light(sun))
+            } else {
+                sum
+            }
+        });
+        received * self.albedo / PI
+    }
+}
+
+/// The share of `sun`'s light (its direction in the planet frame) that reaches the point `p` of
+/// body `index` of `bodies` (all in `planet`'s frame): past the planet, its `rings` and every
+/// other body.
+pub fn sunlight_share(
+    p: DVec3,
+    sun: &Sun,
+    planet: &Planet,
+    rings: Option<&Rings>,
+    bodies: &[Body],
+    index: usize,
+) -> f64 {
+    let globe = Eclipser {
+        center: DVec3::ZERO,
+        radius_m: planet.radii.element_product().cbrt(),
+    };
+    let others: f64 = bodies
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| *i != index)
+        .map(|(_, b)| b.eclipser().visible_fraction(p, sun))
+        .product();
+    let rings = rings.map_or(1.0, |r| r.transmittance(p, sun.direction.normalize()));
+    globe.visible_fraction(p, sun) * others * rings
+}
+
+/// Checks every body and that none overlaps the planet with its air, nor another body.
+pub fn validate_bodies(bodies: &[Body], planet: &Planet) -> Result<(), CoreError> {
+    if bodies.len() > MAX_BODIES {
+        return Err(invalid(
+            "bodies",
+            format!("{} bodies", bodies.len()),
+            "at most 4 bodies",
+        ));
+    }
+    let planet_reach = planet.radii.max_element() + planet.atmosphere_height;
+    for (i, body) in bodies.iter().enumerate() {
+        body.validate()?;
+        let reach = body.radii.max_element();
+        if body.center.distance(planet.center) <= planet_reach + reach {
+            return Err(invalid(
+                "body.center",
+                format!("{:?}", body.center.to_array()),
+                "must lie clear of the planet and its atmosphere (centres farther apart than their largest \
+                 radii, the atmosphere's height included)",
+            ));
+        }
+        for other in &bodies[..i] {
+            if body.center.distance(other.center) <= reach + other.radii.max_element() {
+                return Err(invalid(
+                    "body.center",
+                    format!("{:?}", body.center.to_array()),
+                    "must lie clear of every other body (centres farther apart than their largest radii)",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError {
+    CoreError::Invalid { field, value, rule }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,133 @@
+use super::*;
+
+fn sun(direction: DVec3) -> Sun {
+    Sun {
+        direction,
+        angular_radius: 0.004_65,
+        irradiance: Spectrum::new(1.5, 1.8, 2.0),
+        limb_darkening: 0.6,
+        disc: true,
+    }
+}
+
+/// The irradiance a far viewer along `to_viewer` gets from `body`, by summing its radiance over
+/// the disc on an `n × n` grid (orthographic: the viewer is far), per unit `1/D²`.
+fn disc_flux_times_d2(body: &Body, to_viewer: DVec3, suns: &[Sun], n: u32) -> Spectrum {
+    let (e1, e2) = to_viewer.any_orthonormal_pair();
+    let extent = body.radii.max_element() * 1.01;
+    let cell = 2.0 * extent / f64::from(n);
+    let mut sum = Spectrum::ZERO;
+    for j in 0..n {
+        for i in 0..n {
+            let x = (f64::from(i) + 0.5) * cell - extent;
+            let y = (f64::from(j) + 0.5) * cell - extent;
+            let origin = body.center + e1 * x + e2 * y + to_viewer * (4.0 * extent);
+            let ray = Ray::new(origin, -to_viewer).unwrap();
+            if let Some(t) = body.hit(&ray) {
+                sum += body.radiance(ray.at(t), to_viewer, suns, |_| 1.0) * (cell * cell);
+            }
+        }
+    }
+    sum
+}
+
+#[test]
+fn full_phase_flux_is_the_geometric_albedo_s() {
+    // Seen from the sun's side a Lambert sphere's geometric albedo is 2A/3 and a
+    // Lommel–Seeliger one's A: the viewer gets p·E·R² / D².
+    let s = sun(DVec3::new(0.3, -0.4, 0.866).normalize());
+    let radius = 1000.0;
+    for (law, p) in [(Reflectance::Lambert, 2.0 / 3.0), (Reflectance::LommelSeeliger, 1.0)] {
+        let body = Body {
+            center: DVec3::new(5.0, -7.0, 3.0),
+            radii: DVec3::splat(radius),
+            orientation: DQuat::from_rotation_x(0.4),
+            albedo: Spectrum::new(0.1, 0.2, 0.3),
+            reflectance: law,
+        };
+        let flux = disc_flux_times_d2(&body, s.direction, &[s], 600);
+        let expected = s.irradiance * body.albedo * (p * radius * radius);
+        let error = (flux / expected - 1.0).abs().max_element();
+        assert!(error < 2e-3, "{law:?}: {flux:?} vs {expected:?}");
+    }
+}
+
+#[test]
+fn the_laws_are_one_at_normal_incidence_seen_face_on() {
+    for law in [Reflectance::Lambert, Reflectance::LommelSeeliger] {
+        assert_eq!(law.factor(1.0, 1.0), 1.0);
+        assert_eq!(law.factor(-0.2, 1.0), 0.0);
+    }
+    assert_eq!(Reflectance::Lambert.factor(0.5, 0.1), 0.5);
+    assert!((Reflectance::LommelSeeliger.factor(0.5, 0.25) - 4.0 / 3.0).abs() < 1e-15);
+}
+
+#[test]
+fn a_posed_ellipsoid_is_hit_where_its_axes_say() {
+    // Polar axis (z, 3 m) turned onto the frame's y: a ray down y meets it 3 m from the centre.
+    let body = Body {
+        center: DVec3::new(10.0, 20.0, 30.0),
+        radii: DVec3::new(1.0, 2.0, 3.0),
+        orientation: DQuat::from_rotation_x(-std::f64::consts::FRAC_PI_2),
+        albedo: Spectrum::splat(0.5),
+        reflectance: Reflectance::Lambert,
+    };
+    let ray = Ray::new(DVec3::new(10.0, 30.0, 30.0), DVec3::NEG_Y).unwrap();
+    let t = body.hit(&ray).unwrap();
+    assert!((t - 7.0).abs() < 1e-9, "{t}");
+    assert!((body.normal_at(ray.at(t)) - DVec3::Y).length() < 1e-12);
+    // Behind the ray's origin: no hit.
+    let away = Ray::new(DVec3::new(10.0, 30.0, 30.0), DVec3::Y).unwrap();
+    assert_eq!(body.hit(&away), None);
+}
+
+#[test]
+fn the_planet_and_other_bodies_shade_a_body() {
+    let planet = Planet::sphere(6_371_000.0, 100_000.0);
+    let s = sun(DVec3::X);
+    let moon = Body::moon(DVec3::new(-384_400_000.0, 0.0, 0.0));
+    let near_side = moon.center + DVec3::X * MOON_RADIUS_M;
+    // Straight behind the planet: inside its umbra.
+    assert_eq!(
+        sunlight_share(near_side, &s, &planet, None, std::slice::from_ref(&moon), 0),
+        0.0
+    );
+    // Far off the shadow's axis: full sunlight; the body itself does not count.
+    let aside = Body::moon(DVec3::new(-384_400_000.0, 30_000_000.0, 0.0));
+    let p = aside.center + DVec3::X * MOON_RADIUS_M;
+    assert_eq!(
+        sunlight_share(p, &s, &planet, None, std::slice::from_ref(&aside), 0),
+        1.0
+    );
+    // Another body sunward on the line: its share is the eclipse's.
+    let blocker = Body::moon(p + DVec3::X * 1.0e8);
+    let bodies = [aside.clone(), blocker.clone()];
+    let expected = blocker.eclipser().visible_fraction(p, &s);
+    assert!(expected < 1.0);
+    assert_eq!(sunlight_share(p, &s, &planet, None, &bodies, 0), expected);
+}
+
+#[test]
+fn bodies_must_not_overlap_or_outnumber_the_limit() {
+    let planet = Planet::sphere(6_371_000.0, 100_000.0);
+    let far = |x: f64| Body::moon(DVec3::new(x, 0.0, 0.0));
+    assert!(validate_bodies(&[far(4.0e8), far(4.1e8)], &planet).is_ok());
+    let grazing = far(6_471_000.0 + MOON_RADIUS_M);
+    assert!(matches!(
+        validate_bodies(&[grazing], &planet),
+        Err(CoreError::Invalid {
+            field: "body.center",
+            ..
+        })
+    ));
+    let touching = [far(4.0e8), far(4.0e8 + MOON_RADIUS_M)];
+    assert!(validate_bodies(&touching, &planet).is_err());
+    let many: Vec<Body> = (0..5).map(|i| far(4.0e8 + f64::from(i) * 1.0e7)).collect();
+    assert!(matches!(
+        validate_bodies(&many, &planet),
+        Err(CoreError::Invalid { field: "bodies", .. })
+    ));
+    let mut dark = far(4.0e8);
+    dark.albedo = Spectrum::new(0.1, 1.2, 0.1);
+    assert!(validate_bodies(&[dark], &planet).is_err());
+}

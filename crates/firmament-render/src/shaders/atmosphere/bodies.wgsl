@@ -1,0 +1,86 @@
+// atmosphere/bodies.wgsl — airless bodies beside the planet: where a view ray meets one and the
+// light it sends back; the GPU twin of firmament_core::atmosphere::body, whose docs give the
+// model (an opaque ellipsoid, Lambert or Lommel–Seeliger, shadowed by the planet as a ball of
+// its volumetric mean radius, by the rings and by the other bodies).
+//
+// Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
+// also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
+// model wavelength, like the sky's.
+
+#import common/ellipsoid
+#import atmosphere/bindings
+#import atmosphere/common
+#import atmosphere/eclipse
+#import atmosphere/rings
+#import generated/constants
+
+// What a view ray meets of the bodies: the nearest surface ahead and its radiance.
+struct BodySample {
+    hit: bool,
+    t: f32,                // along the ray (m)
+    radiance: vec3<f32>,
+}
+
+// Rotation from the planet frame into body i's axes (the transpose of its axis columns).
+fn body_from_planet(i: u32) -> mat3x3<f32> {
+    let body = view.bodies[i];
+    return transpose(mat3x3<f32>(body.axis_x.xyz, body.axis_y.xyz, body.axis_z.xyz));
+}
+
+// The nearest body the ray o + t·d meets at t > near, lit.
+fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32) -> BodySample {
+    var out = BodySample(false, 0.0, vec3<f32>(0.0));
+    var nearest = 0u;
+    for (var i = 0u; i < min(view.sun_count.w, MAX_BODIES); i++) {
+        let body = view.bodies[i];
+        let to_local = body_from_planet(i);
+        let local = to_local * (o - body.center.xyz);
+        let hits = ellipsoid_hits(local, to_local * d, body.radii.xyz, ellipsoid_c(local, body.radii.xyz));
+        if hits.x <= hits.y && hits.x > near && (!out.hit || hits.x < out.t) {
+            out.hit = true;
+            out.t = hits.x;
+            nearest = i;
+        }
+    }
+    if out.hit {
+        out.radiance = body_radiance(nearest, o + out.t * d, d);
+    }
+    return out;
+}
+
+// The radiance body i's surface point p (planet frame) sends back along −d.
+fn body_radiance(i: u32, p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    let body = view.bodies[i];
+    let to_local = body_from_planet(i);
+    let local = to_local * (p - body.center.xyz);
+    let radii = body.radii.xyz;
+    let n = normalize(transpose(to_local) * (local / (radii * radii)));
+    let mu = max(dot(n, -d), 0.0);
+    let lommel_seeliger = u32(body.center.w) == BODY_REFLECTANCE_LOMMEL_SEELIGER;
+    var received = vec3<f32>(0.0);
+    for (var s = 0u; s < view.sun_count.x; s++) {
+        let to_sun = view.suns[s].direction.xyz;
+        let mu0 = dot(n, to_sun);
+        if mu0 <= 0.0 {
+            continue;
+        }
+        let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
+        let share = body_sunlight_share(p, s, i) * ring_transmittance(p, to_sun);
+        received += view.suns[s].irradiance.rgb * (law * share);
+    }
+    return received * body.albedo.rgb / PI;
+}
+
+// The share of sun s's light that reaches point p of body `own`: past the planet (a ball of its
+// volumetric mean radius) and every other eclipser.
+fn body_sunlight_share(p: vec3<f32>, s: u32, own: u32) -> f32 {
+    let radii = atmosphere.radii.xyz;
+    let planet_radius = exp((log(radii.x) + log(radii.y) + log(radii.z)) / 3.0);
+    var share = eclipser_visible_fraction(p, s, vec4<f32>(0.0, 0.0, 0.0, planet_radius));
+    for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
+        if e != own {
+            share *= eclipser_visible_fraction(p, s, view.eclipsers[e]);
+        }
+    }
+    return share;
+}

@@ -1,0 +1,218 @@
+//! GPU tests of the bodies beside the planet (`atmosphere/bodies.wgsl`) against closed forms and
+//! the f64 core (`firmament_core::atmosphere::body`, `eclipse`): a body's radiance by its
+//! reflectance law under an air too thin to matter, the planet's penumbra on it, which of the
+//! planet and a body hides the other, and a body seen from 1 AU and from 100 AU.
+
+use crate::support::{centre_radiance, far_view_difference, gpu};
+
+use firmament_core::atmosphere::body::{Body, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::{Planet, Spectrum, presets};
+use firmament_core::frame::AtmosphereSky;
+use glam::{DQuat, DVec3};
+
+const EARTH_RADIUS_M: f64 = 6_360_000.0;
+
+/// Earth's air a million times thinner on Bruneton's sphere (the world ENU at 0°, 0°: the
+/// planet's centre at (0, 0, −R)), one sun from world direction `sun`, and `bodies`.
+fn airless_with(sun: DVec3, bodies: Vec<Body>) -> AtmosphereSky {
+    let mut atmosphere = presets::earth();
+    atmosphere.planet = Planet::sphere(EARTH_RADIUS_M, 60_000.0).posed_at(0.0, 0.0);
+    for term in &mut atmosphere.medium.terms {
+        term.scattering *= 1e-6;
+        term.absorption *= 1e-6;
+    }
+    let mut sky = AtmosphereSky {
+        atmosphere,
+        suns: vec![presets::earth_sun(sun)],
+        clouds: Vec::new(),
+        eclipsers: Vec::new(),
+        bodies: Vec::new(),
+        rings: None,
+        surface: None,
+    };
+    for body in bodies {
+        sky.add_body(body);
+    }
+    sky.validate().expect("a valid sky");
+    sky
+}
+
+fn planet_center() -> DVec3 {
+    DVec3::new(0.0, 0.0, -EARTH_RADIUS_M)
+}
+
+/// Spectral radiance as the GPU's linear sRGB.
+fn as_srgb(sky: &AtmosphereSky, radiance: Spectrum) -> DVec3 {
+    let c = sky.atmosphere.spectral_conversion().linear_srgb(radiance);
+    DVec3::new(c.r, c.g, c.b)
+}
+
+/// The radiance of a ball of `radius` at `center` (normal albedo `albedo`, law `law`) at its
+/// point with outward normal `n`, seen from `eye`, lit by `sun` unshadowed: the law's closed form.
+fn closed_form(
+    sky: &AtmosphereSky,
+    center: DVec3,
+    radius: f64,
+    n: DVec3,
+    eye: DVec3,
+    albedo: f64,
+    law: Reflectance,
+) -> DVec3 {
+    let sun = &sky.suns[0];
+    let p = center + n * radius;
+    let mu0 = n.dot(sun.direction);
+    let mu = n.dot((eye - p).normalize());
+    let factor = match law {
+        Reflectance::Lambert => mu0,
+        Reflectance::LommelSeeliger => 2.0 * mu0 / (mu0 + mu),
+    };
+    as_srgb(sky, sun.irradiance * (albedo / std::f64::consts::PI * factor))
+}
+
+fn relative(got: DVec3, want: DVec3) -> f64 {
+    ((got - want) / want).abs().max_element()
+}
+
+/// A Lommel–Seeliger Moon and a Lambert ball 384 400 km out, seen from 60 000 km at points from
+/// the sub-solar point to near the limb and the terminator: the GPU within 1 % of the laws'
+/// closed forms (`(A/π)·E·μ₀` and `(A/π)·E·2μ₀/(μ₀ + μ)`).
+#[test]
+fn a_body_sends_back_what_its_reflectance_law_says() {
+    let mut gpu = gpu();
+    let sun = DVec3::new(0.3, -0.2, 0.5).normalize();
+    let moon_center = planet_center() + DVec3::new(384_400_000.0, 0.0, 0.0);
+    let ball_center = planet_center() + DVec3::new(0.0, 384_400_000.0, 0.0);
+    let ball = Body {
+        center: ball_center,
+        radii: DVec3::splat(1_000_000.0),
+        orientation: DQuat::from_rotation_y(0.3),
+        albedo: Spectrum::splat(0.4),
+        reflectance: Reflectance::Lambert,
+    };
+    let sky = airless_with(sun, vec![Body::moon(moon_center), ball.clone()]);
+    let cases = [
+        (moon_center, MOON_RADIUS_M, 0.12, Reflectance::LommelSeeliger),
+        (ball_center, 1_000_000.0, 0.4, Reflectance::Lambert),
+    ];
+    for (center, radius, albedo, law) in cases {
+        // The eye 60 000 km out, 40° from the sun about the body.
+        let axis = sun.cross(DVec3::Z).normalize();
+        let to_eye = DQuat::from_axis_angle(axis, 40f64.to_radians()) * sun;
+        let eye = center + to_eye * 60_000_000.0;
+        // Normals towards the sun, half-way to the eye, near the limb, near the terminator.
+        let limb = DQuat::from_axis_angle(axis, -75f64.to_radians()) * to_eye;
+        let terminator = DQuat::from_axis_angle(axis, 80f64.to_radians()) * sun;
+        let half_way = (sun + to_eye).normalize();
+        for n in [sun, half_way, limb, terminator] {
+            let target = center + n * radius;
+            let got = centre_radiance(&mut gpu, &sky, eye, target - eye);
+            let want = closed_form(&sky, center, radius, n, eye, albedo, law);
+            println!("{law:?} n·s {:.3}: gpu {got:.2} closed form {want:.2}", n.dot(sun));
+            assert!(relative(got, want) < 0.01, "{law:?} at n {n}: {got} vs {want}");
+        }
+    }
+}
+
+/// A Moon in the planet's penumbra, sun low behind the planet: a point where the planet hides
+/// part of the sun shows the unshadowed closed form times the core's visible fraction of the
+/// limb-darkened sun (firmament_core::atmosphere::eclipse), within 1 %; a point in the umbra
+/// is dark.
+#[test]
+fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
+    let mut gpu = gpu();
+    let sun = DVec3::X;
+    let distance = 384_400_000.0;
+    // Along the shadow, the umbra's radius is R − d·(α_sun·…): about 4 700 km here, and the
+    // penumbra reaches to about 8 000 km. The Moon's centre 6 400 km off the axis.
+    let moon_center = planet_center() + DVec3::new(-distance, 0.0, 6_400_000.0);
+    let sky = airless_with(sun, vec![Body::moon(moon_center)]);
+    let planet = &sky.atmosphere.planet;
+    let globe = firmament_core::atmosphere::Eclipser {
+        center: planet.center,
+        radius_m: EARTH_RADIUS_M,
+    };
+    // The eye on the sunward side, off the line so it does not look through the planet.
+    let eye = moon_center + DVec3::new(20_000_000.0, 0.0, 30_000_000.0);
+    let mut seen_partial = false;
+    for n in [
+        DVec3::new(1.0, 0.0, 0.6),
+        DVec3::new(1.0, 0.0, 0.1),
+        DVec3::new(1.0, 0.0, 1.2),
+    ] {
+        let n = n.normalize();
+        let p = moon_center + n * MOON_RADIUS_M;
+        let share = globe.visible_fraction(p, &sky.suns[0]);
+        seen_partial |= share > 0.05 && share < 0.95;
+        let lit = closed_form(
+            &sky,
+            moon_center,
+            MOON_RADIUS_M,
+            n,
+            eye,
+            0.12,
+            Reflectance::LommelSeeliger,
+        );
+        let want = lit * share;
+        let got = centre_radiance(&mut gpu, &sky, eye, p - eye);
+        println!("share {share:.4}: gpu {got:.3} want {want:.3}");
+        // Within 1 % of the full light (the share's own f32 error near the umbra is absolute).
+        assert!(
+            (got - want).abs().max_element() < 0.01 * lit.max_element(),
+            "share {share}: {got} vs {want}"
+        );
+    }
+    assert!(seen_partial, "no point of the test lay in the penumbra");
+}
+
+/// Depth between the planet and a body: a body behind the planet does not show through it (the
+/// pixel is the planet's, as without the body), and one in front of it hides the planet (the
+/// pixel is the body's closed form).
+#[test]
+fn the_planet_and_a_body_hide_each_other_by_distance() {
+    let mut gpu = gpu();
+    let sun = DVec3::new(0.0, -0.6, 0.8).normalize();
+    let eye = planet_center() + DVec3::new(0.0, 0.0, 40_000_000.0);
+    let towards_planet = planet_center() - eye;
+    // Behind: on the far side of the planet, on the line of sight.
+    let behind = Body::moon(planet_center() - DVec3::Z * 100_000_000.0);
+    let bare = airless_with(sun, Vec::new());
+    let with_behind = airless_with(sun, vec![behind]);
+    let planet_only = centre_radiance(&mut gpu, &bare, eye, towards_planet);
+    let through = centre_radiance(&mut gpu, &with_behind, eye, towards_planet);
+    assert!(planet_only.max_element() > 0.0, "the lit planet shows: {planet_only}");
+    assert!(
+        (through - planet_only).abs().max_element() <= 1e-4 * planet_only.max_element(),
+        "a body behind the planet showed through it: {through} vs {planet_only}"
+    );
+    // In front: between the eye and the planet.
+    let front_center = planet_center() + DVec3::Z * 20_000_000.0;
+    let with_front = airless_with(sun, vec![Body::moon(front_center)]);
+    let got = centre_radiance(&mut gpu, &with_front, eye, towards_planet);
+    let want = closed_form(
+        &with_front,
+        front_center,
+        MOON_RADIUS_M,
+        DVec3::Z,
+        eye,
+        0.12,
+        Reflectance::LommelSeeliger,
+    );
+    assert!(
+        relative(got, want) < 0.01,
+        "a body in front of the planet: {got} vs {want}"
+    );
+}
+
+/// The planet with a moon beside it seen from 1 AU and from 100 AU: the same picture within
+/// 1/255 of its brightest pixel (issue 28's precision check).
+#[test]
+fn a_body_seen_from_100_au_is_the_one_seen_from_1_au() {
+    let mut gpu = gpu();
+    let sun = DVec3::new(0.4, 0.5, 0.77).normalize();
+    let moon = Body::moon(planet_center() + DVec3::new(14_000_000.0, 0.0, 0.0));
+    let sky = airless_with(sun, vec![moon]);
+    let (worst, lit) = far_view_difference(&mut gpu, &sky, DVec3::new(0.1, 0.2, 1.0).normalize(), 18_000_000.0, 96);
+    println!("worst {worst:.5} of the brightest, {lit} lit pixels");
+    assert!(lit > 20, "too little of the scene lit: {lit}");
+    assert!(worst < 1.0 / 255.0, "1 AU vs 100 AU: {worst}");
+}

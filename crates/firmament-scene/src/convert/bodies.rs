@@ -1,0 +1,206 @@
+//! From `[[bodies]]` to the core's [`Body`]s, every value checked on the way (each error names
+//! the scene key): the Moon's preset, its place at the scene's date, the rules that keep bodies
+//! apart from the planet, from each other and from the camera.
+
+use firmament_core::astro::Instant;
+use firmament_core::astro::moon::moon_view;
+use firmament_core::atmosphere::body::{Body, MAX_BODIES, Reflectance, validate_bodies};
+use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
+use firmament_core::frame::AtmosphereSky;
+use glam::{DQuat, DVec3};
+
+use crate::checks::{check, positive};
+use crate::error::{SceneError, did_you_mean};
+use crate::model::{BodyEntry, Scene};
+
+/// The presets `bodies[i].preset` takes.
+const PRESETS: [&str; 1] = ["moon"];
+
+/// The laws `bodies[i].reflectance` takes.
+const REFLECTANCES: [&str; 2] = ["lambert", "lommel-seeliger"];
+
+/// Adds the scene's bodies to `sky` (as bodies and eclipsers), placing a `"moon"` without a
+/// `position` where the Moon stood at `instant`.
+pub(crate) fn add_bodies(scene: &Scene, instant: Option<&Instant>, sky: &mut AtmosphereSky) -> Result<(), SceneError> {
+    let entries = &scene.bodies;
+    check(
+        entries.len() <= MAX_BODIES,
+        "bodies",
+        format!("{} bodies", entries.len()),
+        &format!("at most {MAX_BODIES} bodies (a fixed limit of the renderer that no key or flag raises)"),
+    )?;
+    let bodies = entries
+        .iter()
+        .enumerate()
+        .map(|(i, entry)| body(i, entry, scene, instant, sky))
+        .collect::<Result<Vec<_>, _>>()?;
+    check(
+        bodies.len() + sky.eclipsers.len() <= MAX_ECLIPSERS,
+        "bodies",
+        format!(
+            "{} bodies and {} other eclipsing bodies",
+            bodies.len(),
+            sky.eclipsers.len()
+        ),
+        &format!("at most {MAX_ECLIPSERS} eclipsing bodies in all"),
+    )?;
+    if let Err(error) = validate_bodies(&bodies, &sky.atmosphere.planet) {
+        // Name the entry the core's rule is about: the first that breaks it on its own terms.
+        let i = (0..bodies.len())
+            .find(|&i| validate_bodies(&bodies[..=i], &sky.atmosphere.planet).is_err())
+            .unwrap_or(0);
+        let rule = match error {
+            firmament_core::CoreError::Invalid { rule, .. } => rule.to_owned(),
+            other => other.to_string(),
+        };
+        return Err(SceneError::invalid(
+            format!("bodies[{i}].position"),
+            format!("{:?}", bodies[i].center.to_array()),
+            rule,
+        ));
+    }
+    let camera = DVec3::from_array(scene.camera.position);
+    for (i, body) in bodies.iter().enumerate() {
+        let local = body.orientation.inverse() * (camera - body.center);
+        check(
+            (local / body.radii).length() > 1.0,
+            &format!("bodies[{i}].position"),
+            format!("{:?}", body.center.to_array()),
+            "must keep the body clear of the camera (camera.position is inside it)",
+        )?;
+    }
+    for body in bodies {
+        sky.add_body(body);
+    }
+    Ok(())
+}
+
+/// Whether the scene has the Moon as a body (then the night sky's disc of the Moon and its
+/// eclipser are left out: the body is both).
+pub(crate) fn has_moon(scene: &Scene) -> bool {
+    scene.bodies.iter().any(|b| b.preset.as_deref() == Some("moon"))
+}
+
+fn body(
+    i: usize,
+    entry: &BodyEntry,
+    scene: &Scene,
+    instant: Option<&Instant>,
+    sky: &AtmosphereSky,
+) -> Result<Body, SceneError> {
+    let key = |field: &str| format!("bodies[{i}].{field}");
+    let preset = match entry.preset.as_deref() {
+        None => None,
+        Some("moon") => Some("moon"),
+        Some(other) => return Err(unknown_name(&key("preset"), other, &PRESETS)),
+    };
+    let center = match (entry.position, preset, instant) {
+        (Some(p), _, _) => {
+            let p = DVec3::from_array(p);
+            check(
+                p.is_finite(),
+                &key("position"),
+                format!("{:?}", p.to_array()),
+                "must be 3 finite numbers of metres",
+            )?;
+            p
+        }
+        (None, Some("moon"), Some(instant)) => {
+            // Topocentric from the world frame's origin (the surface point under the camera),
+            // lifted by refraction as the suns are, so an eclipse's discs line up.
+            let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
+            let view = moon_view(instant, lat, lon, 0.0);
+            super::night::refracted(scene, instant, view.direction) * (view.equatorial.distance_km * 1000.0)
+        }
+        (None, Some(_), None) => {
+            return Err(SceneError::invalid(
+                key("position"),
+                "(none)",
+                "must be given without a date (time.date_time), which places the Moon",
+            ));
+        }
+        (None, _, _) => {
+            return Err(SceneError::invalid(
+                key("position"),
+                "(none)",
+                "must be given: [east, north, up] in metres",
+            ));
+        }
+    };
+    let mut body = Body::moon(center);
+    if preset.is_none() {
+        body.reflectance = Reflectance::Lambert;
+        if entry.radius.is_none() && entry.radii.is_none() {
+            return Err(SceneError::invalid(
+                key("radius"),
+                "(none)",
+                "must be given (or radii, or preset = \"moon\")",
+            ));
+        }
+    }
+    match (entry.radius, entry.radii) {
+        (Some(_), Some(_)) => {
+            return Err(SceneError::invalid(
+                key("radii"),
+                "(both)",
+                format!("give radius or radii, not both ({})", key("radius")),
+            ));
+        }
+        (Some(r), None) => {
+            positive(&key("radius"), r, " m")?;
+            body.radii = DVec3::splat(r);
+        }
+        (None, Some(radii)) => {
+            for (axis, r) in ["a", "b", "c"].iter().zip(radii) {
+                positive(&format!("{} ({axis})", key("radii")), r, " m")?;
+            }
+            body.radii = DVec3::from_array(radii);
+        }
+        (None, None) => {}
+    }
+    let pole = match entry.pole {
+        Some(pole) => {
+            let pole = DVec3::from_array(pole);
+            check(
+                pole.is_finite() && pole.length() > 0.0,
+                &key("pole"),
+                format!("{:?}", pole.to_array()),
+                "must be a finite direction, not [0, 0, 0]",
+            )?;
+            pole.normalize()
+        }
+        None => sky.atmosphere.planet.orientation * DVec3::Z,
+    };
+    body.orientation = DQuat::from_rotation_arc(DVec3::Z, pole);
+    if let Some(albedo) = entry.albedo {
+        let a = albedo.0;
+        check(
+            a.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v)),
+            &key("albedo"),
+            format!("{a:?}"),
+            "every value must be in [0, 1]",
+        )?;
+        body.albedo = albedo.spectrum();
+    }
+    if let Some(name) = &entry.reflectance {
+        body.reflectance = match name.as_str() {
+            "lambert" => Reflectance::Lambert,
+            "lommel-seeliger" => Reflectance::LommelSeeliger,
+            other => return Err(unknown_name(&key("reflectance"), other, &REFLECTANCES)),
+        };
+    }
+    Ok(body)
+}
+
+/// `key = "given"` is none of `names`: the error lists them and suggests the closest.
+fn unknown_name(key: &str, given: &str, names: &[&str]) -> SceneError {
+    let hint = did_you_mean(given, names.iter().copied())
+        .map(|best| format!(" (did you mean `{best}`?)"))
+        .unwrap_or_default();
+    let list = names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(" or ");
+    SceneError::invalid(key, format!("\"{given}\""), format!("must be {list}{hint}"))
+}

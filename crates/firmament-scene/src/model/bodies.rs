@@ -1,0 +1,39 @@
+//! `[[bodies]]`: airless bodies drawn beside the planet (`sky.model = "atmosphere"`), up to 4
+//! ([`firmament_core::atmosphere::body`]).
+
+use serde::Deserialize;
+
+use crate::spectrum::SceneSpectrum;
+
+/// One `[[bodies]]` entry. Either `preset` or a size (`radius` or `radii`) is required; the
+/// others take the defaults noted.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyEntry {
+    /// `"moon"`: the Moon's mean radius (1737.4 km), geometric albedo (0.12) and the
+    /// Lommel–Seeliger law; with a date (`time.date_time`) and no `position` it stands where the
+    /// Moon stood then. Keys given beside it replace the preset's.
+    #[serde(default)]
+    pub preset: Option<String>,
+    /// Centre, metres, in the scene's world frame (east, north, up from the point of
+    /// `[planet]`'s latitude and longitude on its surface, like `camera.position`).
+    #[serde(default)]
+    pub position: Option<[f64; 3]>,
+    /// Radius of a round body, metres, > 0.
+    #[serde(default)]
+    pub radius: Option<f64>,
+    /// Semi-axes `[a, b, c]` of an ellipsoidal body, metres, each > 0: `c` along its pole.
+    #[serde(default)]
+    pub radii: Option<[f64; 3]>,
+    /// World direction of the body's pole (its `c` axis); default the planet's polar axis.
+    #[serde(default)]
+    pub pole: Option<[f64; 3]>,
+    /// Normal albedo, a number or `[a, b, c]` at the model wavelengths, in [0, 1] (default 0.12,
+    /// the Moon's).
+    #[serde(default)]
+    pub albedo: Option<SceneSpectrum>,
+    /// `"lambert"` (a matte diffuser) or `"lommel-seeliger"` (a dark regolith, as bright at the
+    /// limb as at the centre); default `"lambert"` (`"lommel-seeliger"` for the Moon).
+    #[serde(default)]
+    pub reflectance: Option<String>,
+}

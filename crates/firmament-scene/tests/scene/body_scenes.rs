@@ -1,0 +1,136 @@
+//! `[[bodies]]` (issue 28, several bodies): the Moon's preset, its place at the scene's date,
+//! bodies as eclipsers, the night sky's Moon disc giving way to the body, and every bad value
+//! naming its key and rule.
+
+use crate::support::{message, preset, sky_of};
+use firmament_core::atmosphere::body::{MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::eclipse::visible_fraction;
+use firmament_core::frame::Sky;
+use glam::DVec3;
+
+#[test]
+fn earth_moon_has_the_moon_as_a_body_and_an_eclipser() {
+    let sky = sky_of(&preset("earth-moon", &[]).expect("valid"));
+    assert_eq!(sky.bodies.len(), 1);
+    let moon = &sky.bodies[0];
+    assert_eq!(moon.radii, DVec3::splat(MOON_RADIUS_M));
+    assert_eq!(moon.albedo, DVec3::splat(MOON_ALBEDO));
+    assert_eq!(moon.reflectance, Reflectance::LommelSeeliger);
+    assert_eq!(sky.eclipsers, vec![moon.eclipser()]);
+    // Keys beside the preset replace its values; an ellipsoid takes `radii`.
+    let sky = sky_of(
+        &preset(
+            "earth-moon",
+            &[
+                "bodies.0.albedo=[0.1, 0.12, 0.14]",
+                "bodies.0.reflectance=\"lambert\"",
+                "bodies.0.radii=[1.8e6, 1.7e6, 1.6e6]",
+            ],
+        )
+        .expect("valid"),
+    );
+    assert_eq!(sky.bodies[0].albedo, DVec3::new(0.1, 0.12, 0.14));
+    assert_eq!(sky.bodies[0].reflectance, Reflectance::Lambert);
+    assert_eq!(sky.bodies[0].radii, DVec3::new(1.8e6, 1.7e6, 1.6e6));
+}
+
+/// The Moon asked for as a body at eclipse-2024's date stands where the ephemeris puts it (where
+/// the scene's eclipsing Moon stands without bodies, within 1 km), in front of the Sun: Dallas
+/// is still in totality, and the night sky draws no second Moon.
+#[test]
+fn the_moon_at_a_date_stands_where_the_ephemeris_puts_it() {
+    let plain = sky_of(&preset("eclipse-2024", &[]).expect("valid"));
+    let scene = preset("eclipse-2024", &["bodies=[{ preset = \"moon\" }]"]).expect("valid");
+    let frame = scene.frame_at(None).expect("frame");
+    let Sky::Atmosphere(sky) = &frame.sky else {
+        panic!("expected an atmosphere sky")
+    };
+    assert_eq!(sky.bodies.len(), 1);
+    assert_eq!(sky.eclipsers.len(), 1, "the body is the only eclipsing Moon");
+    let moon = sky.bodies[0].center;
+    let apart = moon.distance(plain.eclipsers[0].center);
+    assert!(apart < 1000.0, "{apart} m from the eclipsing Moon's centre");
+    let eye = frame.camera.position;
+    let sun = sky.suns[0];
+    assert_eq!(visible_fraction(eye, &sun, &sky.eclipsers), 0.0, "totality");
+    assert!(
+        frame.night.moon.is_none(),
+        "the night sky's Moon disc gives way to the body"
+    );
+}
+
+#[test]
+fn bad_bodies_name_the_key_and_the_rule() {
+    let far = "position = [4.0e8, 0.0, 0.0]";
+    let moon = |extra: &str| format!("{{ preset = \"moon\", {far}{extra} }}");
+    let five = vec![0, 1, 2, 3, 4]
+        .into_iter()
+        .map(|i| format!("{{ preset = \"moon\", position = [4.0e8, {}.0e7, 0.0] }}", i))
+        .collect::<Vec<_>>()
+        .join(", ");
+    for (body_list, key, rule) in [
+        (format!("[{five}]"), "bodies", "at most 4"),
+        (
+            "[{ preset = \"moon\", position = [3.0e6, 0.0, 0.0] }]".to_owned(),
+            "bodies[0].position",
+            "clear of the planet",
+        ),
+        (
+            format!("[{}, {{ preset = \"moon\", position = [4.01e8, 0.0, 0.0] }}]", moon("")),
+            "bodies[1].position",
+            "clear of every other body",
+        ),
+        (format!("[{}]", moon(", radius = -1.0")), "bodies[0].radius", "> 0"),
+        (
+            format!("[{}]", moon(", radius = 1.0, radii = [1.0, 1.0, 1.0]")),
+            "bodies[0].radii",
+            "not both",
+        ),
+        (
+            format!("[{}]", moon(", radii = [1.0e6, 0.0, 1.0e6]")),
+            "bodies[0].radii (b)",
+            "> 0",
+        ),
+        (format!("[{}]", moon(", albedo = 1.5")), "bodies[0].albedo", "[0, 1]"),
+        (
+            format!("[{}]", moon(", reflectance = \"lommel\"")),
+            "bodies[0].reflectance",
+            "did you mean `lommel-seeliger`",
+        ),
+        (
+            format!("[{}]", moon(", pole = [0.0, 0.0, 0.0]")),
+            "bodies[0].pole",
+            "not [0, 0, 0]",
+        ),
+        (
+            "[{ preset = \"mon\", position = [4.0e8, 0.0, 0.0] }]".to_owned(),
+            "bodies[0].preset",
+            "did you mean `moon`",
+        ),
+        (
+            "[{ preset = \"moon\" }]".to_owned(),
+            "bodies[0].position",
+            "without a date",
+        ),
+        (
+            "[{ position = [4.0e8, 0.0, 0.0] }]".to_owned(),
+            "bodies[0].radius",
+            "must be given",
+        ),
+        (
+            "[{ preset = \"moon\", position = [0.0, 0.0, 400000.0] }]".to_owned(),
+            "bodies[0].position",
+            "clear of the planet",
+        ),
+        (
+            "[{ preset = \"moon\", position = [0.0, 0.0, 1.0e8] }]".to_owned(),
+            "bodies[0].position",
+            "clear of the camera",
+        ),
+    ] {
+        let set = format!("bodies={body_list}");
+        let sets = [set.as_str(), "camera.position=[0.0, 0.0, 1.0e8]"];
+        let text = message(preset("earth-orbit", &sets));
+        assert!(text.contains(key) && text.contains(rule), "{set}: {text}");
+    }
+}
