@@ -77,6 +77,26 @@ impl Reflectance {
     }
 }
 
+/// What a body's surface looks like beyond its normal albedo.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BodySurface {
+    /// The albedo everywhere.
+    #[default]
+    Uniform,
+    /// The Moon's near-side maria on brighter highlands ([`maria`]), in the body's axes.
+    LunarMaria,
+}
+
+impl BodySurface {
+    /// The code the shaders read (`BODY_SURFACE_*` in the generated constants).
+    pub const fn gpu_code(self) -> u32 {
+        match self {
+            Self::Uniform => 0,
+            Self::LunarMaria => 1,
+        }
+    }
+}
+
 /// An airless body in the view.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
@@ -91,10 +111,14 @@ pub struct Body {
     pub albedo: Spectrum,
     /// How the surface sends the light back.
     pub reflectance: Reflectance,
+    /// The pattern over the albedo.
+    pub surface: BodySurface,
 }
 
 impl Body {
-    /// The Moon at `center`: a ball of its mean radius, its geometric albedo, Lommel–Seeliger.
+    /// The Moon at `center`: a ball of its mean radius, its geometric albedo, Lommel–Seeliger,
+    /// its maria (the near side, `x` of its axes, faces along the frame's x: pose it with
+    /// `orientation`).
     pub fn moon(center: DVec3) -> Self {
         Self {
             center,
@@ -102,6 +126,7 @@ impl Body {
             orientation: DQuat::IDENTITY,
             albedo: Spectrum::splat(MOON_ALBEDO),
             reflectance: Reflectance::LommelSeeliger,
+            surface: BodySurface::LunarMaria,
         }
     }
 
@@ -182,6 +207,18 @@ impl Body {
         (self.orientation * (local / (self.radii * self.radii))).normalize()
     }
 
+    /// The normal albedo at surface point `p` (same frame as the body): [`Self::albedo`] times
+    /// the surface's pattern.
+    pub fn albedo_at(&self, p: DVec3) -> Spectrum {
+        match self.surface {
+            BodySurface::Uniform => self.albedo,
+            BodySurface::LunarMaria => {
+                let local = self.orientation.inverse() * self.normal_at(p);
+                self.albedo * maria::albedo_factor(local)
+            }
+        }
+    }
+
     /// The radiance the surface point `p` (same frame as the body, on the surface) sends
     /// towards a viewer along `to_viewer` (unit), lit by `suns` (whose irradiance reaches it
     /// times `light(sun)`, the share the shadows leave): spectral, the suns' irradiance units per
@@ -197,7 +234,7 @@ impl Body {
                 sum
             }
         });
-        received * self.albedo / PI
+        received * self.albedo_at(p) / PI
     }
 }
 
@@ -263,6 +300,8 @@ pub fn validate_bodies(bodies: &[Body], planet: &Planet) -> Result<(), CoreError
 fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError {
     CoreError::Invalid { field, value, rule }
 }
+
+pub mod maria;
 
 #[cfg(test)]
 mod tests;

@@ -151,7 +151,8 @@ pub(crate) struct OrderSumsGpu {
 pub struct AtmosphereBodyUniform {
     /// Centre in the planet frame (m); `w` = the reflectance law ([`Reflectance::gpu_code`](firmament_core::atmosphere::body::Reflectance::gpu_code)).
     pub center: [f32; 4],
-    /// Semi-axes along the body's axes (m).
+    /// Semi-axes along the body's axes (m); `w` = the surface
+    /// ([`BodySurface::gpu_code`](firmament_core::atmosphere::body::BodySurface::gpu_code)).
     pub radii: [f32; 4],
     /// The body's x axis in the planet frame.
     pub axis_x: [f32; 4],
@@ -170,7 +171,7 @@ impl AtmosphereBodyUniform {
         let axes = DMat3::from_quat(local.orientation);
         Self {
             center: vec3_w(local.center, f64::from(local.reflectance.gpu_code())),
-            radii: vec3_w(local.radii, 0.0),
+            radii: vec3_w(local.radii, f64::from(local.surface.gpu_code())),
             axis_x: vec3_w(axes.x_axis, 0.0),
             axis_y: vec3_w(axes.y_axis, 0.0),
             axis_z: vec3_w(axes.z_axis, 0.0),

@@ -121,6 +121,11 @@ codes! {
     BODY_REFLECTANCE_LAMBERT = 0;
     /// A body's reflectance law: Lommel–Seeliger.
     BODY_REFLECTANCE_LOMMEL_SEELIGER = 1;
+    /// A body's surface (`AtmosphereBodyUniform::radii.w`, in an `f32`; `firmament_core`'s
+    /// `BodySurface::gpu_code`): the albedo everywhere.
+    BODY_SURFACE_UNIFORM = 0;
+    /// A body's surface: the Moon's maria.
+    BODY_SURFACE_LUNAR_MARIA = 1;
 }
 
 /// The WGSL of the shader module `generated/constants`: every code as a `const` of its Rust name,
@@ -138,6 +143,7 @@ pub fn wgsl() -> String {
         text.push_str(&format!("const {name}: u32 = {value}u;\n"));
     }
     text.push_str(&eclipse_quadrature_wgsl());
+    text.push_str(&lunar_maria_wgsl());
     text.push_str(&format!(
         "\n// How far apart, in column cells, a ray across a broken cloud layer meets independent\n\
          // columns (firmament_core::atmosphere::clouds).\n\
@@ -145,6 +151,33 @@ pub fn wgsl() -> String {
         firmament_core::atmosphere::clouds::COLUMN_SPACING_CELLS as f32
     ));
     text
+}
+
+/// The Moon's maria (`atmosphere/bodies.wgsl`), from the core's table
+/// ([`firmament_core::atmosphere::body::maria`]): each patch's centre in the body's axes and its
+/// angular radius, and the pattern's factors.
+fn lunar_maria_wgsl() -> String {
+    use firmament_core::atmosphere::body::maria::{EDGE_INNER, EDGE_OUTER, HIGHLAND_FACTOR, MARE_FACTOR, MARIA};
+    let patches = MARIA
+        .iter()
+        .map(|m| {
+            let c = m.center().as_vec3();
+            format!("vec4<f32>({:e}, {:e}, {:e}, {:e})", c.x, c.y, c.z, m.angular_radius() as f32)
+        })
+        .collect::<Vec<_>>()
+        .join(",\n    ");
+    let n = MARIA.len();
+    format!(
+        "\n// The Moon's maria: centre in the body's axes (xyz), angular radius (w, rad); the albedo's\n\
+         // factor on highlands and maria, and the rims (firmament_core::atmosphere::body::maria).\n\
+         const LUNAR_MARIA_COUNT: u32 = {n}u;\n\
+         const LUNAR_MARIA: array<vec4<f32>, {n}> = array<vec4<f32>, {n}>(\n    {patches}\n);\n\
+         const LUNAR_HIGHLAND_FACTOR: f32 = {:?};\n\
+         const LUNAR_MARE_FACTOR: f32 = {:?};\n\
+         const LUNAR_EDGE_INNER: f32 = {:?};\n\
+         const LUNAR_EDGE_OUTER: f32 = {:?};\n",
+        HIGHLAND_FACTOR as f32, MARE_FACTOR as f32, EDGE_INNER as f32, EDGE_OUTER as f32
+    )
 }
 
 /// The Gauss–Legendre rule of the eclipse quadrature (`atmosphere/eclipse.wgsl`), from the core's
@@ -194,6 +227,9 @@ mod tests {
         use firmament_core::atmosphere::body::Reflectance;
         assert_eq!(Reflectance::Lambert.gpu_code(), BODY_REFLECTANCE_LAMBERT);
         assert_eq!(Reflectance::LommelSeeliger.gpu_code(), BODY_REFLECTANCE_LOMMEL_SEELIGER);
+        use firmament_core::atmosphere::body::BodySurface;
+        assert_eq!(BodySurface::Uniform.gpu_code(), BODY_SURFACE_UNIFORM);
+        assert_eq!(BodySurface::LunarMaria.gpu_code(), BODY_SURFACE_LUNAR_MARIA);
     }
 
     #[test]

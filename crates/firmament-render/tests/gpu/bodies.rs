@@ -5,7 +5,8 @@
 
 use crate::support::{centre_radiance, far_view_difference, gpu};
 
-use firmament_core::atmosphere::body::{Body, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::body::maria::{MARIA, albedo_factor};
+use firmament_core::atmosphere::body::{Body, BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
 use firmament_core::atmosphere::{Planet, Spectrum, presets};
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -35,6 +36,14 @@ fn airless_with(sun: DVec3, bodies: Vec<Body>) -> AtmosphereSky {
     }
     sky.validate().expect("a valid sky");
     sky
+}
+
+/// The Moon without its maria: its albedo 0.12 everywhere.
+fn plain_moon(center: DVec3) -> Body {
+    Body {
+        surface: BodySurface::Uniform,
+        ..Body::moon(center)
+    }
 }
 
 fn planet_center() -> DVec3 {
@@ -88,8 +97,9 @@ fn a_body_sends_back_what_its_reflectance_law_says() {
         orientation: DQuat::from_rotation_y(0.3),
         albedo: Spectrum::splat(0.4),
         reflectance: Reflectance::Lambert,
+        surface: BodySurface::Uniform,
     };
-    let sky = airless_with(sun, vec![Body::moon(moon_center), ball.clone()]);
+    let sky = airless_with(sun, vec![plain_moon(moon_center), ball.clone()]);
     let cases = [
         (moon_center, MOON_RADIUS_M, 0.12, Reflectance::LommelSeeliger),
         (ball_center, 1_000_000.0, 0.4, Reflectance::Lambert),
@@ -125,7 +135,7 @@ fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
     // Along the shadow, the umbra's radius is R − d·(α_sun·…): about 4 700 km here, and the
     // penumbra reaches to about 8 000 km. The Moon's centre 6 400 km off the axis.
     let moon_center = planet_center() + DVec3::new(-distance, 0.0, 6_400_000.0);
-    let sky = airless_with(sun, vec![Body::moon(moon_center)]);
+    let sky = airless_with(sun, vec![plain_moon(moon_center)]);
     let planet = &sky.atmosphere.planet;
     let globe = firmament_core::atmosphere::Eclipser {
         center: planet.center,
@@ -164,6 +174,40 @@ fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
     assert!(seen_partial, "no point of the test lay in the penumbra");
 }
 
+/// The Moon's near side, full and face-on: points in Mare Tranquillitatis and Mare Imbrium, on a
+/// rim of Mare Serenitatis and in the highlands by Tycho show the Lommel–Seeliger closed form
+/// with the core's albedo pattern (firmament_core::atmosphere::body::maria) within 1 %.
+#[test]
+fn the_moon_shows_its_maria() {
+    let mut gpu = gpu();
+    let sun = DVec3::new(1.0, 0.3, 0.2).normalize();
+    let center = planet_center() + DVec3::new(384_400_000.0, 0.0, 0.0);
+    // The near side (the body's +x) towards +x, where the eye is.
+    let sky = airless_with(sun, vec![Body::moon(center)]);
+    let eye = center + DVec3::X * 60_000_000.0;
+    let serenitatis = &MARIA[1];
+    let rim = DQuat::from_axis_angle(DVec3::Y, -serenitatis.angular_radius()) * serenitatis.center();
+    let tycho = DVec3::new(
+        0.72 * 11.2f64.to_radians().cos(),
+        -0.72 * 11.2f64.to_radians().sin(),
+        -0.686,
+    )
+    .normalize();
+    for (name, n) in [
+        ("Tranquillitatis", MARIA[2].center()),
+        ("Imbrium", MARIA[0].center()),
+        ("Serenitatis' rim", rim),
+        ("by Tycho", tycho),
+    ] {
+        let albedo = MOON_ALBEDO * albedo_factor(n);
+        let target = center + n * MOON_RADIUS_M;
+        let got = centre_radiance(&mut gpu, &sky, eye, target - eye);
+        let want = closed_form(&sky, center, MOON_RADIUS_M, n, eye, albedo, Reflectance::LommelSeeliger);
+        println!("{name}: albedo {albedo:.4}, gpu {got:.1} closed form {want:.1}");
+        assert!(relative(got, want) < 0.01, "{name}: {got} vs {want}");
+    }
+}
+
 /// Depth between the planet and a body: a body behind the planet does not show through it (the
 /// pixel is the planet's, as without the body), and one in front of it hides the planet (the
 /// pixel is the body's closed form).
@@ -186,7 +230,7 @@ fn the_planet_and_a_body_hide_each_other_by_distance() {
     );
     // In front: between the eye and the planet.
     let front_center = planet_center() + DVec3::Z * 20_000_000.0;
-    let with_front = airless_with(sun, vec![Body::moon(front_center)]);
+    let with_front = airless_with(sun, vec![plain_moon(front_center)]);
     let got = centre_radiance(&mut gpu, &with_front, eye, towards_planet);
     let want = closed_form(
         &with_front,

@@ -171,7 +171,7 @@ fn body(
         }
         None => sky.atmosphere.planet.orientation * DVec3::Z,
     };
-    body.orientation = DQuat::from_rotation_arc(DVec3::Z, pole);
+    body.orientation = facing(pole, sky.atmosphere.planet.center - center);
     if let Some(albedo) = entry.albedo {
         let a = albedo.0;
         check(
@@ -190,6 +190,17 @@ fn body(
         };
     }
     Ok(body)
+}
+
+/// The rotation that puts a body's `z` axis on `pole` and its `x` axis (its 0° N 0° E) as near
+/// `towards` (the planet: a moon's near side faces it) as the pole allows.
+fn facing(pole: DVec3, towards: DVec3) -> DQuat {
+    let x = towards - pole * towards.dot(pole);
+    if x.length() <= 1e-9 * towards.length() {
+        return DQuat::from_rotation_arc(DVec3::Z, pole);
+    }
+    let x = x.normalize();
+    DQuat::from_mat3(&glam::DMat3::from_cols(x, pole.cross(x), pole)).normalize()
 }
 
 /// `key = "given"` is none of `names`: the error lists them and suggests the closest.

@@ -25,7 +25,9 @@ pub struct BodyEntry {
     /// Semi-axes `[a, b, c]` of an ellipsoidal body, metres, each > 0: `c` along its pole.
     #[serde(default)]
     pub radii: Option<[f64; 3]>,
-    /// World direction of the body's pole (its `c` axis); default the planet's polar axis.
+    /// World direction of the body's pole (its `c` axis); default the planet's polar axis. Its
+    /// `a` axis (the Moon's 0° N 0° E) turns as near the planet as the pole allows, so a moon's
+    /// near side faces it.
     #[serde(default)]
     pub pole: Option<[f64; 3]>,
     /// Normal albedo, a number or `[a, b, c]` at the model wavelengths, in [0, 1] (default 0.12,

@@ -17,6 +17,11 @@ fn earth_moon_has_the_moon_as_a_body_and_an_eclipser() {
     assert_eq!(moon.albedo, DVec3::splat(MOON_ALBEDO));
     assert_eq!(moon.reflectance, Reflectance::LommelSeeliger);
     assert_eq!(sky.eclipsers, vec![moon.eclipser()]);
+    // The near side (the body's x axis) faces the planet; its pole is the planet's.
+    let planet = &sky.atmosphere.planet;
+    let towards = (planet.center - moon.center).normalize();
+    assert!((moon.orientation * DVec3::X).angle_between(towards) < 1e-9);
+    assert!((moon.orientation * DVec3::Z).angle_between(planet.orientation * DVec3::Z) < 1e-9);
     // Keys beside the preset replace its values; an ellipsoid takes `radii`.
     let sky = sky_of(
         &preset(

@@ -44,6 +44,7 @@ fn full_phase_flux_is_the_geometric_albedo_s() {
             orientation: DQuat::from_rotation_x(0.4),
             albedo: Spectrum::new(0.1, 0.2, 0.3),
             reflectance: law,
+            surface: BodySurface::Uniform,
         };
         let flux = disc_flux_times_d2(&body, s.direction, &[s], 600);
         let expected = s.irradiance * body.albedo * (p * radius * radius);
@@ -71,6 +72,7 @@ fn a_posed_ellipsoid_is_hit_where_its_axes_say() {
         orientation: DQuat::from_rotation_x(-std::f64::consts::FRAC_PI_2),
         albedo: Spectrum::splat(0.5),
         reflectance: Reflectance::Lambert,
+        surface: BodySurface::Uniform,
     };
     let ray = Ray::new(DVec3::new(10.0, 30.0, 30.0), DVec3::NEG_Y).unwrap();
     let t = body.hit(&ray).unwrap();

@@ -63,7 +63,7 @@ struct AtmosphereParams {
 // An airless body beside the planet (atmosphere/bodies.wgsl; firmament_core::atmosphere::body).
 struct AtmosphereBody {
     center: vec4<f32>, // xyz centre, planet frame (m); w = reflectance law (BODY_REFLECTANCE_*)
-    radii: vec4<f32>,  // xyz semi-axes along the body's axes (m); w unused
+    radii: vec4<f32>,  // xyz semi-axes along the body's axes (m); w = surface (BODY_SURFACE_*)
     axis_x: vec4<f32>, // the body's axes in the planet frame (unit); w unused
     axis_y: vec4<f32>,
     axis_z: vec4<f32>,

@@ -1,7 +1,8 @@
 // atmosphere/bodies.wgsl — airless bodies beside the planet: where a view ray meets one and the
 // light it sends back; the GPU twin of firmament_core::atmosphere::body, whose docs give the
-// model (an opaque ellipsoid, Lambert or Lommel–Seeliger, shadowed by the planet as a ball of
-// its volumetric mean radius, by the rings and by the other bodies).
+// model (an opaque ellipsoid, Lambert or Lommel–Seeliger, its albedo uniform or patterned by the
+// Moon's maria, shadowed by the planet as a ball of its volumetric mean radius, by the rings and
+// by the other bodies).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
@@ -31,30 +32,38 @@ fn body_from_planet(i: u32) -> mat3x3<f32> {
 fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32) -> BodySample {
     var out = BodySample(false, 0.0, vec3<f32>(0.0));
     var nearest = 0u;
+    var nearest_local = vec3<f32>(0.0); // the hit in the body's axes
     for (var i = 0u; i < min(view.sun_count.w, MAX_BODIES); i++) {
         let body = view.bodies[i];
         let to_local = body_from_planet(i);
-        let local = to_local * (o - body.center.xyz);
-        let hits = ellipsoid_hits(local, to_local * d, body.radii.xyz, ellipsoid_c(local, body.radii.xyz));
-        if hits.x <= hits.y && hits.x > near && (!out.hit || hits.x < out.t) {
+        // Solved from the ray's closest approach to the body's centre: from afar, |o − c|² and
+        // the quadratic's other terms cancel to far less than f32 holds (km on the Moon).
+        let closest = dot(body.center.xyz - o, d);
+        let local = to_local * ((o - body.center.xyz) + closest * d);
+        let from_closest = ellipsoid_hits(local, to_local * d, body.radii.xyz, ellipsoid_c(local, body.radii.xyz));
+        // Tested before `closest` is added: far away (1, 0), the miss, rounds to a point.
+        let t = closest + from_closest.x;
+        if from_closest.x <= from_closest.y && t > near && (!out.hit || t < out.t) {
             out.hit = true;
-            out.t = hits.x;
+            out.t = t;
             nearest = i;
+            nearest_local = local + from_closest.x * (to_local * d);
         }
     }
     if out.hit {
-        out.radiance = body_radiance(nearest, o + out.t * d, d);
+        out.radiance = body_radiance(nearest, o + out.t * d, nearest_local, d);
     }
     return out;
 }
 
-// The radiance body i's surface point p (planet frame) sends back along −d.
-fn body_radiance(i: u32, p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+// The radiance body i's surface point p (planet frame; `local` in the body's axes, from its
+// centre) sends back along −d.
+fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let body = view.bodies[i];
     let to_local = body_from_planet(i);
-    let local = to_local * (p - body.center.xyz);
     let radii = body.radii.xyz;
-    let n = normalize(transpose(to_local) * (local / (radii * radii)));
+    let n_local = normalize(local / (radii * radii));
+    let n = transpose(to_local) * n_local;
     let mu = max(dot(n, -d), 0.0);
     let lommel_seeliger = u32(body.center.w) == BODY_REFLECTANCE_LOMMEL_SEELIGER;
     var received = vec3<f32>(0.0);
@@ -68,7 +77,24 @@ fn body_radiance(i: u32, p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         let share = body_sunlight_share(p, s, i) * ring_transmittance(p, to_sun);
         received += view.suns[s].irradiance.rgb * (law * share);
     }
-    return received * body.albedo.rgb / PI;
+    var albedo = body.albedo.rgb;
+    if u32(body.radii.w) == BODY_SURFACE_LUNAR_MARIA {
+        albedo *= lunar_albedo_factor(n_local);
+    }
+    return received * albedo / PI;
+}
+
+// The maria's factor on the albedo at the point with unit normal `n` in the body's axes
+// (firmament_core::atmosphere::body::maria::albedo_factor).
+fn lunar_albedo_factor(n: vec3<f32>) -> f32 {
+    var mare = 0.0;
+    for (var i = 0u; i < LUNAR_MARIA_COUNT; i++) {
+        let mare_patch = LUNAR_MARIA[i];
+        // atan2 keeps the precision acos loses for small angles.
+        let angle = atan2(length(cross(n, mare_patch.xyz)), dot(n, mare_patch.xyz)) / mare_patch.w;
+        mare = max(mare, 1.0 - smoothstep(LUNAR_EDGE_INNER, LUNAR_EDGE_OUTER, angle));
+    }
+    return mix(LUNAR_HIGHLAND_FACTOR, LUNAR_MARE_FACTOR, mare);
 }
 
 // The share of sun s's light that reaches point p of body `own`: past the planet (a ball of its
