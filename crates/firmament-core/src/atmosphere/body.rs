@@ -20,8 +20,18 @@
 //! Each sun reaches a point of a body dimmed by the planet (an opaque ball of the planet's
 //! volumetric mean radius: a lunar eclipse's umbra is black here, not red, since the light bent
 //! through the planet's air is left out), by the rings' shadow and by every other body, as
-//! [`crate::atmosphere::eclipse`] computes for the air. Light from the planet (planet-shine on
-//! a body's night side) is left out.
+//! [`crate::atmosphere::eclipse`] computes for the air.
+//!
+//! # Planet-shine
+//! The planet's sunlit face lights the bodies too (earthshine, the Moon's ashen light): seen from
+//! a body at distance `d` ≫ its mean radius `R` it is a point of light whose irradiance, face-on,
+//! is `E_pl = p·E·(R/d)²·Φ(α)` ([`planetshine`]), `p` its geometric albedo
+//! ([`Planet::geometric_albedo`]), `α` the phase angle at the planet between the sun and the
+//! body, and `Φ(α) = (sin α + (π − α)·cos α)/π` the phase law of a Lambert sphere (Russell 1916,
+//! *ApJ* 43, 173), the planet's clouds and air taken as a matte diffuser. It reaches a point of
+//! the body by the same reflectance law as sunlight, with the cosine towards the planet. Earth,
+//! full, lights the Moon with `0.434 × 1.3·10⁵ lx × (6371/384 400)² ≈ 15 lx`. Close moons (`d`
+//! a few `R`) get it less exactly; the bodies' light on the planet is left out.
 
 use std::f64::consts::PI;
 
@@ -207,6 +217,19 @@ impl Body {
         (self.orientation * (local / (self.radii * self.radii))).normalize()
     }
 
+    /// The radiance the planet's light (planet-shine, module docs) sends from surface point `p`
+    /// towards a viewer along `to_viewer`, all in `planet`'s frame (the body too, e.g.
+    /// [`Self::to_planet_frame`]), for `suns` lighting the planet.
+    pub fn planetshine_radiance(&self, p: DVec3, to_viewer: DVec3, suns: &[Sun], planet: &Planet) -> Spectrum {
+        let n = self.normal_at(p);
+        let mu = n.dot(to_viewer);
+        let received = suns.iter().fold(Spectrum::ZERO, |sum, sun| {
+            let (to_planet, share) = planetshine(p, sun.direction.normalize(), planet);
+            sum + sun.irradiance * (self.reflectance.factor(n.dot(to_planet), mu) * share)
+        });
+        received * self.albedo_at(p) / PI
+    }
+
     /// The normal albedo at surface point `p` (same frame as the body): [`Self::albedo`] times
     /// the surface's pattern.
     pub fn albedo_at(&self, p: DVec3) -> Spectrum {
@@ -236,6 +259,19 @@ impl Body {
         });
         received * self.albedo_at(p) / PI
     }
+}
+
+/// The planet-shine at planet-frame point `p` from the light of the sun towards unit
+/// `sun_direction` (planet frame): the unit direction to the planet's centre and the irradiance
+/// face-on per unit of the sun's (the module docs give the model).
+pub fn planetshine(p: DVec3, sun_direction: DVec3, planet: &Planet) -> (DVec3, f64) {
+    let distance = p.length();
+    let to_planet = -p / distance;
+    let cos_alpha = sun_direction.dot(-to_planet).clamp(-1.0, 1.0);
+    let alpha = cos_alpha.acos();
+    let phase = (alpha.sin() + (PI - alpha) * cos_alpha) / PI;
+    let radius = planet.radii.element_product().cbrt();
+    (to_planet, planet.geometric_albedo * (radius / distance).powi(2) * phase)
 }
 
 /// The share of `sun`'s light (its direction in the planet frame) that reaches the point `p` of

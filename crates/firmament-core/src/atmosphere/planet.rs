@@ -38,6 +38,10 @@ pub struct Planet {
     pub orientation: DQuat,
     /// Height of the atmosphere's top above the surface, metres.
     pub atmosphere_height: f64,
+    /// Geometric albedo of the whole planet seen from space, clouds and air included, in [0, 1]:
+    /// how much sunlight it casts on the bodies beside it (planet-shine,
+    /// [`crate::atmosphere::body`]); 0 for none. The presets take their body's published value.
+    pub geometric_albedo: f64,
 }
 
 impl Planet {
@@ -53,11 +57,21 @@ impl Planet {
             center: DVec3::ZERO,
             orientation: DQuat::IDENTITY,
             atmosphere_height,
+            geometric_albedo: 0.0,
+        }
+    }
+
+    /// The same planet with geometric albedo `albedo` (see [`Self::geometric_albedo`]).
+    pub fn with_geometric_albedo(self, albedo: f64) -> Self {
+        Self {
+            geometric_albedo: albedo,
+            ..self
         }
     }
 
     /// Checks the rules: radii finite and > 0, no radius more than 10× another, atmosphere height
-    /// finite and > 0, centre finite, orientation a finite non-zero quaternion.
+    /// finite and > 0, centre finite, orientation a finite non-zero quaternion, geometric albedo
+    /// in [0, 1].
     pub fn validate(&self) -> Result<(), CoreError> {
         let invalid = |field, value: String, rule| Err(CoreError::Invalid { field, value, rule });
         for (field, r) in [
@@ -88,6 +102,13 @@ impl Planet {
                 "planet.center",
                 format!("{:?}", self.center.to_array()),
                 "must be finite",
+            );
+        }
+        if !(0.0..=1.0).contains(&self.geometric_albedo) {
+            return invalid(
+                "planet.geometric_albedo",
+                self.geometric_albedo.to_string(),
+                "must be in [0, 1]",
             );
         }
         if !(self.orientation.is_finite() && self.orientation.length_squared() > 0.0) {

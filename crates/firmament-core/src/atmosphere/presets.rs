@@ -18,6 +18,13 @@ pub use venus::{VENUS_SEMI_MAJOR_AXIS_AU, venus, venus_sun};
 pub const WGS84_EQUATORIAL_RADIUS: f64 = 6_378_137.0;
 /// WGS84 polar radius, m (`a·(1 − f)`, `1/f = 298.257223563`).
 pub const WGS84_POLAR_RADIUS: f64 = 6_356_752.314_245_18;
+/// Earth's geometric albedo, 0.434 (NASA Earth Fact Sheet, Williams 2024): the light it casts
+/// on the Moon ([`Planet::geometric_albedo`]).
+pub const EARTH_GEOMETRIC_ALBEDO: f64 = 0.434;
+/// Mars' geometric albedo, 0.170 (NASA Mars Fact Sheet, Williams 2024).
+pub const MARS_GEOMETRIC_ALBEDO: f64 = 0.170;
+/// Saturn's visual geometric albedo, 0.47 (NASA Saturn Fact Sheet).
+pub const SATURN_GEOMETRIC_ALBEDO: f64 = 0.47;
 /// One astronomical unit, m (IAU 2012 Resolution B2).
 pub const ASTRONOMICAL_UNIT: f64 = 149_597_870_700.0;
 
@@ -33,7 +40,8 @@ pub const ASTRONOMICAL_UNIT: f64 = 149_597_870_700.0;
 /// - top of the atmosphere 60 km above the surface, ground albedo 0.1.
 pub fn earth() -> Atmosphere {
     Atmosphere {
-        planet: Planet::spheroid(WGS84_EQUATORIAL_RADIUS, WGS84_POLAR_RADIUS, 60_000.0),
+        planet: Planet::spheroid(WGS84_EQUATORIAL_RADIUS, WGS84_POLAR_RADIUS, 60_000.0)
+            .with_geometric_albedo(EARTH_GEOMETRIC_ALBEDO),
         medium: Medium::from_constituents(
             &Constituents {
                 rayleigh: Rayleigh {
@@ -93,7 +101,7 @@ pub fn mars() -> Atmosphere {
     let dust_extinction = 0.5 / 11_100.0;
     let albedo = Spectrum::new(0.974, 0.954, 0.887);
     Atmosphere {
-        planet: Planet::spheroid(3_396_190.0, 3_376_200.0, 80_000.0),
+        planet: Planet::spheroid(3_396_190.0, 3_376_200.0, 80_000.0).with_geometric_albedo(MARS_GEOMETRIC_ALBEDO),
         medium: Medium::from_constituents(
             &Constituents {
                 rayleigh: Rayleigh {
@@ -175,7 +183,7 @@ pub fn saturn() -> Atmosphere {
             .map(|nm| h2_number_density * h2_rayleigh_cross_section(nm)),
     );
     Atmosphere {
-        planet: Planet::spheroid(60_268_000.0, 54_364_000.0, 600_000.0),
+        planet: Planet::spheroid(60_268_000.0, 54_364_000.0, 600_000.0).with_geometric_albedo(SATURN_GEOMETRIC_ALBEDO),
         medium: Medium::from_constituents(
             &Constituents {
                 rayleigh: Rayleigh {

@@ -224,7 +224,8 @@ pub struct AtmosphereViewUniforms {
     pub ring_depth: [[f32; 4]; RING_TABLE_ENTRIES / 4],
     /// The planet's surface: x = 1 when the ground is read from the surface map (0: the
     /// medium's `ground_albedo` everywhere, no water); y = the sea's mean square slope for the
-    /// suns' glint ([`glint::slope_variance`]); zw unused.
+    /// suns' glint ([`glint::slope_variance`]); z = the planet's geometric albedo (its light on
+    /// the bodies, [`Planet::geometric_albedo`]); w unused.
     pub surface: [f32; 4],
     /// The bodies beside the planet; the first `sun_count[3]` are used.
     pub bodies: [AtmosphereBodyUniform; MAX_BODIES],
@@ -336,15 +337,15 @@ impl AtmosphereViewUniforms {
             rings,
             ring_albedo,
             ring_depth,
-            surface: surface_fields(sky.surface.as_ref()),
+            surface: surface_fields(sky.surface.as_ref(), planet.geometric_albedo),
             bodies,
         }
     }
 }
 
-/// The surface's part of [`AtmosphereViewUniforms`]: the flag and the glint's slope variance.
-fn surface_fields(surface: Option<&Surface>) -> [f32; 4] {
-    surface.map_or([0.0; 4], |s| {
-        [1.0, glint::slope_variance(s.wind_speed_mps) as f32, 0.0, 0.0]
-    })
+/// The surface's part of [`AtmosphereViewUniforms`]: the flag, the glint's slope variance and
+/// the planet's geometric albedo.
+fn surface_fields(surface: Option<&Surface>, geometric_albedo: f64) -> [f32; 4] {
+    let (flag, slopes) = surface.map_or((0.0, 0.0), |s| (1.0, glint::slope_variance(s.wind_speed_mps) as f32));
+    [flag, slopes, geometric_albedo as f32, 0.0]
 }

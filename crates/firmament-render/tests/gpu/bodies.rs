@@ -208,6 +208,38 @@ fn the_moon_shows_its_maria() {
     }
 }
 
+/// Earthshine: the Moon's night side at new Moon, lit by the full Earth alone (geometric albedo
+/// 0.434), shows `(A/π)·E·p·(R/d)²·Φ(0)` by the Lommel–Seeliger law with the cosine towards the
+/// planet, within 1 %; and nothing without the planet's albedo.
+#[test]
+fn the_full_earth_lights_the_new_moon_s_night_side() {
+    let mut gpu = gpu();
+    let sun = DVec3::X;
+    let distance = 384_400_000.0;
+    let center = planet_center() + DVec3::X * distance;
+    let mut sky = airless_with(sun, vec![plain_moon(center)]);
+    let eye = center - DVec3::new(60_000_000.0, 0.0, 8_000_000.0);
+    let ratio = EARTH_RADIUS_M / (distance - MOON_RADIUS_M);
+    for n in [DVec3::NEG_X, DVec3::new(-1.0, 0.3, -0.2).normalize()] {
+        let p = center + n * MOON_RADIUS_M;
+        let to_planet = (planet_center() - p).normalize();
+        let mu0 = n.dot(to_planet);
+        let mu = n.dot((eye - p).normalize());
+        let irradiance = sky.suns[0].irradiance * (0.434 * ratio * ratio);
+        let want = as_srgb(
+            &sky,
+            irradiance * (0.12 / std::f64::consts::PI * 2.0 * mu0 / (mu0 + mu)),
+        );
+        sky.atmosphere.planet.geometric_albedo = 0.434;
+        let got = centre_radiance(&mut gpu, &sky, eye, p - eye);
+        sky.atmosphere.planet.geometric_albedo = 0.0;
+        let dark = centre_radiance(&mut gpu, &sky, eye, p - eye);
+        println!("n {n:.2}: gpu {got:.4} closed form {want:.4}, without {dark}");
+        assert!(relative(got, want) < 0.01, "earthshine at n {n}: {got} vs {want}");
+        assert_eq!(dark, DVec3::ZERO, "the night side without planet-shine");
+    }
+}
+
 /// Depth between the planet and a body: a body behind the planet does not show through it (the
 /// pixel is the planet's, as without the body), and one in front of it hides the planet (the
 /// pixel is the body's closed form).

@@ -133,3 +133,39 @@ fn bodies_must_not_overlap_or_outnumber_the_limit() {
     dark.albedo = Spectrum::new(0.1, 1.2, 0.1);
     assert!(validate_bodies(&[dark], &planet).is_err());
 }
+
+/// The planet-shine's closed form against the light of a Lambert sphere summed over its lit face:
+/// a planet of albedo `A` (geometric albedo `2A/3`) seen from 1000 radii (the closed form is the
+/// far limit: from 60 radii, the Moon's distance, it is 4 % high at 120°) at phase angles 0–150°.
+#[test]
+fn planetshine_is_a_lambert_sphere_s_light() {
+    let radius = 1.0;
+    let albedo = 0.3;
+    let planet = Planet::sphere(radius, 0.01).with_geometric_albedo(2.0 * albedo / 3.0);
+    let distance = 1000.0;
+    for alpha_deg in [0.0f64, 30.0, 60.0, 90.0, 120.0, 150.0] {
+        let alpha = alpha_deg.to_radians();
+        let sun = DVec3::new(alpha.cos(), alpha.sin(), 0.0);
+        let p = DVec3::X * distance;
+        let (_, closed) = planetshine(p, sun, &planet);
+        // Σ over the sphere's surface of (A/π)·μ₀ radiance × the solid angle from p × cos at p.
+        let n = 400;
+        let mut sum = 0.0;
+        for j in 0..n {
+            let theta = (f64::from(j) + 0.5) / f64::from(n) * PI;
+            for i in 0..2 * n {
+                let phi = (f64::from(i) + 0.5) / f64::from(2 * n) * 2.0 * PI;
+                let normal = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+                let area = theta.sin() * (PI / f64::from(n)) * (PI / f64::from(n)) * radius * radius;
+                let to_p = p - normal * radius;
+                let (mu0, mu) = (normal.dot(sun), normal.dot(to_p.normalize()));
+                if mu0 > 0.0 && mu > 0.0 {
+                    let face_on = to_p.normalize().dot(DVec3::X);
+                    sum += albedo / PI * mu0 * mu * area / to_p.length_squared() * face_on;
+                }
+            }
+        }
+        let error = (closed - sum).abs() / sum.max(1e-30);
+        assert!(error < 0.01, "{alpha_deg}°: closed form {closed} vs sum {sum}");
+    }
+}

@@ -271,7 +271,8 @@ pub fn titan() -> Atmosphere {
     ];
     terms.extend(haze);
     Atmosphere {
-        planet: Planet::sphere(RADIUS, ATMOSPHERE_HEIGHT),
+        // Geometric albedo 0.22 (NASA Saturnian Satellite Fact Sheet): the light it casts on bodies.
+        planet: Planet::sphere(RADIUS, ATMOSPHERE_HEIGHT).with_geometric_albedo(0.22),
         medium: Medium {
             terms,
             ground_albedo: Spectrum::new(0.20, 0.15, 0.10),

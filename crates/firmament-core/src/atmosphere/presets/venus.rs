@@ -184,7 +184,8 @@ pub fn venus() -> Atmosphere {
         phase: Phase::HenyeyGreenstein { g },
     };
     Atmosphere {
-        planet: Planet::sphere(RADIUS, ATMOSPHERE_HEIGHT),
+        // Geometric albedo 0.689 (NASA Venus Fact Sheet, Williams 2024): the light it casts on bodies.
+        planet: Planet::sphere(RADIUS, ATMOSPHERE_HEIGHT).with_geometric_albedo(0.689),
         medium: Medium {
             terms: vec![
                 MediumTerm {

@@ -106,8 +106,8 @@ struct AtmosphereView {
     // normal optical depth at inner + k·(outer − inner)/(RING_TABLE_ENTRIES − 1), four to a vector
     ring_depth: array<vec4<f32>, RING_TABLE_VECTORS>,
     // The planet's surface (atmosphere/surface.wgsl): x = 1 to read the ground from `surface_map`
-    // (0: `ground_albedo` everywhere, no water); y = the sea's mean square slope (Cox–Munk); zw
-    // unused
+    // (0: `ground_albedo` everywhere, no water); y = the sea's mean square slope (Cox–Munk); z = the
+    // planet's geometric albedo (its light on the bodies, atmosphere/bodies.wgsl); w unused
     surface: vec4<f32>,
     bodies: array<AtmosphereBody, MAX_BODIES>,
 }

@@ -2,7 +2,7 @@
 // light it sends back; the GPU twin of firmament_core::atmosphere::body, whose docs give the
 // model (an opaque ellipsoid, Lambert or Lommel–Seeliger, its albedo uniform or patterned by the
 // Moon's maria, shadowed by the planet as a ball of its volumetric mean radius, by the rings and
-// by the other bodies).
+// by the other bodies; lit by the planet's sunlit face too, planet-shine).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
@@ -77,6 +77,7 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f
         let share = body_sunlight_share(p, s, i) * ring_transmittance(p, to_sun);
         received += view.suns[s].irradiance.rgb * (law * share);
     }
+    received += planetshine(p, n, mu, lommel_seeliger);
     var albedo = body.albedo.rgb;
     if u32(body.radii.w) == BODY_SURFACE_LUNAR_MARIA {
         albedo *= lunar_albedo_factor(n_local);
@@ -97,12 +98,38 @@ fn lunar_albedo_factor(n: vec3<f32>) -> f32 {
     return mix(LUNAR_HIGHLAND_FACTOR, LUNAR_MARE_FACTOR, mare);
 }
 
+// The planet's volumetric mean radius (m).
+fn planet_mean_radius() -> f32 {
+    let radii = atmosphere.radii.xyz;
+    return exp((log(radii.x) + log(radii.y) + log(radii.z)) / 3.0);
+}
+
+// The irradiance the planet's sunlit face casts at planet-frame point p, reflected by the law
+// (`mu` the emergence cosine) at normal n, per unit albedo: a point of light of geometric albedo
+// `view.surface.z`, phase law of a Lambert sphere (firmament_core::atmosphere::body::planetshine).
+fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> vec3<f32> {
+    let distance = length(p);
+    let to_planet = -p / distance;
+    let mu0 = dot(n, to_planet);
+    if view.surface.z <= 0.0 || mu0 <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
+    let size = planet_mean_radius() / distance;
+    var received = vec3<f32>(0.0);
+    for (var s = 0u; s < view.sun_count.x; s++) {
+        let cos_alpha = clamp(dot(view.suns[s].direction.xyz, -to_planet), -1.0, 1.0);
+        let alpha = acos(cos_alpha);
+        let phase = (sin(alpha) + (PI - alpha) * cos_alpha) / PI;
+        received += view.suns[s].irradiance.rgb * (view.surface.z * size * size * phase);
+    }
+    return received * law;
+}
+
 // The share of sun s's light that reaches point p of body `own`: past the planet (a ball of its
 // volumetric mean radius) and every other eclipser.
 fn body_sunlight_share(p: vec3<f32>, s: u32, own: u32) -> f32 {
-    let radii = atmosphere.radii.xyz;
-    let planet_radius = exp((log(radii.x) + log(radii.y) + log(radii.z)) / 3.0);
-    var share = eclipser_visible_fraction(p, s, vec4<f32>(0.0, 0.0, 0.0, planet_radius));
+    var share = eclipser_visible_fraction(p, s, vec4<f32>(0.0, 0.0, 0.0, planet_mean_radius()));
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
         if e != own {
             share *= eclipser_visible_fraction(p, s, view.eclipsers[e]);

@@ -142,6 +142,7 @@ pub(crate) fn empirical_planet(sky: &EmpiricalSky) -> Planet {
         center: sky.center,
         orientation: sky.orientation,
         atmosphere_height: sky.atmosphere.height,
+        geometric_albedo: 0.0,
     }
 }
 

@@ -61,5 +61,6 @@ pub(super) fn planet(section: &PlanetSection) -> Result<Planet, SceneError> {
     )?;
     let height = section.atmosphere_height.unwrap_or(body.atmosphere_height);
     Ok(Planet::spheroid(equatorial, polar, height)
+        .with_geometric_albedo(body.geometric_albedo)
         .posed_at(section.latitude_deg.to_radians(), section.longitude_deg.to_radians()))
 }
