@@ -50,6 +50,7 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/rings", include_str!("atmosphere/rings.wgsl")),
     ("atmosphere/surface", include_str!("atmosphere/surface.wgsl")),
     ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
+    ("atmosphere/body_hits", include_str!("atmosphere/body_hits.wgsl")),
     ("atmosphere/bodies", include_str!("atmosphere/bodies.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),

@@ -7,6 +7,7 @@ use crate::support::{centre_radiance, far_view_difference, gpu};
 
 use firmament_core::atmosphere::body::maria::{MARIA, albedo_factor};
 use firmament_core::atmosphere::body::{Body, BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::clouds::{CloudKind, CloudLayer};
 use firmament_core::atmosphere::{Planet, Spectrum, presets};
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -241,8 +242,8 @@ fn the_full_earth_lights_the_new_moon_s_night_side() {
 }
 
 /// Depth between the planet and a body: a body behind the planet does not show through it (the
-/// pixel is the planet's, as without the body), and one in front of it hides the planet (the
-/// pixel is the body's closed form).
+/// pixel is the planet's, as without the body), and one in front of it hides the planet and its
+/// clouds (the pixel is the body's closed form).
 #[test]
 fn the_planet_and_a_body_hide_each_other_by_distance() {
     let mut gpu = gpu();
@@ -276,6 +277,22 @@ fn the_planet_and_a_body_hide_each_other_by_distance() {
     assert!(
         relative(got, want) < 0.01,
         "a body in front of the planet: {got} vs {want}"
+    );
+    // The planet's clouds do not show over a body in front of them.
+    let mut cloudy = with_front.clone();
+    cloudy.clouds = vec![CloudLayer::new(1_000.0, 3_000.0, 1.0, 0.05, CloudKind::Uniform)];
+    let over_clouds = centre_radiance(&mut gpu, &cloudy, eye, towards_planet);
+    assert!(
+        relative(over_clouds, want) < 0.01,
+        "a body in front of the clouds: {over_clouds} vs {want}"
+    );
+    let bare_clouds = airless_with(sun, Vec::new());
+    let mut bare_cloudy = bare_clouds.clone();
+    bare_cloudy.clouds = cloudy.clouds.clone();
+    let clouds_alone = centre_radiance(&mut gpu, &bare_cloudy, eye, towards_planet);
+    assert!(
+        clouds_alone.max_element() > 2.0 * planet_only.max_element(),
+        "the clouds show: {clouds_alone}"
     );
 }
 

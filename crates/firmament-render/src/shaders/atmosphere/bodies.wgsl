@@ -8,8 +8,8 @@
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
 // model wavelength, like the sky's.
 
-#import common/ellipsoid
 #import atmosphere/bindings
+#import atmosphere/body_hits
 #import atmosphere/common
 #import atmosphere/eclipse
 #import atmosphere/rings
@@ -22,36 +22,12 @@ struct BodySample {
     radiance: vec3<f32>,
 }
 
-// Rotation from the planet frame into body i's axes (the transpose of its axis columns).
-fn body_from_planet(i: u32) -> mat3x3<f32> {
-    let body = view.bodies[i];
-    return transpose(mat3x3<f32>(body.axis_x.xyz, body.axis_y.xyz, body.axis_z.xyz));
-}
-
 // The nearest body the ray o + t·d meets at t > near, lit.
 fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32) -> BodySample {
-    var out = BodySample(false, 0.0, vec3<f32>(0.0));
-    var nearest = 0u;
-    var nearest_local = vec3<f32>(0.0); // the hit in the body's axes
-    for (var i = 0u; i < min(view.sun_count.w, MAX_BODIES); i++) {
-        let body = view.bodies[i];
-        let to_local = body_from_planet(i);
-        // Solved from the ray's closest approach to the body's centre: from afar, |o − c|² and
-        // the quadratic's other terms cancel to far less than f32 holds (km on the Moon).
-        let closest = dot(body.center.xyz - o, d);
-        let local = to_local * ((o - body.center.xyz) + closest * d);
-        let from_closest = ellipsoid_hits(local, to_local * d, body.radii.xyz, ellipsoid_c(local, body.radii.xyz));
-        // Tested before `closest` is added: far away (1, 0), the miss, rounds to a point.
-        let t = closest + from_closest.x;
-        if from_closest.x <= from_closest.y && t > near && (!out.hit || t < out.t) {
-            out.hit = true;
-            out.t = t;
-            nearest = i;
-            nearest_local = local + from_closest.x * (to_local * d);
-        }
-    }
-    if out.hit {
-        out.radiance = body_radiance(nearest, o + out.t * d, nearest_local, d);
+    let hit = nearest_body_hit(o, d, near);
+    var out = BodySample(hit.hit, hit.t, vec3<f32>(0.0));
+    if hit.hit {
+        out.radiance = body_radiance(hit.index, o + hit.t * d, hit.local, d);
     }
     return out;
 }

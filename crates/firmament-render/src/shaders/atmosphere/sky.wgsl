@@ -156,7 +156,11 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
             through = mix(lut_transmittance(ray.direction), marched.transmittance, blend);
         }
     }
-    let top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    // Where the ray enters and leaves the air: only a body or the rings need it.
+    var top = vec2<f32>(1.0, 0.0);
+    if body.hit || rings.hit {
+        top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+    }
     let misses_air = top.x > top.y || top.y <= ray.near;
     if body.hit && (misses_air || body.t < top.x) {
         // The body stands between the camera and the air: none of the air shows.

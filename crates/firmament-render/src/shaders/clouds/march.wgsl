@@ -49,6 +49,7 @@
 #import atmosphere/eclipse
 #import atmosphere/surface
 #import atmosphere/aerial_lookup
+#import atmosphere/body_hits
 #import clouds/density
 #import clouds/extinction
 #import clouds/shadow
@@ -546,6 +547,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !at_far_plane(depth) {
         let view_depth = view.aerial.z / (depth + view.aerial.y);
         far = ray.near + view_depth * length(vec3<f32>(ndc * view.camera_shape.zw, -1.0));
+    }
+    // A body beside the planet hides the clouds behind it.
+    let body = nearest_body_hit(ray.origin, ray.direction, ray.near);
+    if body.hit {
+        far = min(far, body.t);
     }
     let pixel = vec2<f32>(id.xy) + 0.5;
     // A pixel's width per metre along its ray (the vertical field of view over the rows).
