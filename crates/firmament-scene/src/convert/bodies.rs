@@ -4,7 +4,7 @@
 
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
-use firmament_core::atmosphere::body::{Body, MAX_BODIES, Reflectance, validate_bodies};
+use firmament_core::atmosphere::body::{Body, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -130,6 +130,7 @@ fn body(
     let mut body = Body::moon(center);
     if preset.is_none() {
         body.reflectance = Reflectance::Lambert;
+        body.surface = BodySurface::Uniform;
         if entry.radius.is_none() && entry.radii.is_none() {
             return Err(SceneError::invalid(
                 key("radius"),

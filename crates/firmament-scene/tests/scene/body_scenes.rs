@@ -3,7 +3,7 @@
 //! naming its key and rule.
 
 use crate::support::{message, preset, sky_of};
-use firmament_core::atmosphere::body::{MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::body::{BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
 use firmament_core::atmosphere::eclipse::visible_fraction;
 use firmament_core::frame::Sky;
 use glam::DVec3;
@@ -37,6 +37,17 @@ fn earth_moon_has_the_moon_as_a_body_and_an_eclipser() {
     assert_eq!(sky.bodies[0].albedo, DVec3::new(0.1, 0.12, 0.14));
     assert_eq!(sky.bodies[0].reflectance, Reflectance::Lambert);
     assert_eq!(sky.bodies[0].radii, DVec3::new(1.8e6, 1.7e6, 1.6e6));
+    assert_eq!(sky.bodies[0].surface, BodySurface::LunarMaria);
+    // A body of no preset is a plain Lambert ball: no maria.
+    let plain = sky_of(
+        &preset(
+            "earth-moon",
+            &["bodies=[{ position = [4.0e8, 0.0, 0.0], radius = 5.0e5 }]"],
+        )
+        .expect("valid"),
+    );
+    assert_eq!(plain.bodies[0].surface, BodySurface::Uniform);
+    assert_eq!(plain.bodies[0].reflectance, Reflectance::Lambert);
 }
 
 /// The Moon asked for as a body at eclipse-2024's date stands where the ephemeris puts it (where
