@@ -5,7 +5,6 @@
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
 use firmament_core::atmosphere::body::{Body, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
-use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
 
@@ -34,16 +33,6 @@ pub(crate) fn add_bodies(scene: &Scene, instant: Option<&Instant>, sky: &mut Atm
         .enumerate()
         .map(|(i, entry)| body(i, entry, scene, instant, sky))
         .collect::<Result<Vec<_>, _>>()?;
-    check(
-        bodies.len() + sky.eclipsers.len() <= MAX_ECLIPSERS,
-        "bodies",
-        format!(
-            "{} bodies and {} other eclipsing bodies",
-            bodies.len(),
-            sky.eclipsers.len()
-        ),
-        &format!("at most {MAX_ECLIPSERS} eclipsing bodies in all"),
-    )?;
     if let Err(error) = validate_bodies(&bodies, &sky.atmosphere.planet) {
         // Name the entry the core's rule is about: the first that breaks it on its own terms.
         let i = (0..bodies.len())
