@@ -2,8 +2,10 @@
 
 use glam::{DQuat, DVec3};
 
+use crate::atmosphere::body::{Body, BodyInShadow};
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
+use crate::atmosphere::planet_shadow::PlanetShadow;
 use crate::atmosphere::rings::Rings;
 use crate::atmosphere::surface::Surface;
 use crate::atmosphere::{Atmosphere, Eclipser, Sun};
@@ -66,7 +68,7 @@ pub struct AtmosphereSky {
     /// [`MAX_BODIES`](crate::atmosphere::body::MAX_BODIES) ([`crate::atmosphere::body`]): lit by
     /// the suns, shadowed by the planet and each other. Each is also an eclipser, the first
     /// `eclipsers` in the same order: add them with [`Self::add_body`].
-    pub bodies: Vec<crate::atmosphere::body::Body>,
+    pub bodies: Vec<Body>,
     /// The planet's rings, if it has any ([`crate::atmosphere::rings`]): drawn lit by the suns,
     /// dimming what lies behind them and shadowing the globe.
     pub rings: Option<Rings>,
@@ -78,9 +80,28 @@ pub struct AtmosphereSky {
 impl AtmosphereSky {
     /// Adds `body`, and the same body among the eclipsers (after the bodies before it), so it
     /// hides the suns from the air, the ground and the other bodies.
-    pub fn add_body(&mut self, body: crate::atmosphere::body::Body) {
+    pub fn add_body(&mut self, body: Body) {
         self.eclipsers.insert(self.bodies.len(), body.eclipser());
         self.bodies.push(body);
+    }
+
+    /// Gives every body that stands in the planet's shadow of one of the suns (its penumbra
+    /// reaching it: [`Body::shadowing_sun`]) the light inside that shadow
+    /// ([`Body::planet_shadow`]):
+    /// `profile(atmosphere, sun, distance_m)` the shadow `distance_m` behind the planet — usually
+    /// [`PlanetShadow::new`] with the default
+    /// settings, which takes tens of milliseconds (docs/PERFORMANCE.md), so cache it across
+    /// frames. Other bodies lose any shadow they had.
+    pub fn light_bodies_in_planet_shadow(&mut self, mut profile: impl FnMut(&Atmosphere, &Sun, f64) -> PlanetShadow) {
+        for body in &mut self.bodies {
+            body.planet_shadow = body
+                .shadowing_sun(&self.suns, &self.atmosphere.planet)
+                .map(|(sun, distance_m)| BodyInShadow {
+                    sun,
+                    axis: -self.suns[sun].direction.normalize(),
+                    profile: profile(&self.atmosphere, &self.suns[sun], distance_m),
+                });
+        }
     }
 
     /// Checks the atmosphere, every sun, every eclipser and body and their numbers.

@@ -17,10 +17,14 @@
 //! geometric albedo. The night sky's Moon disc uses the same normalisation
 //! ([`crate::sky::night::lommel_seeliger`]).
 //!
-//! Each sun reaches a point of a body dimmed by the planet (an opaque ball of the planet's
-//! volumetric mean radius: a lunar eclipse's umbra is black here, not red, since the light bent
-//! through the planet's air is left out), by the rings' shadow and by every other body, as
-//! [`crate::atmosphere::eclipse`] computes for the air.
+//! Each sun reaches a point of a body dimmed by the planet, by the rings' shadow and by every
+//! other body, as [`crate::atmosphere::eclipse`] computes for the air. The planet is an opaque
+//! ball of its volumetric mean radius, unless the body carries the light inside the planet's
+//! shadow ([`Body::planet_shadow`], set by
+//! [`AtmosphereSky::light_bodies_in_planet_shadow`](crate::frame::AtmosphereSky::light_bodies_in_planet_shadow)):
+//! then its umbra is the deep red of a lunar eclipse, sunlight bent into it through the planet's
+//! air ([`crate::atmosphere::planet_shadow`]), the profile taken at the body's centre's distance
+//! behind the planet (the Moon spans ±0.5 % of it).
 //!
 //! # Planet-shine
 //! The planet's sunlit face lights the bodies too (earthshine, the Moon's ashen light): seen from
@@ -38,6 +42,7 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 use crate::atmosphere::eclipse::Eclipser;
+use crate::atmosphere::planet_shadow::PlanetShadow;
 use crate::atmosphere::rings::Rings;
 use crate::atmosphere::{Planet, Spectrum, Sun};
 use crate::error::CoreError;
@@ -123,6 +128,35 @@ pub struct Body {
     pub reflectance: Reflectance,
     /// The pattern over the albedo.
     pub surface: BodySurface,
+    /// The light inside the planet's shadow where the body stands, if it stands there (a lunar
+    /// eclipse); `None`: the planet is an opaque ball.
+    pub planet_shadow: Option<BodyInShadow>,
+}
+
+/// The light a body gets inside the planet's shadow from one sun: that sun's share across the
+/// shadow at the body's distance behind the planet ([`PlanetShadow`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyInShadow {
+    /// The sun (an index into the sky's suns) whose shadow it is.
+    pub sun: usize,
+    /// Unit direction of the shadow's axis from the planet's centre, same frame as the body:
+    /// away from the sun. Where the body is drawn lifted by refraction, this is the axis lifted
+    /// with it, so the body stands where it does in the shadow.
+    pub axis: DVec3,
+    /// The sunlight's share across the shadow.
+    pub profile: PlanetShadow,
+}
+
+impl BodyInShadow {
+    /// The sunlight's share at point `p`, relative to the planet's centre (same frame as the
+    /// body): the profile at `p`'s distance from the shadow's axis behind the planet, 1 before it.
+    pub fn light_at(&self, p: DVec3) -> Spectrum {
+        let behind = p.dot(self.axis);
+        if behind <= 0.0 {
+            return Spectrum::ONE;
+        }
+        self.profile.at((p - self.axis * behind).length())
+    }
 }
 
 impl Body {
@@ -137,6 +171,7 @@ impl Body {
             albedo: Spectrum::splat(MOON_ALBEDO),
             reflectance: Reflectance::LommelSeeliger,
             surface: BodySurface::LunarMaria,
+            planet_shadow: None,
         }
     }
 
@@ -187,11 +222,16 @@ impl Body {
         }
     }
 
-    /// The same body with its pose moved from the world frame into `planet`'s frame.
+    /// The same body with its pose (and its shadow's axis) moved from the world frame into
+    /// `planet`'s frame.
     pub fn to_planet_frame(&self, planet: &Planet) -> Self {
         Self {
             center: planet.to_planet_frame(self.center),
             orientation: (planet.orientation.inverse() * self.orientation).normalize(),
+            planet_shadow: self.planet_shadow.as_ref().map(|shadow| BodyInShadow {
+                axis: planet.direction_to_planet_frame(shadow.axis),
+                ..shadow.clone()
+            }),
             ..self.clone()
         }
     }
@@ -221,13 +261,14 @@ impl Body {
     /// towards a viewer along `to_viewer`, all in `planet`'s frame (the body too, e.g.
     /// [`Self::to_planet_frame`]), for `suns` lighting the planet.
     pub fn planetshine_radiance(&self, p: DVec3, to_viewer: DVec3, suns: &[Sun], planet: &Planet) -> Spectrum {
-        let n = self.normal_at(p);
-        let mu = n.dot(to_viewer);
-        let received = suns.iter().fold(Spectrum::ZERO, |sum, sun| {
-            let (to_planet, share) = planetshine(p, sun.direction.normalize(), planet);
-            sum + sun.irradiance * (self.reflectance.factor(n.dot(to_planet), mu) * share)
-        });
-        received * self.albedo_at(p) / PI
+        self.reflect(
+            p,
+            to_viewer,
+            suns.iter().map(|sun| {
+                let (to_planet, share) = planetshine(p, sun.direction.normalize(), planet);
+                (to_planet, sun.irradiance * share)
+            }),
+        )
     }
 
     /// The normal albedo at surface point `p` (same frame as the body): [`Self::albedo`] times
@@ -243,21 +284,42 @@ impl Body {
     }
 
     /// The radiance the surface point `p` (same frame as the body, on the surface) sends
-    /// towards a viewer along `to_viewer` (unit), lit by `suns` (whose irradiance reaches it
-    /// times `light(sun)`, the share the shadows leave): spectral, the suns' irradiance units per
-    /// steradian.
-    pub fn radiance(&self, p: DVec3, to_viewer: DVec3, suns: &[Sun], light: impl Fn(&Sun) -> f64) -> Spectrum {
+    /// towards a viewer along `to_viewer` (unit), lit by `suns` (sun `s`'s irradiance reaches it
+    /// times `light(s)`, the share the shadows leave, per model wavelength: e.g.
+    /// [`sunlight_share`]): spectral, the suns' irradiance units per steradian.
+    pub fn radiance(&self, p: DVec3, to_viewer: DVec3, suns: &[Sun], light: impl Fn(usize) -> Spectrum) -> Spectrum {
+        self.reflect(
+            p,
+            to_viewer,
+            suns.iter()
+                .enumerate()
+                .map(|(s, sun)| (sun.direction.normalize(), sun.irradiance * light(s))),
+        )
+    }
+
+    /// What surface point `p` sends back along `to_viewer` of the light arriving from each unit
+    /// direction with its face-on irradiance, by the body's law and albedo.
+    fn reflect(&self, p: DVec3, to_viewer: DVec3, incoming: impl Iterator<Item = (DVec3, Spectrum)>) -> Spectrum {
         let n = self.normal_at(p);
         let mu = n.dot(to_viewer);
-        let received = suns.iter().fold(Spectrum::ZERO, |sum, sun| {
-            let factor = self.reflectance.factor(n.dot(sun.direction.normalize()), mu);
-            if factor > 0.0 {
-                sum + sun.irradiance * (factor * light(sun))
-            } else {
-                sum
-            }
+        let received = incoming.fold(Spectrum::ZERO, |sum, (direction, irradiance)| {
+            sum + irradiance * self.reflectance.factor(n.dot(direction), mu)
         });
         received * self.albedo_at(p) / PI
+    }
+
+    /// The first of `suns` (world-frame directions) whose shadow of `planet` (its penumbra, the
+    /// air's height included) reaches the body, and the body's centre's distance behind the
+    /// planet along that shadow's axis, metres.
+    pub fn shadowing_sun(&self, suns: &[Sun], planet: &Planet) -> Option<(usize, f64)> {
+        let center = self.center - planet.center;
+        let reach = planet.radii.max_element() + planet.atmosphere_height + self.radii.max_element();
+        suns.iter().enumerate().find_map(|(s, sun)| {
+            let axis = -sun.direction.normalize();
+            let behind = center.dot(axis);
+            let across = (center - axis * behind).length();
+            (behind > 0.0 && across < reach + behind * sun.angular_radius).then_some((s, behind))
+        })
     }
 }
 
@@ -274,20 +336,29 @@ pub fn planetshine(p: DVec3, sun_direction: DVec3, planet: &Planet) -> (DVec3, f
     (to_planet, planet.geometric_albedo * (radius / distance).powi(2) * phase)
 }
 
-/// The share of `sun`'s light (its direction in the planet frame) that reaches the point `p` of
-/// body `index` of `bodies` (all in `planet`'s frame): past the planet, its `rings` and every
+/// The share of sun `s`'s light (its direction in the planet frame) that reaches the point `p` of
+/// body `index` of `bodies` (all in `planet`'s frame), per model wavelength: past the planet (its
+/// shadow's light where the body carries it, [`Body::planet_shadow`]), its `rings` and every
 /// other body.
 pub fn sunlight_share(
     p: DVec3,
-    sun: &Sun,
+    suns: &[Sun],
+    s: usize,
     planet: &Planet,
     rings: Option<&Rings>,
     bodies: &[Body],
     index: usize,
-) -> f64 {
-    let globe = Eclipser {
-        center: DVec3::ZERO,
-        radius_m: planet.radii.element_product().cbrt(),
+) -> Spectrum {
+    let sun = &suns[s];
+    let globe = match &bodies[index].planet_shadow {
+        Some(shadow) if shadow.sun == s => shadow.light_at(p),
+        _ => {
+            let ball = Eclipser {
+                center: DVec3::ZERO,
+                radius_m: planet.radii.element_product().cbrt(),
+            };
+            Spectrum::splat(ball.visible_fraction(p, sun))
+        }
     };
     let others: f64 = bodies
         .iter()
@@ -296,7 +367,7 @@ pub fn sunlight_share(
         .map(|(_, b)| b.eclipser().visible_fraction(p, sun))
         .product();
     let rings = rings.map_or(1.0, |r| r.transmittance(p, sun.direction.normalize()));
-    globe.visible_fraction(p, sun) * others * rings
+    globe * (others * rings)
 }
 
 /// Checks every body and that none overlaps the planet with its air, nor another body.

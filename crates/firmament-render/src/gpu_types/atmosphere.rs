@@ -7,6 +7,7 @@
 use bytemuck::{Pod, Zeroable};
 use firmament_core::atmosphere::body::{Body, MAX_BODIES};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
+use firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES;
 use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum};
 use firmament_core::atmosphere::rings::{RING_TABLE_ENTRIES, Rings};
 use firmament_core::atmosphere::surface::{Surface, glint};
@@ -160,8 +161,12 @@ pub struct AtmosphereBodyUniform {
     pub axis_y: [f32; 4],
     /// Its polar z axis.
     pub axis_z: [f32; 4],
-    /// Normal albedo per model wavelength.
+    /// Normal albedo per model wavelength; `w` = 1 + the sun whose shadow of the planet the body
+    /// stands in (0: none; [`Body::planet_shadow`]).
     pub albedo: [f32; 4],
+    /// The shadow's axis from the planet's centre (unit, planet frame); `w` = the distance from
+    /// it between the entries of the body's table in [`AtmosphereViewUniforms::body_shadows`] (m).
+    pub shadow: [f32; 4],
 }
 
 impl AtmosphereBodyUniform {
@@ -175,8 +180,26 @@ impl AtmosphereBodyUniform {
             axis_x: vec3_w(axes.x_axis, 0.0),
             axis_y: vec3_w(axes.y_axis, 0.0),
             axis_z: vec3_w(axes.z_axis, 0.0),
-            albedo: spectrum_w(local.albedo, 0.0),
+            albedo: spectrum_w(
+                local.albedo,
+                local.planet_shadow.as_ref().map_or(0.0, |shadow| (shadow.sun + 1) as f64),
+            ),
+            shadow: local
+                .planet_shadow
+                .as_ref()
+                .map_or([0.0; 4], |shadow| vec3_w(shadow.axis, shadow.profile.step_m)),
         }
+    }
+
+    /// The table of `body`'s light inside the planet's shadow (zero without one).
+    fn shadow_table(body: &Body) -> [[f32; 4]; SHADOW_ENTRIES] {
+        let mut table = [[0.0; 4]; SHADOW_ENTRIES];
+        if let Some(shadow) = &body.planet_shadow {
+            for (slot, light) in table.iter_mut().zip(&shadow.profile.light) {
+                *slot = spectrum_w(*light, 0.0);
+            }
+        }
+        table
     }
 }
 
@@ -225,10 +248,13 @@ pub struct AtmosphereViewUniforms {
     /// The planet's surface: x = 1 when the ground is read from the surface map (0: the
     /// medium's `ground_albedo` everywhere, no water); y = the sea's mean square slope for the
     /// suns' glint ([`glint::slope_variance`]); z = the planet's geometric albedo (its light on
-    /// the bodies, [`Planet::geometric_albedo`]); w unused.
+    /// the bodies, [`Planet::geometric_albedo`]); w = its volumetric mean radius (m).
     pub surface: [f32; 4],
     /// The bodies beside the planet; the first `sun_count[3]` are used.
     pub bodies: [AtmosphereBodyUniform; MAX_BODIES],
+    /// Per body, the sunlight's share across the planet's shadow where it stands, per model
+    /// wavelength ([`PlanetShadow::light`](firmament_core::atmosphere::planet_shadow::PlanetShadow::light)).
+    pub body_shadows: [[[f32; 4]; SHADOW_ENTRIES]; MAX_BODIES],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
@@ -308,8 +334,10 @@ impl AtmosphereViewUniforms {
         let eclipser_count = sky.eclipsers.len().min(MAX_ECLIPSERS);
         let (rings, ring_albedo, ring_depth) = ring_fields(sky.rings.as_ref());
         let mut bodies = [AtmosphereBodyUniform::zeroed(); MAX_BODIES];
-        for (slot, body) in bodies.iter_mut().zip(&sky.bodies) {
+        let mut body_shadows = [[[0.0; 4]; SHADOW_ENTRIES]; MAX_BODIES];
+        for ((slot, table), body) in bodies.iter_mut().zip(&mut body_shadows).zip(&sky.bodies) {
             *slot = AtmosphereBodyUniform::new(body, planet);
+            *table = AtmosphereBodyUniform::shadow_table(body);
         }
         Self {
             view_to_planet: shape.view_to_planet,
@@ -337,15 +365,21 @@ impl AtmosphereViewUniforms {
             rings,
             ring_albedo,
             ring_depth,
-            surface: surface_fields(sky.surface.as_ref(), planet.geometric_albedo),
+            surface: surface_fields(sky.surface.as_ref(), planet),
             bodies,
+            body_shadows,
         }
     }
 }
 
-/// The surface's part of [`AtmosphereViewUniforms`]: the flag, the glint's slope variance and
-/// the planet's geometric albedo.
-fn surface_fields(surface: Option<&Surface>, geometric_albedo: f64) -> [f32; 4] {
+/// The surface's part of [`AtmosphereViewUniforms`]: the flag, the glint's slope variance, the
+/// planet's geometric albedo and volumetric mean radius.
+fn surface_fields(surface: Option<&Surface>, planet: &Planet) -> [f32; 4] {
     let (flag, slopes) = surface.map_or((0.0, 0.0), |s| (1.0, glint::slope_variance(s.wind_speed_mps) as f32));
-    [flag, slopes, geometric_albedo as f32, 0.0]
+    [
+        flag,
+        slopes,
+        planet.geometric_albedo as f32,
+        planet.radii.element_product().cbrt() as f32,
+    ]
 }

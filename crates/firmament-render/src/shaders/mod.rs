@@ -1095,7 +1095,11 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
         };
         {
             use crate::gpu_types::medium::{DENSITY_TABLE_SAMPLES, LUT_ROWS, MAX_MEDIUM_TERMS, PHASE_TABLE_SAMPLES};
+            use firmament_core::atmosphere::body::MAX_BODIES;
+            use firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES;
             for (name, value) in [
+                ("MAX_BODIES", MAX_BODIES),
+                ("BODY_SHADOW_ENTRIES", SHADOW_ENTRIES),
                 ("LUT_ROWS", LUT_ROWS),
                 ("MAX_MEDIUM_TERMS", MAX_MEDIUM_TERMS),
                 ("DENSITY_TABLE_SAMPLES", DENSITY_TABLE_SAMPLES),
@@ -1137,14 +1141,15 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 ring_albedo,
                 ring_depth,
                 surface,
-                bodies
+                bodies,
+                body_shadows
             ]
         );
         assert_layout!(
             atmosphere,
             "AtmosphereBody",
             crate::gpu_types::atmosphere::AtmosphereBodyUniform,
-            [center, radii, axis_x, axis_y, axis_z, albedo]
+            [center, radii, axis_x, axis_y, axis_z, albedo, shadow]
         );
     }
 }

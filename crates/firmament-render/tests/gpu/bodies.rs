@@ -6,8 +6,9 @@
 use crate::support::{centre_radiance, far_view_difference, gpu};
 
 use firmament_core::atmosphere::body::maria::{MARIA, albedo_factor};
-use firmament_core::atmosphere::body::{Body, BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance};
+use firmament_core::atmosphere::body::{Body, BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance, sunlight_share};
 use firmament_core::atmosphere::clouds::{CloudKind, CloudLayer};
+use firmament_core::atmosphere::planet_shadow::{PlanetShadow, ShadowSettings};
 use firmament_core::atmosphere::{Planet, Spectrum, presets};
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -99,6 +100,7 @@ fn a_body_sends_back_what_its_reflectance_law_says() {
         albedo: Spectrum::splat(0.4),
         reflectance: Reflectance::Lambert,
         surface: BodySurface::Uniform,
+        planet_shadow: None,
     };
     let sky = airless_with(sun, vec![plain_moon(moon_center), ball.clone()]);
     let cases = [
@@ -173,6 +175,69 @@ fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
         );
     }
     assert!(seen_partial, "no point of the test lay in the penumbra");
+}
+
+/// A lunar eclipse on the Moon as a body: inside the umbra it takes the light the core's shadow
+/// profile gives (Earth's real air refracting sunlight into the shadow,
+/// `firmament_core::atmosphere::planet_shadow`), the GPU within 2 % of the f64 core's
+/// `Body::radiance` with `sunlight_share` at points from the umbra's core to its edge — and red.
+#[test]
+fn the_moon_in_the_umbra_is_lit_red_by_the_planet_s_air() {
+    let mut gpu = gpu();
+    let sun = DVec3::X;
+    let distance = 384_400_000.0;
+    // The Moon's centre 2 000 km off the shadow's axis: the points lie 1 400 to 3 500 km from
+    // it, inside the umbra (about 4 600 km out).
+    let moon_center = planet_center() + DVec3::new(-distance, 0.0, 2_000_000.0);
+    let mut sky = airless_with(sun, vec![plain_moon(moon_center)]);
+    // The profile of Earth's real air (the sky's own is a million times thinner).
+    let mut earth = presets::earth();
+    earth.planet = sky.atmosphere.planet;
+    sky.light_bodies_in_planet_shadow(|_, s, d| PlanetShadow::new(&earth, s, d, &ShadowSettings::default()));
+    assert!(sky.bodies[0].planet_shadow.is_some(), "the Moon stands in the shadow");
+    let planet = sky.atmosphere.planet;
+    let local = sky.bodies[0].to_planet_frame(&planet);
+    let suns: Vec<_> = sky
+        .suns
+        .iter()
+        .map(|s| firmament_core::atmosphere::Sun {
+            direction: planet.direction_to_planet_frame(s.direction),
+            ..*s
+        })
+        .collect();
+    // The eye sunward of the Moon and off the axis, so it sees the face the shadow's light falls on.
+    let eye = moon_center + DVec3::new(20_000_000.0, 0.0, 30_000_000.0);
+    for n in [
+        DVec3::new(1.0, 0.0, -0.4),
+        DVec3::new(1.0, 0.0, 0.2),
+        DVec3::new(1.0, 0.6, 0.9),
+    ] {
+        let p = moon_center + n.normalize() * MOON_RADIUS_M;
+        assert!(n.dot(eye - p) > 0.0, "the eye sees the point");
+        let p_local = planet.to_planet_frame(p);
+        let to_viewer = planet.direction_to_planet_frame((eye - p).normalize());
+        let bodies = std::slice::from_ref(&local);
+        let radiance = local.radiance(p_local, to_viewer, &suns, |s| {
+            sunlight_share(p_local, &suns, s, &planet, None, bodies, 0)
+        }) + local.planetshine_radiance(p_local, to_viewer, &suns, &planet);
+        let want = as_srgb(&sky, radiance);
+        let got = centre_radiance(&mut gpu, &sky, eye, p - eye);
+        let full = closed_form(
+            &sky,
+            moon_center,
+            MOON_RADIUS_M,
+            n.normalize(),
+            eye,
+            0.12,
+            Reflectance::Lambert,
+        );
+        println!(
+            "n {n}: gpu {got:.5} core {want:.5} ({:.2e} of full sunlight)",
+            want.x / full.x
+        );
+        assert!(relative(got, want) < 0.02, "at n {n}: {got} vs {want}");
+        assert!(want.x > 2.0 * want.z && want.x < 0.01 * full.x, "dim and red: {want}");
+    }
 }
 
 /// The Moon's near side, full and face-on: points in Mare Tranquillitatis and Mare Imbrium, on a

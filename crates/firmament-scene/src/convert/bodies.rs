@@ -4,6 +4,7 @@
 
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
+use firmament_core::astro::spa::SolarPosition;
 use firmament_core::atmosphere::body::{Body, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -62,6 +63,31 @@ pub(crate) fn add_bodies(scene: &Scene, instant: Option<&Instant>, sky: &mut Atm
         sky.add_body(body);
     }
     Ok(())
+}
+
+/// Gives the bodies in the planet's shadow its light (a lunar eclipse's red:
+/// [`AtmosphereSky::light_bodies_in_planet_shadow`], the profile cached). A Moon placed at
+/// `instant` is drawn lifted by refraction; the real sun's shadow (`real_sun`, the first sun) is
+/// lifted with it, so it stands in the shadow where it really stands.
+pub(crate) fn light_in_planet_shadow(
+    scene: &Scene,
+    instant: Option<&Instant>,
+    real_sun: Option<&SolarPosition>,
+    sky: &mut AtmosphereSky,
+) {
+    sky.light_bodies_in_planet_shadow(super::lunar_eclipse::profile);
+    let (Some(instant), Some(sun)) = (instant, real_sun) else {
+        return;
+    };
+    let (lat, lon) = (scene.planet.latitude_deg, scene.planet.longitude_deg);
+    for (entry, body) in scene.bodies.iter().zip(&mut sky.bodies) {
+        let placed = entry.position.is_none() && entry.preset.as_deref() == Some("moon");
+        if let Some(shadow) = body.planet_shadow.as_mut().filter(|s| placed && s.sun == 0) {
+            let geometric = moon_view(instant, lat, lon, 0.0).direction;
+            let lift = DQuat::from_rotation_arc(geometric, super::night::refracted(scene, instant, geometric));
+            shadow.axis = lift * -sun.direction_enu(false);
+        }
+    }
 }
 
 /// Whether the scene has the Moon as a body (then the night sky's disc of the Moon and its

@@ -50,28 +50,53 @@ impl LunarEclipse {
 /// profile for as long.
 const DISTANCE_BIN_M: f64 = 10_000.0;
 
-/// The last shadow profile computed: the atmosphere, the sun, the distance bin and the profile
-/// (72 ms to build: docs/PERFORMANCE.md).
-#[allow(
-    clippy::type_complexity,
-    reason = "a one-entry cache; a named type would say no more"
-)]
-static LAST_PROFILE: Mutex<Option<(Atmosphere, Sun, i64, PlanetShadow)>> = Mutex::new(None);
+/// One cached shadow profile: what it depends on (the atmosphere without its pose, the sun's
+/// angular radius and limb darkening as bits, the distance bin) and the profile.
+struct CachedProfile {
+    atmosphere: Atmosphere,
+    sun: (u64, u64),
+    bin: i64,
+    profile: PlanetShadow,
+}
 
-fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow {
-    let key = (distance_m / DISTANCE_BIN_M).round() as i64;
-    let mut last = LAST_PROFILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    if let Some((a, s, k, shadow)) = &*last
-        && a == atmosphere
-        && s == sun
-        && *k == key
+/// How many profiles the cache keeps: the night sky's Moon and the Moon as a body stand in
+/// neighbouring bins (the body is placed refracted), and a time-lapse moves on bin by bin.
+const CACHED_PROFILES: usize = 4;
+
+/// The last shadow profiles computed, the newest last (72 ms each to build:
+/// docs/PERFORMANCE.md).
+static PROFILES: Mutex<Vec<CachedProfile>> = Mutex::new(Vec::new());
+
+/// The light across `atmosphere`'s planet's shadow `distance_m` behind it, cast by `sun`, with
+/// Earth's refraction and clouds ([`ShadowSettings::default`]); cached, the distance binned.
+pub(crate) fn profile(atmosphere: &Atmosphere, sun: &Sun, distance_m: f64) -> PlanetShadow {
+    // The profile depends on the planet's size, not on where it stands or how it is turned.
+    let mut unposed = atmosphere.clone();
+    unposed.planet.center = DVec3::ZERO;
+    unposed.planet.orientation = glam::DQuat::IDENTITY;
+    let key_sun = (sun.angular_radius.to_bits(), sun.limb_darkening.to_bits());
+    let bin = (distance_m / DISTANCE_BIN_M).round() as i64;
+    let mut cache = PROFILES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(i) = cache
+        .iter()
+        .position(|c| c.bin == bin && c.sun == key_sun && c.atmosphere == unposed)
     {
-        return shadow.clone();
+        let hit = cache.remove(i);
+        let profile = hit.profile.clone();
+        cache.push(hit);
+        return profile;
     }
-    let binned = key as f64 * DISTANCE_BIN_M;
-    let shadow = PlanetShadow::new(atmosphere, sun, binned, &ShadowSettings::default());
-    *last = Some((atmosphere.clone(), *sun, key, shadow.clone()));
-    shadow
+    let profile = PlanetShadow::new(&unposed, sun, bin as f64 * DISTANCE_BIN_M, &ShadowSettings::default());
+    if cache.len() == CACHED_PROFILES {
+        cache.remove(0);
+    }
+    cache.push(CachedProfile {
+        atmosphere: unposed,
+        sun: key_sun,
+        bin,
+        profile: profile.clone(),
+    });
+    profile
 }
 
 /// The Earth's shadow on the Moon at `instant` seen from `[planet]`'s place at `height_m`, with the

@@ -165,6 +165,7 @@ impl Scene {
             }
         }
         bodies::add_bodies(self, instant, &mut sky)?;
+        bodies::light_in_planet_shadow(self, instant, real_sun, &mut sky);
         Ok(sky)
     }
 

@@ -150,3 +150,33 @@ fn bad_bodies_name_the_key_and_the_rule() {
         assert!(text.contains(key) && text.contains(rule), "{set}: {text}");
     }
 }
+
+/// In a lunar eclipse the Moon as a body takes the light inside the Earth's shadow: red, and
+/// standing in the shadow where the ephemeris puts it — its distance from the shadow's axis
+/// within 50 km of the night sky's (geometric) Moon's, from Mexico City (the Moon 73° up) and
+/// from where it is low (refraction lifts the drawn Moon by minutes of arc, hundreds of
+/// kilometres at its distance; the shadow is lifted with it).
+#[test]
+fn a_moon_body_in_a_lunar_eclipse_stands_red_in_the_shadow() {
+    for place in [&[][..], &["planet.latitude=0.0", "planet.longitude=-22.0"][..]] {
+        let geometric = preset("lunar-eclipse-2025", place).expect("valid");
+        let frame = geometric.frame_at(None).expect("frame");
+        let moon = frame.night.moon.as_ref().expect("the night sky's Moon");
+        let shadow = moon.shadow.as_ref().expect("the Moon in the shadow");
+        let want_km = shadow.offset.length() * firmament_core::astro::moon::MOON_RADIUS_KM;
+
+        let mut sets = place.to_vec();
+        sets.push("bodies=[{ preset = \"moon\" }]");
+        let sky = sky_of(&preset("lunar-eclipse-2025", &sets).expect("valid"));
+        let body = &sky.bodies[0];
+        let in_shadow = body.planet_shadow.as_ref().expect("the body in the shadow");
+        let c = body.center - sky.atmosphere.planet.center;
+        let got_km = (c - in_shadow.axis * c.dot(in_shadow.axis)).length() / 1000.0;
+        let up_deg = body.center.normalize().z.asin().to_degrees();
+        println!("Moon {up_deg:.1}° up: {got_km:.1} km from the axis, geometric {want_km:.1} km");
+        assert!((got_km - want_km).abs() < 50.0, "{got_km} vs {want_km} km");
+        // Deep red at the centre of the face the planet sees.
+        let light = in_shadow.light_at(c - c.normalize() * MOON_RADIUS_M);
+        assert!(light.x < 0.01 && light.x > 3.0 * light.z, "{light}");
+    }
+}

@@ -1,4 +1,5 @@
 use super::*;
+use crate::atmosphere::planet_shadow::ShadowSettings;
 
 fn sun(direction: DVec3) -> Sun {
     Sun {
@@ -24,7 +25,7 @@ fn disc_flux_times_d2(body: &Body, to_viewer: DVec3, suns: &[Sun], n: u32) -> Sp
             let origin = body.center + e1 * x + e2 * y + to_viewer * (4.0 * extent);
             let ray = Ray::new(origin, -to_viewer).unwrap();
             if let Some(t) = body.hit(&ray) {
-                sum += body.radiance(ray.at(t), to_viewer, suns, |_| 1.0) * (cell * cell);
+                sum += body.radiance(ray.at(t), to_viewer, suns, |_| Spectrum::ONE) * (cell * cell);
             }
         }
     }
@@ -45,6 +46,7 @@ fn full_phase_flux_is_the_geometric_albedo_s() {
             albedo: Spectrum::new(0.1, 0.2, 0.3),
             reflectance: law,
             surface: BodySurface::Uniform,
+            planet_shadow: None,
         };
         let flux = disc_flux_times_d2(&body, s.direction, &[s], 600);
         let expected = s.irradiance * body.albedo * (p * radius * radius);
@@ -73,6 +75,7 @@ fn a_posed_ellipsoid_is_hit_where_its_axes_say() {
         albedo: Spectrum::splat(0.5),
         reflectance: Reflectance::Lambert,
         surface: BodySurface::Uniform,
+        planet_shadow: None,
     };
     let ray = Ray::new(DVec3::new(10.0, 30.0, 30.0), DVec3::NEG_Y).unwrap();
     let t = body.hit(&ray).unwrap();
@@ -90,23 +93,60 @@ fn the_planet_and_other_bodies_shade_a_body() {
     let moon = Body::moon(DVec3::new(-384_400_000.0, 0.0, 0.0));
     let near_side = moon.center + DVec3::X * MOON_RADIUS_M;
     // Straight behind the planet: inside its umbra.
+    let suns = [s];
     assert_eq!(
-        sunlight_share(near_side, &s, &planet, None, std::slice::from_ref(&moon), 0),
-        0.0
+        sunlight_share(near_side, &suns, 0, &planet, None, std::slice::from_ref(&moon), 0),
+        Spectrum::ZERO
     );
     // Far off the shadow's axis: full sunlight; the body itself does not count.
     let aside = Body::moon(DVec3::new(-384_400_000.0, 30_000_000.0, 0.0));
     let p = aside.center + DVec3::X * MOON_RADIUS_M;
     assert_eq!(
-        sunlight_share(p, &s, &planet, None, std::slice::from_ref(&aside), 0),
-        1.0
+        sunlight_share(p, &suns, 0, &planet, None, std::slice::from_ref(&aside), 0),
+        Spectrum::ONE
     );
     // Another body sunward on the line: its share is the eclipse's.
     let blocker = Body::moon(p + DVec3::X * 1.0e8);
     let bodies = [aside.clone(), blocker.clone()];
     let expected = blocker.eclipser().visible_fraction(p, &s);
     assert!(expected < 1.0);
-    assert_eq!(sunlight_share(p, &s, &planet, None, &bodies, 0), expected);
+    assert_eq!(
+        sunlight_share(p, &suns, 0, &planet, None, &bodies, 0),
+        Spectrum::splat(expected)
+    );
+}
+
+/// A moon in the planet's shadow with the shadow's light: red, as the profile gives it at the
+/// point's distance from the axis, and the profile only behind the planet and for its own sun.
+#[test]
+fn a_moon_in_the_shadow_takes_the_shadow_s_light() {
+    let earth = crate::atmosphere::presets::earth();
+    let planet = earth.planet;
+    let s = sun(DVec3::X);
+    let mut moon = Body::moon(DVec3::new(-384_400_000.0, 0.0, 0.0));
+    let (sun_index, behind) = moon.shadowing_sun(&[s], &planet).expect("in the shadow");
+    assert_eq!(sun_index, 0);
+    assert!((behind - 384_400_000.0).abs() < 1.0);
+    let profile = PlanetShadow::new(&earth, &s, behind, &ShadowSettings::default());
+    moon.planet_shadow = Some(BodyInShadow {
+        sun: 0,
+        axis: DVec3::NEG_X,
+        profile: profile.clone(),
+    });
+    let p = moon.center + DVec3::new(MOON_RADIUS_M, 1_000_000.0, 0.0);
+    let share = sunlight_share(p, &[s], 0, &planet, None, std::slice::from_ref(&moon), 0);
+    let across = DVec3::new(0.0, 1_000_000.0, 0.0).length();
+    assert_eq!(share, profile.at(across));
+    assert!(share.x > 2.0 * share.z && share.x > 0.0, "the umbra is red: {share}");
+    // A second sun the shadow is not for, and a point sunward of the planet.
+    let other = sun(DVec3::Y);
+    let second = sunlight_share(p, &[s, other], 1, &planet, None, std::slice::from_ref(&moon), 0);
+    assert_eq!(second, Spectrum::ONE);
+    let shadow = moon.planet_shadow.as_ref().unwrap();
+    assert_eq!(shadow.light_at(DVec3::new(1.0e8, 0.0, 0.0)), Spectrum::ONE);
+    // Clear of the penumbra: no sun shadows it.
+    let aside = Body::moon(DVec3::new(-384_400_000.0, 30_000_000.0, 0.0));
+    assert_eq!(aside.shadowing_sun(&[s], &planet), None);
 }
 
 #[test]

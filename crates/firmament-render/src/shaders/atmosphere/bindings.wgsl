@@ -16,6 +16,9 @@ const MAX_ECLIPSERS: u32 = 4u;
 // How many bodies beside the planet (firmament_core::atmosphere::body::MAX_BODIES); body i is
 // also eclipser i.
 const MAX_BODIES: u32 = 4u;
+// Entries of a body's table of the light inside the planet's shadow
+// (firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES).
+const BODY_SHADOW_ENTRIES: u32 = 64u;
 // The rings' optical depth table: entries (firmament_core::atmosphere::rings::RING_TABLE_ENTRIES)
 // and the vectors that hold them.
 const RING_TABLE_ENTRIES: u32 = 128u;
@@ -67,7 +70,12 @@ struct AtmosphereBody {
     axis_x: vec4<f32>, // the body's axes in the planet frame (unit); w unused
     axis_y: vec4<f32>,
     axis_z: vec4<f32>,
-    albedo: vec4<f32>, // rgb normal albedo per model wavelength; w unused
+    // rgb normal albedo per model wavelength; w = 1 + the sun whose shadow of the planet the body
+    // stands in (0: none), its light there in `view.body_shadows[i]`
+    albedo: vec4<f32>,
+    // xyz unit direction of that shadow's axis from the planet's centre; w = the distance from
+    // the axis between the table's entries (m)
+    shadow: vec4<f32>,
 }
 
 struct AtmosphereSun {
@@ -107,9 +115,13 @@ struct AtmosphereView {
     ring_depth: array<vec4<f32>, RING_TABLE_VECTORS>,
     // The planet's surface (atmosphere/surface.wgsl): x = 1 to read the ground from `surface_map`
     // (0: `ground_albedo` everywhere, no water); y = the sea's mean square slope (Cox–Munk); z = the
-    // planet's geometric albedo (its light on the bodies, atmosphere/bodies.wgsl); w unused
+    // planet's geometric albedo (its light on the bodies, atmosphere/bodies.wgsl); w = its
+    // volumetric mean radius (m)
     surface: vec4<f32>,
     bodies: array<AtmosphereBody, MAX_BODIES>,
+    // Per body, the sunlight's share across the planet's shadow where it stands (rgb per model
+    // wavelength; entry k at k·bodies[i].shadow.y from the axis, 1 beyond the last)
+    body_shadows: array<array<vec4<f32>, BODY_SHADOW_ENTRIES>, MAX_BODIES>,
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).

@@ -1,8 +1,9 @@
 // atmosphere/bodies.wgsl — airless bodies beside the planet: where a view ray meets one and the
 // light it sends back; the GPU twin of firmament_core::atmosphere::body, whose docs give the
 // model (an opaque ellipsoid, Lambert or Lommel–Seeliger, its albedo uniform or patterned by the
-// Moon's maria, shadowed by the planet as a ball of its volumetric mean radius, by the rings and
-// by the other bodies; lit by the planet's sunlit face too, planet-shine).
+// Moon's maria, shadowed by the planet as a ball of its volumetric mean radius or by the light
+// of its shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by the
+// planet's sunlit face too, planet-shine).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
@@ -51,7 +52,7 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f
         }
         let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
         let share = body_sunlight_share(p, s, i) * ring_transmittance(p, to_sun);
-        received += view.suns[s].irradiance.rgb * (law * share);
+        received += view.suns[s].irradiance.rgb * share * law;
     }
     received += planetshine(p, n, mu, lommel_seeliger);
     var albedo = body.albedo.rgb;
@@ -74,12 +75,6 @@ fn lunar_albedo_factor(n: vec3<f32>) -> f32 {
     return mix(LUNAR_HIGHLAND_FACTOR, LUNAR_MARE_FACTOR, mare);
 }
 
-// The planet's volumetric mean radius (m).
-fn planet_mean_radius() -> f32 {
-    let radii = atmosphere.radii.xyz;
-    return exp((log(radii.x) + log(radii.y) + log(radii.z)) / 3.0);
-}
-
 // The irradiance the planet's sunlit face casts at planet-frame point p, reflected by the law
 // (`mu` the emergence cosine) at normal n, per unit albedo: a point of light of geometric albedo
 // `view.surface.z`, phase law of a Lambert sphere (firmament_core::atmosphere::body::planetshine).
@@ -91,7 +86,7 @@ fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> ve
         return vec3<f32>(0.0);
     }
     let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
-    let size = planet_mean_radius() / distance;
+    let size = view.surface.w / distance;
     var received = vec3<f32>(0.0);
     for (var s = 0u; s < view.sun_count.x; s++) {
         let cos_alpha = clamp(dot(view.suns[s].direction.xyz, -to_planet), -1.0, 1.0);
@@ -102,14 +97,36 @@ fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> ve
     return received * law;
 }
 
-// The share of sun s's light that reaches point p of body `own`: past the planet (a ball of its
-// volumetric mean radius) and every other eclipser.
-fn body_sunlight_share(p: vec3<f32>, s: u32, own: u32) -> f32 {
-    var share = eclipser_visible_fraction(p, s, vec4<f32>(0.0, 0.0, 0.0, planet_mean_radius()));
+// The share of sun s's light that reaches point p of body `own`, per model wavelength: past the
+// planet (a ball of its volumetric mean radius, or the light of its shadow's table where the body
+// has one for this sun) and every other eclipser
+// (firmament_core::atmosphere::body::sunlight_share).
+fn body_sunlight_share(p: vec3<f32>, s: u32, own: u32) -> vec3<f32> {
+    var share = 1.0;
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
         if e != own {
             share *= eclipser_visible_fraction(p, s, view.eclipsers[e]);
         }
     }
-    return share;
+    if u32(view.bodies[own].albedo.w) == s + 1u {
+        return share * planet_shadow_light(own, p);
+    }
+    return vec3<f32>(share * eclipser_visible_fraction(p, s, vec4<f32>(0.0, 0.0, 0.0, view.surface.w)));
+}
+
+// The light body i's table of the planet's shadow gives at point p: linear between entries by
+// the distance from the shadow's axis, 1 before the planet and beyond the last entry
+// (firmament_core::atmosphere::body::BodyInShadow::light_at).
+fn planet_shadow_light(i: u32, p: vec3<f32>) -> vec3<f32> {
+    let shadow = view.bodies[i].shadow;
+    let behind = dot(p, shadow.xyz);
+    if behind <= 0.0 {
+        return vec3<f32>(1.0);
+    }
+    let x = length(p - shadow.xyz * behind) / shadow.w;
+    let k = u32(x);
+    if k + 1u >= BODY_SHADOW_ENTRIES {
+        return vec3<f32>(1.0);
+    }
+    return mix(view.body_shadows[i][k].rgb, view.body_shadows[i][k + 1u].rgb, x - f32(k));
 }
