@@ -73,13 +73,12 @@ impl Sun {
 
     /// Radiance of the corona (above the atmosphere) at `angle` radians from the disc's centre,
     /// W·m⁻²·sr⁻¹·nm⁻¹: [`baumbach_corona`] times the disc's mean radiance (the corona is the
-    /// photosphere's light scattered, so it has the sun's spectrum); zero on the disc and for a
-    /// sun whose disc is not drawn. Only worth drawing in an eclipse: by day the sky near the sun
+    /// photosphere's light scattered, so it has the sun's spectrum); zero on the disc. It belongs
+    /// to the sky, so it does not depend on [`Self::disc`]: an environment map, which adds the
+    /// discs itself, keeps it (for the Moon as a light it is a millionth of the Moon's own
+    /// radiance, nothing to see). Only worth drawing in an eclipse: by day the sky near the sun
     /// is brighter.
     pub fn corona_radiance(&self, angle: f64) -> Spectrum {
-        if !self.disc {
-            return Spectrum::ZERO;
-        }
         let solid_angle = 2.0 * PI * (1.0 - self.angular_radius.cos());
         self.irradiance / solid_angle * baumbach_corona(angle / self.angular_radius)
     }

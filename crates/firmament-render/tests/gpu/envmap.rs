@@ -134,6 +134,71 @@ fn the_disc_carries_the_suns_irradiance_and_lands_where_the_sun_is() {
     assert_eq!(brightest(cube.face(face)), (q.x as u32, q.y as u32));
 }
 
+/// In totality the map keeps the sun's corona — the GPU draws it though the map leaves the discs
+/// to the CPU: at every pixel 3.5 to 5 solar radii from the hidden sun (a 1024 × 512 map, sun 60°
+/// up), within 8 % of the reference's corona through the air (Baumbach's law,
+/// `Sun::corona_radiance`) plus the sky light the GPU leaves out in the shadow (`eclipse.rs`; in
+/// red under half the corona). The 8 % is the map's bilinear resampling of the cube's 0.35° texels
+/// (1.3 solar radii) over a corona falling as r^−2.5 to r^−7.
+#[test]
+fn a_total_eclipse_s_map_keeps_the_corona() {
+    let mut gpu = gpu();
+    let mut sky = street_sky(180.0, 60.0);
+    let sun = sky.suns[0];
+    let frame = street_frame(&sky);
+    let eye = frame.camera.position;
+    sky.eclipsers = vec![firmament_core::atmosphere::Eclipser {
+        center: eye + sun.direction * 3.6e8,
+        radius_m: 1.7374e6,
+    }];
+    let frame = street_frame(&sky);
+    let Gpu { ctx, renderer } = &mut *gpu;
+    let (width, height) = (1024, 512);
+    let map = renderer
+        .render_equirect(ctx, &frame, width, SunDiscs::Omitted)
+        .expect("render");
+    let settings = ReferenceSettings {
+        paths: 512,
+        ..ReferenceSettings::default()
+    };
+    let reference = Reference::new(sky.atmosphere.clone(), &sky.suns, settings).with_eclipsers(&sky.eclipsers);
+    let conversion = sky.atmosphere.spectral_conversion();
+    let rgb = |s| {
+        let c = conversion.linear_srgb(s);
+        DVec3::new(c.r, c.g, c.b)
+    };
+    // Every pixel whose centre lies 3.5 to 5 radii from the sun.
+    let s = equirect_position(sun.direction, width, height);
+    let (si, sj) = (s.x as i64, s.y as i64);
+    let mut seen = 0;
+    for (i, j) in (sj - 8..=sj + 8).flat_map(|j| (si - 12..=si + 12).map(move |i| (i as u32, j as u32))) {
+        let centre = firmament_core::envmap::equirect_direction(f64::from(i) + 0.5, f64::from(j) + 0.5, width, height);
+        if !(3.5..=5.0).contains(&(centre.angle_between(sun.direction) / sun.angular_radius)) {
+            continue;
+        }
+        seen += 1;
+        let px = map.pixel(i, j).expect("inside");
+        let got = DVec3::new(f64::from(px[0]), f64::from(px[1]), f64::from(px[2]));
+        let parts = reference.radiance(&firmament_core::geometry::Ray {
+            origin: eye,
+            direction: centre,
+        });
+        let (corona, sky_light) = (rgb(parts.sun_discs), rgb(parts.scattered()));
+        let at = centre.angle_between(sun.direction) / sun.angular_radius;
+        println!("{at:.2} radii out: map {got:.2}, reference corona {corona:.2} and sky {sky_light:.2}");
+        assert!(
+            corona.x > 2.0 * sky_light.x,
+            "the corona outshines the sky there in red: {corona} {sky_light}"
+        );
+        let error = (got - corona).abs().max_element();
+        assert!(
+            error <= 0.08 * corona.max_element() + sky_light.max_element(),
+            "{at:.2} radii: map {got} vs corona {corona} (sky {sky_light})"
+        );
+    }
+    assert!(seen >= 10, "{seen} pixels in the ring");
+}
+
 /// A `width` × `height` texture of `layers` layers and `format` for `EnvironmentMapPass`.
 fn map_texture(
     ctx: &GpuContext,

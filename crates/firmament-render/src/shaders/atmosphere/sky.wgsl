@@ -70,9 +70,10 @@ fn lut_transmittance(d: vec3<f32>) -> vec3<f32> {
     return transmittance_to_top(r, dot(d, view.local_up.xyz));
 }
 
-// Every sun's limb-darkened disc seen along d, above the atmosphere (zero off the discs and
-// where an eclipsing body stands in front), and, while there are eclipsers, its corona
-// (firmament_core Sun::corona_radiance: Baumbach 1937; by day the sky near the sun outshines it).
+// Every sun's limb-darkened disc seen along d, above the atmosphere (zero off the discs, for a
+// sun whose disc is not drawn and where an eclipsing body stands in front), and, while there are
+// eclipsers, its corona, drawn with or without the disc (firmament_core Sun::corona_radiance:
+// Baumbach 1937; by day the sky near the sun outshines it).
 fn sun_discs(d: vec3<f32>) -> vec3<f32> {
     var radiance = vec3<f32>(0.0);
     if meets_eclipser(d) {
@@ -81,7 +82,9 @@ fn sun_discs(d: vec3<f32>) -> vec3<f32> {
     for (var i = 0u; i < view.sun_count.x; i++) {
         let sun = view.suns[i];
         let s = sun.direction.xyz;
-        let alpha = sun.direction.w;
+        // A negative radius: the disc is not drawn.
+        let alpha = abs(sun.direction.w);
+        let disc = sun.direction.w > 0.0;
         // atan2 keeps the precision acos loses for small angles.
         let angle = atan2(length(cross(d, s)), dot(d, s));
         let r = angle / alpha;
@@ -90,7 +93,7 @@ fn sun_discs(d: vec3<f32>) -> vec3<f32> {
             let mean = sun.irradiance.rgb / (4.0 * PI * half * half);
             radiance += mean * 1e-6 * (0.0532 * pow(r, -2.5) + 1.425 * pow(r, -7.0) + 2.565 * pow(r, -17.0));
         }
-        if angle < alpha {
+        if disc && angle < alpha {
             let x = angle / alpha;
             let mu = sqrt(max(1.0 - x * x, 0.0));
             let u = sun.irradiance.w;
