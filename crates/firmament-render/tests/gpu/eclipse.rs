@@ -18,7 +18,12 @@ const EYE: DVec3 = DVec3::new(0.0, 0.0, 1.7);
 /// A street sky with the sun 60° up in the south and the Moon 360 000 km out, `offset` radians
 /// from the sun's centre as the eye sees it (towards the east).
 fn eclipsed_sky(offset: f64) -> AtmosphereSky {
-    let mut sky = street_sky(180.0, 60.0);
+    eclipsed_sky_at(60.0, offset)
+}
+
+/// [`eclipsed_sky`] with the sun `elevation` degrees up.
+fn eclipsed_sky_at(elevation: f64, offset: f64) -> AtmosphereSky {
+    let mut sky = street_sky(180.0, elevation);
     let towards_sun = sky.suns[0].direction;
     let turned = DQuat::from_axis_angle(towards_sun.cross(DVec3::X).normalize(), offset) * towards_sun;
     sky.eclipsers = vec![Eclipser {
@@ -94,10 +99,10 @@ fn a_partial_eclipse_dims_the_sky_as_the_reference_does() {
 
 /// Totality at the eye (the Moon in line with the sun; its shadow ~55 km across the air): the sky
 /// overhead falls to ~1/2000 of the clear sky's and the horizon glows with the light of the air
-/// outside the shadow. The GPU's horizon is 12–15 % below the reference's; overhead, where the
-/// reference's light is all scattered in from outside the shadow (orders ≥ 2), the GPU's multiple
-/// scattering, which sees only the eclipse at its own point, leaves the sky darker still
-/// (docs/ATMOSPHERE.md, "Eclipses").
+/// outside the shadow. Overhead all the reference's light is scattered in from outside the
+/// shadow (orders ≥ 2); the GPU takes it from the visible fraction averaged around each point,
+/// a model whose one reach was fitted here (docs/ATMOSPHERE.md, "Eclipses"): the horizon within
+/// 10 % and the sky overhead within 20 % of the reference (measured 7 % and 12 %).
 #[test]
 fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
     let mut gpu = gpu();
@@ -113,7 +118,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
     let horizon: Vec<(f64, f64)> = VIEWS.iter().copied().filter(|v| v.1 == 3.0).collect();
     let errors = compare(&mut gpu, &sky, &horizon, 4096);
     let worst = errors.iter().copied().fold(0.0, f64::max);
-    assert!(worst < 0.2, "horizon worst {worst:.4}: {errors:.4?}");
+    assert!(worst < 0.1, "horizon worst {worst:.4}: {errors:.4?}");
     let conversion = sky.atmosphere.spectral_conversion();
     for (azimuth, elevation) in [(0.0, 90.0), (180.0, 40.0)] {
         let view = direction(azimuth, elevation);
@@ -128,7 +133,7 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
             g.z, clear.z
         );
         assert!(r > 0.0 && r < 2e-3 * clear.z, "reference {r}");
-        assert!(g.z <= r, "the GPU {} above the reference {r}", g.z);
+        assert!((g.z / r - 1.0).abs() < 0.2, "the GPU {} against the reference {r}", g.z);
     }
     // The sun's disc is gone: looking at it shows the dark sky.
     let at_sun = centre_radiance(&mut gpu, &sky, EYE, sky.suns[0].direction);
@@ -154,4 +159,18 @@ fn a_total_eclipse_darkens_the_sky_but_not_the_horizon() {
         let off = (g - corona).abs().max_element();
         assert!(off <= 0.01 * corona.max_element() + sky_light.max_element(), "{off}");
     }
+}
+
+/// Held out from the fit of the umbra's model (docs/ATMOSPHERE.md, "Eclipses"): totality with the
+/// sun 30° up. The horizon within 10 % of the reference (measured 3 %), the sky overhead and 40°
+/// up both ways within 40 % (measured 31–37 % dark; black before the model).
+#[test]
+fn the_umbra_s_sky_is_lit_by_the_air_around_it() {
+    let mut gpu = gpu();
+    let sky = eclipsed_sky_at(30.0, 0.0);
+    let sky_views = [(0.0, 90.0), (180.0, 40.0), (0.0, 40.0)];
+    let errors = compare(&mut gpu, &sky, &sky_views, 4096);
+    assert!(errors.iter().all(|&e| e < 0.4), "the sky: {errors:.4?}");
+    let errors = compare(&mut gpu, &sky, &[(90.0, 3.0), (180.0, 3.0)], 4096);
+    assert!(errors.iter().all(|&e| e < 0.1), "the horizon: {errors:.4?}");
 }

@@ -135,11 +135,11 @@ fn the_disc_carries_the_suns_irradiance_and_lands_where_the_sun_is() {
 }
 
 /// In totality the map keeps the sun's corona — the GPU draws it though the map leaves the discs
-/// to the CPU: at every pixel 3.5 to 5 solar radii from the hidden sun (a 1024 × 512 map, sun 60°
-/// up), within 8 % of the reference's corona through the air (Baumbach's law,
-/// `Sun::corona_radiance`) plus the sky light the GPU leaves out in the shadow (`eclipse.rs`; in
-/// red under half the corona). The 8 % is the map's bilinear resampling of the cube's 0.35° texels
-/// (1.3 solar radii) over a corona falling as r^−2.5 to r^−7.
+/// to the CPU: every pixel 3.5 to 5 solar radii from the hidden sun (a 1024 × 512 map, sun 60°
+/// up) holds at least 92 % of the reference's corona through the air (Baumbach's law,
+/// `Sun::corona_radiance`; measured 96 %, the map's bilinear resampling of the cube's 0.35°
+/// texels over a corona falling as r^−2.5 to r^−7) and at most 125 % of it plus twice the
+/// reference's sky light there (the GPU's umbra sky is near the reference's, `eclipse.rs`).
 #[test]
 fn a_total_eclipse_s_map_keeps_the_corona() {
     let mut gpu = gpu();
@@ -167,36 +167,40 @@ fn a_total_eclipse_s_map_keeps_the_corona() {
         let c = conversion.linear_srgb(s);
         DVec3::new(c.r, c.g, c.b)
     };
-    // Every pixel whose centre lies 3.5 to 5 radii from the sun.
+    // Every pixel whose centre lies 3.5 to 5 radii from the sun: the map there, the reference's
+    // corona, and its sky light (noisy at 512 paths; averaged over the ring, where it is smooth).
     let s = equirect_position(sun.direction, width, height);
     let (si, sj) = (s.x as i64, s.y as i64);
-    let mut seen = 0;
+    let mut ring = Vec::new();
     for (i, j) in (sj - 8..=sj + 8).flat_map(|j| (si - 12..=si + 12).map(move |i| (i as u32, j as u32))) {
         let centre = firmament_core::envmap::equirect_direction(f64::from(i) + 0.5, f64::from(j) + 0.5, width, height);
-        if !(3.5..=5.0).contains(&(centre.angle_between(sun.direction) / sun.angular_radius)) {
+        let at = centre.angle_between(sun.direction) / sun.angular_radius;
+        if !(3.5..=5.0).contains(&at) {
             continue;
         }
-        seen += 1;
         let px = map.pixel(i, j).expect("inside");
         let got = DVec3::new(f64::from(px[0]), f64::from(px[1]), f64::from(px[2]));
         let parts = reference.radiance(&firmament_core::geometry::Ray {
             origin: eye,
             direction: centre,
         });
-        let (corona, sky_light) = (rgb(parts.sun_discs), rgb(parts.scattered()));
-        let at = centre.angle_between(sun.direction) / sun.angular_radius;
-        println!("{at:.2} radii out: map {got:.2}, reference corona {corona:.2} and sky {sky_light:.2}");
+        ring.push((at, got, rgb(parts.sun_discs), rgb(parts.scattered())));
+    }
+    assert!(ring.len() >= 10, "{} pixels in the ring", ring.len());
+    let sky_light = ring.iter().map(|r| r.3).sum::<DVec3>() / ring.len() as f64;
+    for (at, got, corona, _) in ring {
+        println!("{at:.2} radii out: map {got:.2}, reference corona {corona:.2}, the ring's sky {sky_light:.2}");
         assert!(
             corona.x > 2.0 * sky_light.x,
             "the corona outshines the sky there in red: {corona} {sky_light}"
         );
-        let error = (got - corona).abs().max_element();
+        // The map holds the corona (less only by its resampling) and the GPU's sky in the
+        // umbra, which is near the reference's (docs/ATMOSPHERE.md, "Eclipses").
         assert!(
-            error <= 0.08 * corona.max_element() + sky_light.max_element(),
+            got.cmpge(0.92 * corona).all() && got.cmple(1.25 * corona + 2.0 * sky_light).all(),
             "{at:.2} radii: map {got} vs corona {corona} (sky {sky_light})"
         );
     }
-    assert!(seen >= 10, "{seen} pixels in the ring");
 }
 
 /// A `width` × `height` texture of `layers` layers and `format` for `EnvironmentMapPass`.

@@ -12,6 +12,12 @@
 #import atmosphere/rings
 #import generated/constants
 
+// How far from a point in an eclipse's umbra the light scattered into it is taken from at most
+// (m): `multiple_scattering_visible_fraction`'s fitted reach.
+const MULTIPLE_SCATTERING_REACH_M: f32 = 1.0e5;
+// The visible fraction above which that average is the fraction at the point itself.
+const MULTIPLE_SCATTERING_AVERAGED_BELOW: f32 = 0.2;
+
 // The fraction of a limb-darkened disc (radius 1, linear limb darkening u) hidden by a disc of
 // radius k whose centre lies d from its centre.
 fn eclipse_hidden_fraction(d: f32, k: f32, u: f32) -> f32 {
@@ -82,6 +88,52 @@ fn sun_irradiance_at(p: vec3<f32>, i: u32) -> vec3<f32> {
         return view.suns[i].irradiance.rgb * rings;
     }
     return view.suns[i].irradiance.rgb * (rings * sun_visible_fraction(p, i));
+}
+
+// The share of sun i the light scattered more than once at p has seen, per model wavelength. In
+// the umbra that light comes from the sunlit air around, so the visible fraction is averaged
+// over points displaced horizontally from p in three directions, at the 2-point Gauss–Laguerre
+// distances of an exponential law whose mean is the air's mean free path at p (1/`extinction`,
+// m), each capped at MULTIPLE_SCATTERING_REACH_M. An empirical model, fitted and checked against
+// the reference path tracer (docs/ATMOSPHERE.md, "Eclipses"). Where `here`, the visible fraction
+// at p (sun_visible_fraction), exceeds MULTIPLE_SCATTERING_AVERAGED_BELOW, the penumbra is
+// nearly linear over the reach and the average is `here` itself (blended in over the half below).
+fn multiple_scattering_visible_fraction(p: vec3<f32>, i: u32, here: f32, extinction: vec3<f32>) -> vec3<f32> {
+    if view.sun_count.y == 0u || here >= MULTIPLE_SCATTERING_AVERAGED_BELOW {
+        return vec3<f32>(here);
+    }
+    let up = normalize(p);
+    let e1 = normalize(cross(up, select(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, 0.0), abs(up.z) > 0.9)));
+    let e2 = cross(up, e1);
+    let nodes = array<f32, 2>(0.58578644, 3.41421356);
+    let weights = array<f32, 2>(0.85355339, 0.14644661);
+    let free_path = 1.0 / max(extinction, vec3<f32>(1e-9));
+    var sum = vec3<f32>(0.0);
+    for (var k = 0u; k < 2u; k++) {
+        // The channels' distances, most often the same once capped: each ring is taken once.
+        var last_r = -1.0;
+        var ring = 0.0;
+        for (var c = 0u; c < 3u; c++) {
+            let r = min(nodes[k] * free_path[c], MULTIPLE_SCATTERING_REACH_M);
+            if r != last_r {
+                ring = 0.0;
+                for (var a = 0u; a < 3u; a++) {
+                    let angle = 2.0 * PI / 3.0 * f32(a);
+                    ring += sun_visible_fraction(p + r * (cos(angle) * e1 + sin(angle) * e2), i) / 3.0;
+                }
+                last_r = r;
+            }
+            sum[c] += weights[k] * ring;
+        }
+    }
+    let blend = smoothstep(0.5 * MULTIPLE_SCATTERING_AVERAGED_BELOW, MULTIPLE_SCATTERING_AVERAGED_BELOW, here);
+    return mix(sum, vec3<f32>(here), blend);
+}
+
+// Sun i's spectral irradiance at the top of the atmosphere above p through the planet's rings
+// (their shadow), before any eclipse (W·m⁻²·nm⁻¹).
+fn sun_irradiance_past_rings(p: vec3<f32>, i: u32) -> vec3<f32> {
+    return view.suns[i].irradiance.rgb * ring_transmittance(p, view.suns[i].direction.xyz);
 }
 
 // Whether the view ray from the camera along d meets an eclipsing body (which hides the suns'

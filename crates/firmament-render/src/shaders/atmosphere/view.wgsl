@@ -132,9 +132,15 @@ fn view_ray(ndc: vec2<f32>) -> ViewRay {
 
 // The radiance the lit ground at p (altitude h, normal `up`) sends towards `to_eye` from suns
 // [first, first + count): direct sunlight and sky light on its Lambertian albedo, and each sun's
-// glint on its water (atmosphere/surface.wgsl), all dimmed by any eclipse at p.
+// glint on its water (atmosphere/surface.wgsl), all dimmed by any eclipse at p (the sky light by
+// the share the air around has seen, as multiple scattering is).
 fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, to_eye: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
     let ground = ground_at(up);
+    // The air's extinction only an eclipse needs (its mean free path).
+    var extinction = vec3<f32>(0.0);
+    if view.sun_count.y > 0u {
+        extinction = coefficients_at(h).extinction;
+    }
     var irradiance = vec3<f32>(0.0);
     var glint = vec3<f32>(0.0);
     for (var i = first; i < first + count; i++) {
@@ -143,9 +149,11 @@ fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, to_eye: vec3<f32>, first
         let mu_s = dot(up, s);
         let beam = transmittance_to_sun(h, mu_s, abs(sun.direction.w));
         let direct = beam * max(mu_s, 0.0);
-        let e = sun_irradiance_at(p, i);
-        irradiance += e * (direct + sky_irradiance(h, mu_s));
-        glint += e * beam * glint_factor(ground, up, s, to_eye);
+        let top = sun_irradiance_past_rings(p, i);
+        let seen = sun_visible_fraction(p, i);
+        let around = multiple_scattering_visible_fraction(p, i, seen, extinction);
+        irradiance += top * (seen * direct + around * sky_irradiance(h, mu_s));
+        glint += top * seen * beam * glint_factor(ground, up, s, to_eye);
     }
     return ground.albedo / PI * irradiance + glint;
 }
@@ -183,9 +191,12 @@ fn medium_sample(p: vec3<f32>, d: vec3<f32>, first: u32, count: u32) -> MediumSa
         let s = sun.direction.xyz;
         let mu_s = dot(here.up, s);
         let direct = transmittance_to_sun(here.h, mu_s, abs(sun.direction.w)) * scattering_phase(c, dot(d, s));
-        // An eclipse dims both by the share of the sun seen here (multiple scattering is then
-        // that of an air lit alike all round: docs/ATMOSPHERE.md, "Eclipses").
-        out.source += sun_irradiance_at(p, i) * (direct + multiple_scattering(c, here.h, here.up, s, d));
+        // An eclipse dims the direct light by the share of the sun seen here, the light scattered
+        // more than once by the share the air around has seen (docs/ATMOSPHERE.md, "Eclipses").
+        let top = sun_irradiance_past_rings(p, i);
+        let seen = sun_visible_fraction(p, i);
+        let around = multiple_scattering_visible_fraction(p, i, seen, c.extinction);
+        out.source += top * (seen * direct + around * multiple_scattering(c, here.h, here.up, s, d));
     }
     return out;
 }
