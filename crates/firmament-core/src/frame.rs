@@ -87,11 +87,10 @@ impl AtmosphereSky {
 
     /// Gives every body that stands in the planet's shadow of one of the suns (its penumbra
     /// reaching it: [`Body::shadowing_sun`]) the light inside that shadow
-    /// ([`Body::planet_shadow`]):
-    /// `profile(atmosphere, sun, distance_m)` the shadow `distance_m` behind the planet — usually
-    /// [`PlanetShadow::new`] with the default
-    /// settings, which takes tens of milliseconds (docs/PERFORMANCE.md), so cache it across
-    /// frames. Other bodies lose any shadow they had.
+    /// ([`Body::planet_shadow`]), `profile(atmosphere, sun, distance_m)` being the shadow
+    /// `distance_m` behind the planet — usually [`PlanetShadow::new`] with the default settings,
+    /// which takes tens of milliseconds (docs/PERFORMANCE.md), so cache it across frames. Other
+    /// bodies lose any shadow they had.
     pub fn light_bodies_in_planet_shadow(&mut self, mut profile: impl FnMut(&Atmosphere, &Sun, f64) -> PlanetShadow) {
         for body in &mut self.bodies {
             body.planet_shadow = body
@@ -131,6 +130,18 @@ impl AtmosphereSky {
                 field: "bodies",
                 value: format!("{} bodies, {} eclipsers", self.bodies.len(), self.eclipsers.len()),
                 rule: "each body must also be the eclipser of the same index (AtmosphereSky::add_body)",
+            });
+        }
+        if let Some(shadow) = self
+            .bodies
+            .iter()
+            .filter_map(|b| b.planet_shadow.as_ref())
+            .find(|s| s.sun >= self.suns.len())
+        {
+            return Err(crate::error::CoreError::Invalid {
+                field: "body.planet_shadow.sun",
+                value: format!("sun {} of {}", shadow.sun, self.suns.len()),
+                rule: "must be one of the sky's suns",
             });
         }
         if let Some(rings) = &self.rings {

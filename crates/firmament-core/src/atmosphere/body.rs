@@ -42,7 +42,7 @@ use std::f64::consts::PI;
 use glam::{DQuat, DVec3};
 
 use crate::atmosphere::eclipse::Eclipser;
-use crate::atmosphere::planet_shadow::PlanetShadow;
+use crate::atmosphere::planet_shadow::{PlanetShadow, SHADOW_ENTRIES};
 use crate::atmosphere::rings::Rings;
 use crate::atmosphere::{Planet, Spectrum, Sun};
 use crate::error::CoreError;
@@ -148,6 +148,29 @@ pub struct BodyInShadow {
 }
 
 impl BodyInShadow {
+    /// Checks the rules: the axis a finite unit vector; the profile's step finite and > 0 m, its
+    /// [`SHADOW_ENTRIES`] shares finite and ≥ 0 (the GPU's table holds that many).
+    pub fn validate(&self) -> Result<(), CoreError> {
+        if !(self.axis.is_finite() && (self.axis.length() - 1.0).abs() < 1e-6) {
+            return Err(invalid(
+                "body.planet_shadow.axis",
+                format!("{:?}", self.axis.to_array()),
+                "must be a unit vector",
+            ));
+        }
+        let profile = &self.profile;
+        let shares_ok = profile.light.iter().all(|l| l.is_finite() && l.min_element() >= 0.0);
+        if !(profile.step_m.is_finite() && profile.step_m > 0.0) || profile.light.len() != SHADOW_ENTRIES || !shares_ok
+        {
+            return Err(invalid(
+                "body.planet_shadow.profile",
+                format!("step {} m, {} entries", profile.step_m, profile.light.len()),
+                "must step a finite distance > 0 m between 64 finite shares ≥ 0 (PlanetShadow::new)",
+            ));
+        }
+        Ok(())
+    }
+
     /// The sunlight's share at point `p`, relative to the planet's centre (same frame as the
     /// body): the profile at `p`'s distance from the shadow's axis behind the planet, 1 before it.
     pub fn light_at(&self, p: DVec3) -> Spectrum {
@@ -206,7 +229,7 @@ impl Body {
                 "every value must be in [0, 1]",
             ));
         }
-        Ok(())
+        self.planet_shadow.as_ref().map_or(Ok(()), BodyInShadow::validate)
     }
 
     /// The radius of the ball of the same volume, metres: what the body hides of a sun.

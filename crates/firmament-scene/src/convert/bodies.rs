@@ -65,7 +65,7 @@ pub(crate) fn add_bodies(scene: &Scene, instant: Option<&Instant>, sky: &mut Atm
     Ok(())
 }
 
-/// Gives the bodies in the planet's shadow its light (a lunar eclipse's red:
+/// Gives the bodies in the planet's shadow the light there (a lunar eclipse's red:
 /// [`AtmosphereSky::light_bodies_in_planet_shadow`], the profile cached). A Moon placed at
 /// `instant` is drawn lifted by refraction; the real sun's shadow (`real_sun`, the first sun) is
 /// lifted with it, so it stands in the shadow where it really stands.

@@ -147,6 +147,26 @@ fn a_moon_in_the_shadow_takes_the_shadow_s_light() {
     // Clear of the penumbra: no sun shadows it.
     let aside = Body::moon(DVec3::new(-384_400_000.0, 30_000_000.0, 0.0));
     assert_eq!(aside.shadowing_sun(&[s], &planet), None);
+    // A bad shadow names its field.
+    assert!(moon.validate().is_ok());
+    let mut bent = moon.clone();
+    bent.planet_shadow.as_mut().unwrap().axis = DVec3::new(0.0, 2.0, 0.0);
+    assert!(matches!(
+        bent.validate(),
+        Err(CoreError::Invalid {
+            field: "body.planet_shadow.axis",
+            ..
+        })
+    ));
+    let mut flat = moon;
+    flat.planet_shadow.as_mut().unwrap().profile.step_m = 0.0;
+    assert!(matches!(
+        flat.validate(),
+        Err(CoreError::Invalid {
+            field: "body.planet_shadow.profile",
+            ..
+        })
+    ));
 }
 
 #[test]

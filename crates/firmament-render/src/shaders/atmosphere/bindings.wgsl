@@ -120,7 +120,7 @@ struct AtmosphereView {
     surface: vec4<f32>,
     bodies: array<AtmosphereBody, MAX_BODIES>,
     // Per body, the sunlight's share across the planet's shadow where it stands (rgb per model
-    // wavelength; entry k at k·bodies[i].shadow.y from the axis, 1 beyond the last)
+    // wavelength; entry k at k·bodies[i].shadow.w from the axis, 1 beyond the last)
     body_shadows: array<array<vec4<f32>, BODY_SHADOW_ENTRIES>, MAX_BODIES>,
 }
 
