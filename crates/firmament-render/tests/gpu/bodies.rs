@@ -52,6 +52,15 @@ fn planet_center() -> DVec3 {
     DVec3::new(0.0, 0.0, -EARTH_RADIUS_M)
 }
 
+/// A plain Moon 384 400 km behind the planet from a sun along +x, its centre `off_axis_m` from the
+/// shadow's axis, and an eye sunward of it and off the axis (so it sees the face towards the
+/// planet without looking through it): the Moon's centre, the eye, the sky.
+fn moon_behind_the_planet(off_axis_m: f64) -> (DVec3, DVec3, AtmosphereSky) {
+    let moon_center = planet_center() + DVec3::new(-384_400_000.0, 0.0, off_axis_m);
+    let eye = moon_center + DVec3::new(20_000_000.0, 0.0, 30_000_000.0);
+    (moon_center, eye, airless_with(DVec3::X, vec![plain_moon(moon_center)]))
+}
+
 /// Spectral radiance as the GPU's linear sRGB.
 fn as_srgb(sky: &AtmosphereSky, radiance: Spectrum) -> DVec3 {
     let c = sky.atmosphere.spectral_conversion().linear_srgb(radiance);
@@ -133,19 +142,14 @@ fn a_body_sends_back_what_its_reflectance_law_says() {
 #[test]
 fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
     let mut gpu = gpu();
-    let sun = DVec3::X;
-    let distance = 384_400_000.0;
     // Along the shadow, the umbra's radius is R − d·(α_sun·…): about 4 700 km here, and the
     // penumbra reaches to about 8 000 km. The Moon's centre 6 400 km off the axis.
-    let moon_center = planet_center() + DVec3::new(-distance, 0.0, 6_400_000.0);
-    let sky = airless_with(sun, vec![plain_moon(moon_center)]);
+    let (moon_center, eye, sky) = moon_behind_the_planet(6_400_000.0);
     let planet = &sky.atmosphere.planet;
     let globe = firmament_core::atmosphere::Eclipser {
         center: planet.center,
         radius_m: EARTH_RADIUS_M,
     };
-    // The eye on the sunward side, off the line so it does not look through the planet.
-    let eye = moon_center + DVec3::new(20_000_000.0, 0.0, 30_000_000.0);
     let mut seen_partial = false;
     for n in [
         DVec3::new(1.0, 0.0, 0.6),
@@ -184,12 +188,9 @@ fn the_planet_s_penumbra_dims_a_body_as_the_eclipse_model_says() {
 #[test]
 fn the_moon_in_the_umbra_is_lit_red_by_the_planet_s_air() {
     let mut gpu = gpu();
-    let sun = DVec3::X;
-    let distance = 384_400_000.0;
     // The Moon's centre 2 000 km off the shadow's axis: the points lie 1 400 to 3 500 km from
     // it, inside the umbra (about 4 600 km out).
-    let moon_center = planet_center() + DVec3::new(-distance, 0.0, 2_000_000.0);
-    let mut sky = airless_with(sun, vec![plain_moon(moon_center)]);
+    let (moon_center, eye, mut sky) = moon_behind_the_planet(2_000_000.0);
     // The profile of Earth's real air (the sky's own is a million times thinner).
     let mut earth = presets::earth();
     earth.planet = sky.atmosphere.planet;
@@ -205,8 +206,6 @@ fn the_moon_in_the_umbra_is_lit_red_by_the_planet_s_air() {
             ..*s
         })
         .collect();
-    // The eye sunward of the Moon and off the axis, so it sees the face the shadow's light falls on.
-    let eye = moon_center + DVec3::new(20_000_000.0, 0.0, 30_000_000.0);
     for n in [
         DVec3::new(1.0, 0.0, -0.4),
         DVec3::new(1.0, 0.0, 0.2),

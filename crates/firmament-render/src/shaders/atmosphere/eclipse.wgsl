@@ -83,11 +83,17 @@ fn sun_visible_fraction(p: vec3<f32>, i: u32) -> f32 {
 // Sun i's spectral irradiance at the top of the atmosphere above p, after the eclipsing bodies
 // and through the planet's rings (their shadow) (W·m⁻²·nm⁻¹).
 fn sun_irradiance_at(p: vec3<f32>, i: u32) -> vec3<f32> {
-    let rings = ring_transmittance(p, view.suns[i].direction.xyz);
+    let past_rings = sun_irradiance_past_rings(p, i);
     if view.sun_count.y == 0u {
-        return view.suns[i].irradiance.rgb * rings;
+        return past_rings;
     }
-    return view.suns[i].irradiance.rgb * (rings * sun_visible_fraction(p, i));
+    return past_rings * sun_visible_fraction(p, i);
+}
+
+// Sun i's spectral irradiance at the top of the atmosphere above p through the planet's rings
+// (their shadow), before any eclipse (W·m⁻²·nm⁻¹).
+fn sun_irradiance_past_rings(p: vec3<f32>, i: u32) -> vec3<f32> {
+    return view.suns[i].irradiance.rgb * ring_transmittance(p, view.suns[i].direction.xyz);
 }
 
 // The share of sun i the light scattered more than once at p has seen, per model wavelength. In
@@ -96,10 +102,11 @@ fn sun_irradiance_at(p: vec3<f32>, i: u32) -> vec3<f32> {
 // distances of an exponential law whose mean is the air's mean free path at p (1/`extinction`,
 // m), each capped at MULTIPLE_SCATTERING_REACH_M. An empirical model, fitted and checked against
 // the reference path tracer (docs/ATMOSPHERE.md, "Eclipses"). Where `here`, the visible fraction
-// at p (sun_visible_fraction), exceeds MULTIPLE_SCATTERING_AVERAGED_BELOW, the penumbra is
-// nearly linear over the reach and the average is `here` itself (blended in over the half below).
+// at p (sun_visible_fraction; 1 without eclipsers), exceeds MULTIPLE_SCATTERING_AVERAGED_BELOW,
+// the penumbra is nearly linear over the reach and the average is `here` itself (blended in over
+// the half below).
 fn multiple_scattering_visible_fraction(p: vec3<f32>, i: u32, here: f32, extinction: vec3<f32>) -> vec3<f32> {
-    if view.sun_count.y == 0u || here >= MULTIPLE_SCATTERING_AVERAGED_BELOW {
+    if here >= MULTIPLE_SCATTERING_AVERAGED_BELOW {
         return vec3<f32>(here);
     }
     let up = normalize(p);
@@ -128,12 +135,6 @@ fn multiple_scattering_visible_fraction(p: vec3<f32>, i: u32, here: f32, extinct
     }
     let blend = smoothstep(0.5 * MULTIPLE_SCATTERING_AVERAGED_BELOW, MULTIPLE_SCATTERING_AVERAGED_BELOW, here);
     return mix(sum, vec3<f32>(here), blend);
-}
-
-// Sun i's spectral irradiance at the top of the atmosphere above p through the planet's rings
-// (their shadow), before any eclipse (W·m⁻²·nm⁻¹).
-fn sun_irradiance_past_rings(p: vec3<f32>, i: u32) -> vec3<f32> {
-    return view.suns[i].irradiance.rgb * ring_transmittance(p, view.suns[i].direction.xyz);
 }
 
 // Whether the view ray from the camera along d meets an eclipsing body (which hides the suns'
