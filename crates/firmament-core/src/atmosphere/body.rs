@@ -48,6 +48,8 @@ use crate::atmosphere::{Planet, Spectrum, Sun};
 use crate::error::CoreError;
 use crate::geometry::{Ellipsoid, Ray};
 
+pub use air::{AirSegment, BodyAir};
+
 /// The most bodies a sky takes (they are its eclipsers too, and the GPU's uniform holds this
 /// many: [`crate::atmosphere::eclipse::MAX_ECLIPSERS`]).
 pub const MAX_BODIES: usize = crate::atmosphere::eclipse::MAX_ECLIPSERS;
@@ -131,6 +133,8 @@ pub struct Body {
     /// The light inside the planet's shadow where the body stands, if it stands there (a lunar
     /// eclipse); `None`: the planet is an opaque ball.
     pub planet_shadow: Option<BodyInShadow>,
+    /// The body's own air ([`air`]); `None`: airless.
+    pub air: Option<BodyAir>,
 }
 
 /// The light a body gets inside the planet's shadow from one sun: that sun's share across the
@@ -195,6 +199,7 @@ impl Body {
             reflectance: Reflectance::LommelSeeliger,
             surface: BodySurface::LunarMaria,
             planet_shadow: None,
+            air: None,
         }
     }
 
@@ -229,7 +234,18 @@ impl Body {
                 "every value must be in [0, 1]",
             ));
         }
-        self.planet_shadow.as_ref().map_or(Ok(()), BodyInShadow::validate)
+        self.planet_shadow.as_ref().map_or(Ok(()), BodyInShadow::validate)?;
+        self.air.as_ref().map_or(Ok(()), BodyAir::validate)
+    }
+
+    /// How far the body reaches from its centre, metres: its largest semi-axis, its air's top
+    /// included.
+    pub fn reach(&self) -> f64 {
+        let air = self
+            .air
+            .as_ref()
+            .map_or(0.0, |air| air.top_altitude_m / self.mean_radius());
+        self.radii.max_element() * (1.0 + air)
     }
 
     /// The radius of the ball of the same volume, metres: what the body hides of a sun.
@@ -361,9 +377,24 @@ pub fn planetshine(p: DVec3, sun_direction: DVec3, planet: &Planet) -> (DVec3, f
 
 /// The share of sun `s`'s light (its direction in the planet frame) that reaches the point `p` of
 /// body `index` of `bodies` (all in `planet`'s frame), per model wavelength: past the planet (its
-/// shadow's light where the body carries it, [`Body::planet_shadow`]), its `rings` and every
-/// other body.
+/// shadow's light where the body carries it, [`Body::planet_shadow`]), its `rings`, every other
+/// body and the body's own air ([`Body::air_transmittance`]).
 pub fn sunlight_share(
+    p: DVec3,
+    suns: &[Sun],
+    s: usize,
+    planet: &Planet,
+    rings: Option<&Rings>,
+    bodies: &[Body],
+    index: usize,
+) -> Spectrum {
+    let air = bodies[index].air_transmittance(p, suns[s].direction.normalize());
+    shadows_share(p, suns, s, planet, rings, bodies, index) * air
+}
+
+/// [`sunlight_share`] without the body's own air: what the shadows of the planet, its rings and
+/// the other bodies leave of sun `s` at `p` (the light [`Body::air_along`] takes).
+pub fn shadows_share(
     p: DVec3,
     suns: &[Sun],
     s: usize,
@@ -405,7 +436,7 @@ pub fn validate_bodies(bodies: &[Body], planet: &Planet) -> Result<(), CoreError
     let planet_reach = planet.radii.max_element() + planet.atmosphere_height;
     for (i, body) in bodies.iter().enumerate() {
         body.validate()?;
-        let reach = body.radii.max_element();
+        let reach = body.reach();
         if body.center.distance(planet.center) <= planet_reach + reach {
             return Err(invalid(
                 "body.center",
@@ -415,11 +446,12 @@ pub fn validate_bodies(bodies: &[Body], planet: &Planet) -> Result<(), CoreError
             ));
         }
         for other in &bodies[..i] {
-            if body.center.distance(other.center) <= reach + other.radii.max_element() {
+            if body.center.distance(other.center) <= reach + other.reach() {
                 return Err(invalid(
                     "body.center",
                     format!("{:?}", body.center.to_array()),
-                    "must lie clear of every other body (centres farther apart than their largest radii)",
+                    "must lie clear of every other body (centres farther apart than their largest radii, \
+                     their airs' heights included)",
                 ));
             }
         }
@@ -431,6 +463,7 @@ fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError 
     CoreError::Invalid { field, value, rule }
 }
 
+pub mod air;
 pub mod maria;
 
 #[cfg(test)]

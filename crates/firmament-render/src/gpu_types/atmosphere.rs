@@ -28,6 +28,9 @@ use super::pack::vec3_w;
 /// mountain or an airliner to the horizon.
 pub const AERIAL_PERSPECTIVE_RANGE: f64 = 100_000.0;
 
+/// The terms of a body's air: molecules, aerosols and an absorbing gas.
+pub const BODY_AIR_TERMS: usize = 3;
+
 /// The altitude band, as fractions of the atmosphere height, over which the sky blends from the
 /// sky-view LUT (below) to the per-pixel march (above, and anywhere outside the atmosphere).
 pub const LUT_TO_MARCH_BAND: (f64, f64) = (0.9, 1.0);
@@ -167,6 +170,9 @@ pub struct AtmosphereBodyUniform {
     /// The shadow's axis from the planet's centre (unit, planet frame); `w` = the distance from
     /// it between the entries of the body's table in [`AtmosphereViewUniforms::body_shadows`] (m).
     pub shadow: [f32; 4],
+    /// x = the height of the body's air (m; 0: airless, [`Body::air`]), its terms in
+    /// [`AtmosphereViewUniforms::body_air`]; y = the body's volumetric mean radius (m); zw unused.
+    pub air: [f32; 4],
 }
 
 impl AtmosphereBodyUniform {
@@ -188,7 +194,23 @@ impl AtmosphereBodyUniform {
                 .planet_shadow
                 .as_ref()
                 .map_or([0.0; 4], |shadow| vec3_w(shadow.axis, shadow.profile.step_m)),
+            air: [
+                local.air.as_ref().map_or(0.0, |air| air.top_altitude_m) as f32,
+                local.mean_radius() as f32,
+                0.0,
+                0.0,
+            ],
         }
+    }
+
+    /// The terms of `body`'s air, in [`Constituents::terms`](firmament_core::atmosphere::medium::Constituents::terms)'
+    /// order (zero when airless).
+    fn air_terms(body: &Body) -> [MediumTermUniform; BODY_AIR_TERMS] {
+        let Some(air) = &body.air else {
+            return [MediumTermUniform::zeroed(); BODY_AIR_TERMS];
+        };
+        let terms = air.constituents.terms();
+        std::array::from_fn(|k| MediumTermUniform::new(&terms[k], false))
     }
 
     /// The table of `body`'s light inside the planet's shadow (zero without one).
@@ -255,6 +277,8 @@ pub struct AtmosphereViewUniforms {
     /// Per body, the sunlight's share across the planet's shadow where it stands, per model
     /// wavelength ([`PlanetShadow::light`](firmament_core::atmosphere::planet_shadow::PlanetShadow::light)).
     pub body_shadows: [[[f32; 4]; SHADOW_ENTRIES]; MAX_BODIES],
+    /// Per body, its air's molecules, aerosols and absorbing gas (zero when airless).
+    pub body_air: [[MediumTermUniform; BODY_AIR_TERMS]; MAX_BODIES],
 }
 
 fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
@@ -335,9 +359,11 @@ impl AtmosphereViewUniforms {
         let (rings, ring_albedo, ring_depth) = ring_fields(sky.rings.as_ref());
         let mut bodies = [AtmosphereBodyUniform::zeroed(); MAX_BODIES];
         let mut body_shadows = [[[0.0; 4]; SHADOW_ENTRIES]; MAX_BODIES];
-        for ((slot, table), body) in bodies.iter_mut().zip(&mut body_shadows).zip(&sky.bodies) {
-            *slot = AtmosphereBodyUniform::new(body, planet);
-            *table = AtmosphereBodyUniform::shadow_table(body);
+        let mut body_air = [[MediumTermUniform::zeroed(); BODY_AIR_TERMS]; MAX_BODIES];
+        for (i, body) in sky.bodies.iter().take(MAX_BODIES).enumerate() {
+            bodies[i] = AtmosphereBodyUniform::new(body, planet);
+            body_shadows[i] = AtmosphereBodyUniform::shadow_table(body);
+            body_air[i] = AtmosphereBodyUniform::air_terms(body);
         }
         Self {
             view_to_planet: shape.view_to_planet,
@@ -368,6 +394,7 @@ impl AtmosphereViewUniforms {
             surface: surface_fields(sky.surface.as_ref(), planet),
             bodies,
             body_shadows,
+            body_air,
         }
     }
 }

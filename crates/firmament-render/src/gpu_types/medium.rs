@@ -163,7 +163,7 @@ pub struct MediumTermUniform {
 impl MediumTermUniform {
     /// The term as the GPU reads it; in a thick air ([`THICK_AIR_DEPTH`]) delta-M takes the
     /// whole forward peak a₅ rather than at most [`MIE_FORWARD_PEAK_MAX`].
-    fn new(term: &MediumTerm, thick: bool) -> Self {
+    pub(super) fn new(term: &MediumTerm, thick: bool) -> Self {
         let spectrum = |s: Spectrum, w: u32| [s.x as f32, s.y as f32, s.z as f32, w as f32];
         let profile = match &term.density {
             Density::Profile(p) => DensityProfileUniform::new(p),

@@ -51,7 +51,9 @@ const FILES: &[(&str, &str)] = &[
     ("atmosphere/surface", include_str!("atmosphere/surface.wgsl")),
     ("atmosphere/eclipse", include_str!("atmosphere/eclipse.wgsl")),
     ("atmosphere/body_hits", include_str!("atmosphere/body_hits.wgsl")),
+    ("atmosphere/body_air_medium", include_str!("atmosphere/body_air_medium.wgsl")),
     ("atmosphere/bodies", include_str!("atmosphere/bodies.wgsl")),
+    ("atmosphere/body_air", include_str!("atmosphere/body_air.wgsl")),
     ("atmosphere/view", include_str!("atmosphere/view.wgsl")),
     ("atmosphere/sky_view", include_str!("atmosphere/sky_view.wgsl")),
     ("atmosphere/aerial_lookup", include_str!("atmosphere/aerial_lookup.wgsl")),
@@ -1100,6 +1102,7 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             for (name, value) in [
                 ("MAX_BODIES", MAX_BODIES),
                 ("BODY_SHADOW_ENTRIES", SHADOW_ENTRIES),
+                ("BODY_AIR_TERMS", crate::gpu_types::atmosphere::BODY_AIR_TERMS),
                 ("LUT_ROWS", LUT_ROWS),
                 ("MAX_MEDIUM_TERMS", MAX_MEDIUM_TERMS),
                 ("DENSITY_TABLE_SAMPLES", DENSITY_TABLE_SAMPLES),
@@ -1142,14 +1145,15 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
                 ring_depth,
                 surface,
                 bodies,
-                body_shadows
+                body_shadows,
+                body_air
             ]
         );
         assert_layout!(
             atmosphere,
             "AtmosphereBody",
             crate::gpu_types::atmosphere::AtmosphereBodyUniform,
-            [center, radii, axis_x, axis_y, axis_z, albedo, shadow]
+            [center, radii, axis_x, axis_y, axis_z, albedo, shadow, air]
         );
     }
 }

@@ -17,7 +17,7 @@ const EARTH_RADIUS_M: f64 = 6_360_000.0;
 
 /// Earth's air a million times thinner on Bruneton's sphere (the world ENU at 0°, 0°: the
 /// planet's centre at (0, 0, −R)), one sun from world direction `sun`, and `bodies`.
-fn airless_with(sun: DVec3, bodies: Vec<Body>) -> AtmosphereSky {
+pub(crate) fn airless_with(sun: DVec3, bodies: Vec<Body>) -> AtmosphereSky {
     let mut atmosphere = presets::earth();
     atmosphere.planet = Planet::sphere(EARTH_RADIUS_M, 60_000.0).posed_at(0.0, 0.0);
     for term in &mut atmosphere.medium.terms {
@@ -48,7 +48,7 @@ fn plain_moon(center: DVec3) -> Body {
     }
 }
 
-fn planet_center() -> DVec3 {
+pub(crate) fn planet_center() -> DVec3 {
     DVec3::new(0.0, 0.0, -EARTH_RADIUS_M)
 }
 
@@ -62,7 +62,7 @@ fn moon_behind_the_planet(off_axis_m: f64) -> (DVec3, DVec3, AtmosphereSky) {
 }
 
 /// Spectral radiance as the GPU's linear sRGB.
-fn as_srgb(sky: &AtmosphereSky, radiance: Spectrum) -> DVec3 {
+pub(crate) fn as_srgb(sky: &AtmosphereSky, radiance: Spectrum) -> DVec3 {
     let c = sky.atmosphere.spectral_conversion().linear_srgb(radiance);
     DVec3::new(c.r, c.g, c.b)
 }
@@ -110,6 +110,7 @@ fn a_body_sends_back_what_its_reflectance_law_says() {
         reflectance: Reflectance::Lambert,
         surface: BodySurface::Uniform,
         planet_shadow: None,
+        air: None,
     };
     let sky = airless_with(sun, vec![plain_moon(moon_center), ball.clone()]);
     let cases = [

@@ -7,6 +7,7 @@
 mod aerial_perspective;
 mod atmosphere;
 mod bodies;
+mod body_air;
 mod camera;
 mod cloud_density;
 mod cloud_slab;

@@ -5,7 +5,8 @@
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
 use firmament_core::astro::spa::SolarPosition;
-use firmament_core::atmosphere::body::{Body, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
+use firmament_core::atmosphere::body::{Body, BodyAir, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
+use firmament_core::atmosphere::presets;
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
 
@@ -15,6 +16,9 @@ use crate::model::{BodyEntry, Scene};
 
 /// The presets `bodies[i].preset` takes.
 const PRESETS: [&str; 1] = ["moon"];
+
+/// The airs `bodies[i].atmosphere` takes.
+const AIRS: [&str; 3] = ["earth", "mars", "saturn"];
 
 /// The laws `bodies[i].reflectance` takes.
 const REFLECTANCES: [&str; 2] = ["lambert", "lommel-seeliger"];
@@ -205,7 +209,35 @@ fn body(
             other => return Err(unknown_name(&key("reflectance"), other, &REFLECTANCES)),
         };
     }
+    if let Some(name) = &entry.atmosphere {
+        body.air = Some(air(&key("atmosphere"), name, sky)?);
+    }
     Ok(body)
+}
+
+/// The air `bodies[i].atmosphere = name` gives (`key` names it in errors).
+fn air(key: &str, name: &str, sky: &AtmosphereSky) -> Result<BodyAir, SceneError> {
+    let preset = match name {
+        "earth" => presets::earth(),
+        "mars" => presets::mars(),
+        "saturn" => presets::saturn(),
+        "venus" | "titan" => {
+            return Err(SceneError::invalid(
+                key,
+                format!("\"{name}\""),
+                "must be \"earth\", \"mars\" or \"saturn\": a body's air is drawn with single scattering, \
+                 and Venus's and Titan's thick airs need every order (make them the [planet])",
+            ));
+        }
+        other => return Err(unknown_name(key, other, &AIRS)),
+    };
+    check(
+        sky.atmosphere.wavelengths == preset.wavelengths,
+        key,
+        format!("\"{name}\""),
+        "needs the default atmosphere.wavelengths (the presets' coefficients are at 680, 550 and 440 nm)",
+    )?;
+    Ok(BodyAir::from_atmosphere(&preset).expect("the earth, mars and saturn presets are constituents"))
 }
 
 /// The rotation that puts a body's `z` axis on `pole` and its `x` axis (its 0° N 0° E) as near

@@ -1,4 +1,4 @@
-//! `[[bodies]]`: airless bodies drawn beside the planet (`sky.model = "atmosphere"`), up to 4
+//! `[[bodies]]`: bodies drawn beside the planet, airless or with an air of their own (`sky.model = "atmosphere"`), up to 4
 //! ([`firmament_core::atmosphere::body`]).
 
 use serde::Deserialize;
@@ -38,4 +38,10 @@ pub struct BodyEntry {
     /// limb as at the centre); default `"lambert"` (`"lommel-seeliger"` for the Moon).
     #[serde(default)]
     pub reflectance: Option<String>,
+    /// The body's own air: `"earth"`, `"mars"` or `"saturn"` — that preset's molecules, aerosols
+    /// and absorbing gas up to its height (60, 80 and 600 km), around this body; default none.
+    /// Drawn with single scattering (docs/ATMOSPHERE.md, "Bodies' airs"); not with
+    /// `atmosphere.wavelengths` (the presets' coefficients are at 680, 550 and 440 nm).
+    #[serde(default)]
+    pub atmosphere: Option<String>,
 }

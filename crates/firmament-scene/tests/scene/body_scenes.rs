@@ -114,6 +114,16 @@ fn bad_bodies_name_the_key_and_the_rule() {
             "did you mean `lommel-seeliger`",
         ),
         (
+            format!("[{}]", moon(", atmosphere = \"erth\"")),
+            "bodies[0].atmosphere",
+            "did you mean `earth`",
+        ),
+        (
+            format!("[{}]", moon(", atmosphere = \"venus\"")),
+            "bodies[0].atmosphere",
+            "every order",
+        ),
+        (
             format!("[{}]", moon(", pole = [0.0, 0.0, 0.0]")),
             "bodies[0].pole",
             "not [0, 0, 0]",
@@ -149,6 +159,25 @@ fn bad_bodies_name_the_key_and_the_rule() {
         let text = message(preset("earth-orbit", &sets));
         assert!(text.contains(key) && text.contains(rule), "{set}: {text}");
     }
+}
+
+/// A body's air is a preset's constituents up to its height, at the preset's wavelengths only.
+#[test]
+fn a_body_s_air_is_a_preset_s() {
+    let air_body = "bodies=[{ preset = \"moon\", position = [4.0e8, 0.0, 0.0], atmosphere = \"mars\" }]";
+    let sky = sky_of(&preset("earth-orbit", &[air_body]).expect("valid"));
+    let air = sky.bodies[0].air.as_ref().expect("an air");
+    let mars = firmament_core::atmosphere::presets::mars();
+    assert_eq!(Some(&air.constituents), mars.medium.constituents().as_ref());
+    assert_eq!(air.top_altitude_m, mars.planet.atmosphere_height);
+    let text = message(preset(
+        "earth-orbit",
+        &[air_body, "atmosphere.wavelengths=[700.0, 550.0, 450.0]"],
+    ));
+    assert!(
+        text.contains("bodies[0].atmosphere") && text.contains("default atmosphere.wavelengths"),
+        "{text}"
+    );
 }
 
 /// In a lunar eclipse the Moon as a body takes the light inside the Earth's shadow: red, and

@@ -1,7 +1,8 @@
 use super::*;
 use crate::atmosphere::planet_shadow::ShadowSettings;
 
-fn sun(direction: DVec3) -> Sun {
+/// A sun of Earth's size and limb darkening towards `direction` (also the air's tests').
+pub(super) fn sun(direction: DVec3) -> Sun {
     Sun {
         direction,
         angular_radius: 0.004_65,
@@ -47,6 +48,7 @@ fn full_phase_flux_is_the_geometric_albedo_s() {
             reflectance: law,
             surface: BodySurface::Uniform,
             planet_shadow: None,
+            air: None,
         };
         let flux = disc_flux_times_d2(&body, s.direction, &[s], 600);
         let expected = s.irradiance * body.albedo * (p * radius * radius);
@@ -76,6 +78,7 @@ fn a_posed_ellipsoid_is_hit_where_its_axes_say() {
         reflectance: Reflectance::Lambert,
         surface: BodySurface::Uniform,
         planet_shadow: None,
+        air: None,
     };
     let ray = Ray::new(DVec3::new(10.0, 30.0, 30.0), DVec3::NEG_Y).unwrap();
     let t = body.hit(&ray).unwrap();

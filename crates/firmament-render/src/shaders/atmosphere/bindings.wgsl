@@ -19,6 +19,8 @@ const MAX_BODIES: u32 = 4u;
 // Entries of a body's table of the light inside the planet's shadow
 // (firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES).
 const BODY_SHADOW_ENTRIES: u32 = 64u;
+// The terms of a body's air: molecules, aerosols, an absorbing gas (gpu_types/atmosphere.rs).
+const BODY_AIR_TERMS: u32 = 3u;
 // The rings' optical depth table: entries (firmament_core::atmosphere::rings::RING_TABLE_ENTRIES)
 // and the vectors that hold them.
 const RING_TABLE_ENTRIES: u32 = 128u;
@@ -63,7 +65,8 @@ struct AtmosphereParams {
     lut_rows: array<vec4<f32>, 8>,         // a thick air's LUT_ROWS row altitudes (m), ground to lut.w
 }
 
-// An airless body beside the planet (atmosphere/bodies.wgsl; firmament_core::atmosphere::body).
+// A body beside the planet (atmosphere/bodies.wgsl, its air atmosphere/body_air.wgsl;
+// firmament_core::atmosphere::body).
 struct AtmosphereBody {
     center: vec4<f32>, // xyz centre, planet frame (m); w = reflectance law (BODY_REFLECTANCE_*)
     radii: vec4<f32>,  // xyz semi-axes along the body's axes (m); w = surface (BODY_SURFACE_*)
@@ -76,6 +79,9 @@ struct AtmosphereBody {
     // xyz unit direction of that shadow's axis from the planet's centre; w = the distance from
     // the axis between the table's entries (m)
     shadow: vec4<f32>,
+    // x = the height of the body's air (m; 0: airless), its terms in `view.body_air[i]`; y = the
+    // body's volumetric mean radius (m); zw unused
+    air: vec4<f32>,
 }
 
 struct AtmosphereSun {
@@ -122,6 +128,8 @@ struct AtmosphereView {
     // Per body, the sunlight's share across the planet's shadow where it stands (rgb per model
     // wavelength; entry k at k·bodies[i].shadow.w from the axis, 1 beyond the last)
     body_shadows: array<array<vec4<f32>, BODY_SHADOW_ENTRIES>, MAX_BODIES>,
+    // Per body, its air's molecules, aerosols and absorbing gas (altitudes over the body)
+    body_air: array<array<MediumTerm, BODY_AIR_TERMS>, MAX_BODIES>,
 }
 
 // The sky-lighting stage's parameters (atmosphere/sky_lighting.wgsl).

@@ -1,8 +1,9 @@
-// atmosphere/bodies.wgsl — airless bodies beside the planet: where a view ray meets one and the
-// light it sends back; the GPU twin of firmament_core::atmosphere::body, whose docs give the
-// model (an opaque ellipsoid, Lambert or Lommel–Seeliger, its albedo uniform or patterned by the
-// Moon's maria, shadowed by the planet as a ball of its volumetric mean radius or by the light
-// of its shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by the
+// atmosphere/bodies.wgsl — the bodies beside the planet: where a view ray meets one and the
+// light its ground sends back (its air: atmosphere/body_air.wgsl); the GPU twin of
+// firmament_core::atmosphere::body, whose docs give the model (an opaque ellipsoid, Lambert or
+// Lommel–Seeliger, its albedo uniform or patterned by the Moon's maria, lit through its own air,
+// shadowed by the planet as a ball of its volumetric mean radius or by the light of its
+// shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by the
 // planet's sunlit face too, planet-shine).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
@@ -11,6 +12,7 @@
 
 #import atmosphere/bindings
 #import atmosphere/body_hits
+#import atmosphere/body_air_medium
 #import atmosphere/common
 #import atmosphere/eclipse
 #import atmosphere/rings
@@ -51,7 +53,8 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f
             continue;
         }
         let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
-        let share = body_sunlight_share(p, s, i) * ring_transmittance(p, to_sun);
+        let air = body_air_transmittance(i, local, to_local * to_sun);
+        let share = body_shadows_share(p, s, i) * ring_transmittance(p, to_sun) * air;
         received += view.suns[s].irradiance.rgb * share * law;
     }
     received += planetshine(p, n, mu, lommel_seeliger);
@@ -99,9 +102,9 @@ fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> ve
 
 // The share of sun s's light that reaches point p of body `own`, per model wavelength: past the
 // planet (a ball of its volumetric mean radius, or the light of its shadow's table where the body
-// has one for this sun) and every other eclipser
-// (firmament_core::atmosphere::body::sunlight_share).
-fn body_sunlight_share(p: vec3<f32>, s: u32, own: u32) -> vec3<f32> {
+// has one for this sun) and every other eclipser; not the rings, which the callers take
+// (firmament_core::atmosphere::body::shadows_share).
+fn body_shadows_share(p: vec3<f32>, s: u32, own: u32) -> vec3<f32> {
     var share = 1.0;
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
         if e != own {

@@ -22,6 +22,7 @@
 #import atmosphere/eclipse
 #import atmosphere/rings
 #import atmosphere/bodies
+#import atmosphere/body_air
 #import atmosphere/sky_view
 #import generated/constants
 
@@ -125,19 +126,22 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`: the air
-// (and lit ground), and behind it the suns' discs or a body (atmosphere/bodies.wgsl); the rings
-// in front of the air or between it and what lies behind (atmosphere/rings.wgsl). A body in
-// front of the air hides it.
+// (and lit ground), and behind it the suns' discs or a body (atmosphere/bodies.wgsl) seen
+// through the bodies' airs (atmosphere/body_air.wgsl); the rings in front of the air or between
+// it and what lies behind (atmosphere/rings.wgsl). A body, or its air, in front of the planet's
+// air comes before it.
 fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
     let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
     let body = body_sample(ray.origin, ray.direction, ray.near);
-    // What lies beyond the air along the ray: a body, or else the discs (hidden by the bodies).
-    let beyond = select(discs, body.radiance, body.hit);
+    let body_air = body_air_sample(ray.origin, ray.direction, ray.near, select(BODY_AIR_UNBOUNDED, body.t, body.hit));
+    // What lies beyond the bodies' airs: a body, or else the discs (hidden by the bodies).
+    let behind_body_air = select(discs, body.radiance, body.hit);
+    var beyond = body_air.radiance + body_air.transmittance * behind_body_air;
     var rings = ring_sample(ray.origin, ray.direction, ray.near);
     // Rings behind a body are hidden by it.
     rings.hit = rings.hit && !(body.hit && body.t < rings.t);
-    let behind_air = rings.hit || body.hit || any(discs > vec3<f32>(0.0));
+    let behind_air = rings.hit || body.hit || body_air.hit || any(discs > vec3<f32>(0.0));
     var radiance: vec3<f32>;
     // The air's transmittance along the ray, where something lies behind it.
     var through = vec3<f32>(0.0);
@@ -159,9 +163,9 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
             through = mix(lut_transmittance(ray.direction), marched.transmittance, blend);
         }
     }
-    // Where the ray enters and leaves the air: only a body or the rings need it.
+    // Where the ray enters and leaves the air: only a body, its air or the rings need it.
     var top = vec2<f32>(1.0, 0.0);
-    if body.hit || rings.hit {
+    if body.hit || body_air.hit || rings.hit {
         top = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
     }
     let misses_air = top.x > top.y || top.y <= ray.near;
@@ -169,6 +173,11 @@ fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
         // The body stands between the camera and the air: none of the air shows.
         radiance = vec3<f32>(0.0);
         through = vec3<f32>(1.0);
+    } else if body_air.hit && (misses_air || body_air.entry < top.x) {
+        // A body's air stands in front of the planet's, its body (or the discs) behind both.
+        radiance = body_air.radiance + body_air.transmittance * radiance;
+        through *= body_air.transmittance;
+        beyond = behind_body_air;
     }
     if rings.hit {
         let ground = ellipsoid_hits(ray.origin, ray.direction, atmosphere.radii.xyz, ray.c_surface);
