@@ -203,6 +203,7 @@ impl Body {
             return AirSegment::CLEAR;
         }
         let dt = (end - start) / VIEW_STEPS as f64;
+        let directions: Vec<DVec3> = suns.iter().map(|sun| sun.direction.normalize()).collect();
         let mut depth = Spectrum::ZERO;
         let mut radiance = Spectrum::ZERO;
         for k in 0..VIEW_STEPS {
@@ -211,8 +212,7 @@ impl Body {
             let extinction = air.extinction_at(h);
             // The transmittance to the step's midpoint: all steps before it and half of it.
             let to_x = (-(depth + extinction * (0.5 * dt))).exp();
-            for (s, sun) in suns.iter().enumerate() {
-                let direction = sun.direction.normalize();
+            for (s, (sun, &direction)) in suns.iter().zip(&directions).enumerate() {
                 let lit = sun.irradiance * self.air_transmittance(x, direction) * light(x, s);
                 radiance += lit * air.scattering_phase(h, ray.direction.dot(direction)) * to_x * dt;
             }
