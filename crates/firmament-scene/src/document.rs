@@ -610,7 +610,7 @@ fn absolute_asset_paths(table: &mut toml::Table, base_dir: &Path) -> Result<(), 
 
 /// The string values that name files, with their key paths: `objects.N.mesh.path`,
 /// `objects.N.texture.file`, `flare.elements.N.file`, `clouds.N.coverage_map`,
-/// `planet.albedo_map` and `planet.water_map`.
+/// `planet.albedo_map`, `planet.water_map` and `bodies.N.albedo_map`.
 fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
     let mut paths = Vec::new();
     for (section, value) in table.iter_mut() {
@@ -644,6 +644,13 @@ fn asset_paths_mut(table: &mut toml::Table) -> Vec<(String, &mut String)> {
                 for (key, value) in planet.iter_mut() {
                     if let ("albedo_map" | "water_map", toml::Value::String(path)) = (key.as_str(), value) {
                         paths.push((format!("planet.{key}"), path));
+                    }
+                }
+            }
+            ("bodies", toml::Value::Array(bodies)) => {
+                for (i, body) in bodies.iter_mut().enumerate() {
+                    if let Some(toml::Value::String(path)) = body.as_table_mut().and_then(|t| t.get_mut("albedo_map")) {
+                        paths.push((format!("bodies.{i}.albedo_map"), path));
                     }
                 }
             }

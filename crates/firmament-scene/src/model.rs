@@ -115,7 +115,7 @@ impl Scene {
     /// Every file the scene reads — mesh files (`objects[i].mesh.path`), texture files
     /// (`objects[i].texture.file`), flare images (`flare.elements[i].file`), cloud coverage
     /// maps (`clouds[i].coverage_map`) and surface maps (`planet.albedo_map`,
-    /// `planet.water_map`) — as its key and
+    /// `planet.water_map`, `bodies[i].albedo_map`) — as its key and
     /// its path as the loaders open it: relative paths joined to [`base_dir`](Self::base_dir),
     /// absolute ones as written.
     pub fn asset_paths(&self) -> Vec<(String, std::path::PathBuf)> {
@@ -144,6 +144,11 @@ impl Scene {
         for (i, layer) in self.clouds.iter().enumerate() {
             if let Some(file) = &layer.coverage_map {
                 paths.push((format!("clouds[{i}].coverage_map"), file.as_str()));
+            }
+        }
+        for (i, body) in self.bodies.iter().enumerate() {
+            if let Some(file) = &body.albedo_map {
+                paths.push((format!("bodies[{i}].albedo_map"), file.as_str()));
             }
         }
         for (key, file) in [

@@ -38,12 +38,14 @@
 //! a few `R`) get it less exactly; the bodies' light on the planet is left out.
 
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 use glam::{DQuat, DVec3};
 
 use crate::atmosphere::eclipse::Eclipser;
 use crate::atmosphere::planet_shadow::{PlanetShadow, SHADOW_ENTRIES};
 use crate::atmosphere::rings::Rings;
+use crate::atmosphere::surface::SurfaceMap;
 use crate::atmosphere::{Planet, Spectrum, Sun};
 use crate::error::CoreError;
 use crate::geometry::{Ellipsoid, Ray};
@@ -95,21 +97,25 @@ impl Reflectance {
 }
 
 /// What a body's surface looks like beyond its normal albedo.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub enum BodySurface {
     /// The albedo everywhere.
     #[default]
     Uniform,
     /// The Moon's near-side maria on brighter highlands ([`maria`]), in the body's axes.
     LunarMaria,
+    /// An equirectangular map in the body's axes, its pattern and colour on the albedo's level
+    /// ([`map`]).
+    Map(Arc<SurfaceMap>),
 }
 
 impl BodySurface {
     /// The code the shaders read (`BODY_SURFACE_*` in the generated constants).
-    pub const fn gpu_code(self) -> u32 {
+    pub const fn gpu_code(&self) -> u32 {
         match self {
             Self::Uniform => 0,
             Self::LunarMaria => 1,
+            Self::Map(_) => 2,
         }
     }
 }
@@ -234,6 +240,15 @@ impl Body {
                 "every value must be in [0, 1]",
             ));
         }
+        if let BodySurface::Map(surface) = &self.surface
+            && map::brightness(surface) <= 0.0
+        {
+            return Err(invalid(
+                "body.surface",
+                "a black map".to_owned(),
+                "an albedo map must not be black everywhere (its mean sets nothing to scale)",
+            ));
+        }
         self.planet_shadow.as_ref().map_or(Ok(()), BodyInShadow::validate)?;
         self.air.as_ref().map_or(Ok(()), BodyAir::validate)
     }
@@ -311,14 +326,13 @@ impl Body {
     }
 
     /// The normal albedo at surface point `p` (same frame as the body): [`Self::albedo`] times
-    /// the surface's pattern.
+    /// the surface's pattern (for a map, at most 1).
     pub fn albedo_at(&self, p: DVec3) -> Spectrum {
-        match self.surface {
+        let local = || self.orientation.inverse() * self.normal_at(p);
+        match &self.surface {
             BodySurface::Uniform => self.albedo,
-            BodySurface::LunarMaria => {
-                let local = self.orientation.inverse() * self.normal_at(p);
-                self.albedo * maria::albedo_factor(local)
-            }
+            BodySurface::LunarMaria => self.albedo * maria::albedo_factor(local()),
+            BodySurface::Map(surface) => (self.albedo * map::albedo_factor(surface, local())).min(Spectrum::ONE),
         }
     }
 
@@ -464,6 +478,7 @@ fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError 
 }
 
 pub mod air;
+pub mod map;
 pub mod maria;
 
 #[cfg(test)]

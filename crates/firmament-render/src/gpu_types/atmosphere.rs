@@ -5,7 +5,7 @@
 //! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::atmosphere::body::{Body, MAX_BODIES};
+use firmament_core::atmosphere::body::{self, Body, BodySurface, MAX_BODIES};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES;
 use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum};
@@ -148,6 +148,13 @@ pub(crate) struct OrderSumsGpu {
     pub(crate) last_irradiance: [f32; 4],
 }
 
+/// The size of each body's layer of the albedo maps' texture, texels (longitude × latitude):
+/// about 10 km a texel on the Moon's equator. Any map is resampled to it.
+pub(crate) const BODY_MAP_SIZE: (u32, u32) = (1024, 512);
+
+/// The angle a texel of [`BODY_MAP_SIZE`] spans along a body's equator, radians.
+const BODY_MAP_TEXEL_RAD: f64 = std::f64::consts::TAU / BODY_MAP_SIZE.0 as f64;
+
 /// Mirrors `AtmosphereBody` in `shaders/atmosphere/bindings.wgsl`: an airless body beside the
 /// planet ([`Body`]).
 #[repr(C)]
@@ -164,14 +171,17 @@ pub struct AtmosphereBodyUniform {
     pub axis_y: [f32; 4],
     /// Its polar z axis.
     pub axis_z: [f32; 4],
-    /// Normal albedo per model wavelength; `w` = 1 + the sun whose shadow of the planet the body
-    /// stands in (0: none; [`Body::planet_shadow`]).
+    /// Normal albedo per model wavelength, over the map's brightness where the surface is a map
+    /// (the shader multiplies by the texel: [`body::map`]);
+    /// `w` = 1 + the sun whose shadow of the planet the body stands in (0: none;
+    /// [`Body::planet_shadow`]).
     pub albedo: [f32; 4],
     /// The shadow's axis from the planet's centre (unit, planet frame); `w` = the distance from
     /// it between the entries of the body's table in [`AtmosphereViewUniforms::body_shadows`] (m).
     pub shadow: [f32; 4],
     /// x = the height of the body's air (m; 0: airless, [`Body::air`]), its terms in
-    /// [`AtmosphereViewUniforms::body_air`]; y = the body's volumetric mean radius (m); zw unused.
+    /// [`AtmosphereViewUniforms::body_air`]; y = the body's volumetric mean radius (m); z = the
+    /// width of a texel of its albedo map at its mean radius (m; 0: no map); w unused.
     pub air: [f32; 4],
 }
 
@@ -180,6 +190,10 @@ impl AtmosphereBodyUniform {
     fn new(body: &Body, planet: &Planet) -> Self {
         let local = body.to_planet_frame(planet);
         let axes = DMat3::from_quat(local.orientation);
+        let (map_brightness, texel_m) = match &local.surface {
+            BodySurface::Map(map) => (body::map::brightness(map), local.mean_radius() * BODY_MAP_TEXEL_RAD),
+            _ => (1.0, 0.0),
+        };
         Self {
             center: vec3_w(local.center, f64::from(local.reflectance.gpu_code())),
             radii: vec3_w(local.radii, f64::from(local.surface.gpu_code())),
@@ -187,7 +201,7 @@ impl AtmosphereBodyUniform {
             axis_y: vec3_w(axes.y_axis, 0.0),
             axis_z: vec3_w(axes.z_axis, 0.0),
             albedo: spectrum_w(
-                local.albedo,
+                local.albedo / map_brightness,
                 local.planet_shadow.as_ref().map_or(0.0, |shadow| (shadow.sun + 1) as f64),
             ),
             shadow: local
@@ -197,7 +211,7 @@ impl AtmosphereBodyUniform {
             air: [
                 local.air.as_ref().map_or(0.0, |air| air.top_altitude_m) as f32,
                 local.mean_radius() as f32,
-                0.0,
+                texel_m as f32,
                 0.0,
             ],
         }

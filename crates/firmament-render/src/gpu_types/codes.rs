@@ -126,6 +126,8 @@ codes! {
     BODY_SURFACE_UNIFORM = 0;
     /// A body's surface: the Moon's maria.
     BODY_SURFACE_LUNAR_MARIA = 1;
+    /// A body's surface: its albedo map (layer i of `body_maps` for body i).
+    BODY_SURFACE_MAP = 2;
 }
 
 /// The WGSL of the shader module `generated/constants`: every code as a `const` of its Rust name,
@@ -230,6 +232,8 @@ mod tests {
         use firmament_core::atmosphere::body::BodySurface;
         assert_eq!(BodySurface::Uniform.gpu_code(), BODY_SURFACE_UNIFORM);
         assert_eq!(BodySurface::LunarMaria.gpu_code(), BODY_SURFACE_LUNAR_MARIA);
+        let map = firmament_core::atmosphere::surface::SurfaceMap::uniform([0.5; 4]).unwrap();
+        assert_eq!(BodySurface::Map(map.into()).gpu_code(), BODY_SURFACE_MAP);
     }
 
     #[test]

@@ -10,7 +10,7 @@ mod empirical;
 mod medium;
 mod planet;
 mod suns;
-mod surface;
+pub(super) mod surface;
 mod terms;
 
 pub use empirical::{EMPIRICAL_STAR_DISTANCE, EMPIRICAL_STAR_INTENSITY};

@@ -5,7 +5,7 @@
 use firmament_core::astro::Instant;
 use firmament_core::astro::moon::moon_view;
 use firmament_core::astro::spa::SolarPosition;
-use firmament_core::atmosphere::body::{Body, BodyAir, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
+use firmament_core::atmosphere::body::{self, Body, BodyAir, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
 use firmament_core::atmosphere::presets;
 use firmament_core::frame::AtmosphereSky;
 use glam::{DQuat, DVec3};
@@ -211,6 +211,16 @@ fn body(
     }
     if let Some(name) = &entry.atmosphere {
         body.air = Some(air(&key("atmosphere"), name, sky)?);
+    }
+    if let Some(file) = &entry.albedo_map {
+        let map = super::atmosphere::surface::albedo_map(scene, &key("albedo_map"), file)?;
+        check(
+            body::map::brightness(&map) > 0.0,
+            &key("albedo_map"),
+            format!("{file:?}"),
+            "must not be black everywhere (its mean brightness is scaled to the body's albedo)",
+        )?;
+        body.surface = BodySurface::Map(map);
     }
     Ok(body)
 }

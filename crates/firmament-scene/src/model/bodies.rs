@@ -44,4 +44,11 @@ pub struct BodyEntry {
     /// `atmosphere.wavelengths` (the presets' coefficients are at 680, 550 and 440 nm).
     #[serde(default)]
     pub atmosphere: Option<String>,
+    /// An equirectangular image of the body's surface (PNG, JPEG, …; sRGB-encoded), longitude
+    /// −180° to 180° from left to right in the body's axes (0° along its `a` axis: a moon's
+    /// sub-planet point), north up. It gives the pattern and the colour; `albedo` (or the
+    /// preset's) the level: the map's mean brightness over the sphere becomes it. A Moon's map
+    /// replaces its maria. A path relative to the scene file.
+    #[serde(default)]
+    pub albedo_map: Option<String>,
 }

@@ -3,6 +3,7 @@
 //! the medium's albedo becoming the surface's mean, and every bad value naming its key and rule.
 
 use crate::support::{message, preset, sky_of};
+use firmament_core::atmosphere::body::BodySurface;
 use firmament_core::atmosphere::surface::{DEFAULT_WIND_SPEED_MPS, SurfaceMap};
 use firmament_scene::load_file;
 use image::{ImageFormat, Rgba, RgbaImage};
@@ -162,4 +163,57 @@ fn bad_surfaces_name_the_key_and_the_rule() {
         let text = message(preset("earth-noon", sets));
         assert!(text.contains(key) && text.contains(rule), "{sets:?}: {text}");
     }
+}
+
+#[test]
+fn a_body_s_albedo_map_loads_next_to_the_scene_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // 2 × 1: the western half sRGB 188 (linear 0.5), the eastern black: brightness 0.25.
+    std::fs::write(
+        dir.path().join("moon.png"),
+        png(2, 1, |x, _| if x == 0 { [188, 188, 188, 255] } else { [0, 0, 0, 255] }),
+    )
+    .expect("write");
+    std::fs::write(dir.path().join("black.png"), png(2, 1, |_, _| [0, 0, 0, 255])).expect("write");
+    let scene_path = dir.path().join("s.toml");
+    let write = |map: &str| {
+        let body = format!("position = [4.0e8, 0.0, 0.0]\nradius = 5.0e5\nalbedo = 0.1\nalbedo_map = \"{map}\"\n");
+        std::fs::write(&scene_path, format!("preset = \"earth-moon\"\n[[bodies]]\n{body}")).expect("write");
+    };
+    write("moon.png");
+    let scene = load_file(&scene_path, None, &[]).expect("valid");
+    let sky = sky_of(&scene);
+    let BodySurface::Map(map) = &sky.bodies[0].surface else {
+        panic!("a map: {:?}", sky.bodies[0].surface);
+    };
+    let half = firmament_core::color::srgb_to_linear(188.0 / 255.0) as f32;
+    assert_eq!(
+        **map,
+        SurfaceMap::new(2, 1, vec![[half, half, half, 0.0], [0.0; 4]]).expect("map")
+    );
+    // The western texel's centre (90° W, the body's −y) shows 0.1 × 0.5 / 0.25.
+    let body = &sky.bodies[0];
+    let west = body.center + body.orientation * glam::DVec3::NEG_Y * 5.0e5;
+    let albedo = body.albedo_at(west);
+    assert!(
+        (albedo.x - 0.1 * f64::from(half) / (f64::from(half) / 2.0)).abs() < 1e-9,
+        "{albedo:?}"
+    );
+    assert_eq!(
+        scene.asset_paths(),
+        [("bodies[0].albedo_map".to_owned(), dir.path().join("moon.png"))]
+    );
+    // A black map has no brightness to scale; a missing file names the key and the path.
+    write("black.png");
+    let text = load_file(&scene_path, None, &[]).expect_err("black").to_string();
+    assert!(
+        text.contains("bodies[0].albedo_map") && text.contains("black everywhere"),
+        "{text}"
+    );
+    write("nope.png");
+    let text = load_file(&scene_path, None, &[]).expect_err("missing").to_string();
+    assert!(
+        text.contains("bodies[0].albedo_map") && text.contains("nope.png"),
+        "{text}"
+    );
 }

@@ -232,3 +232,79 @@ fn planetshine_is_a_lambert_sphere_s_light() {
         assert!(error < 0.01, "{alpha_deg}°: closed form {closed} vs sum {sum}");
     }
 }
+
+/// A ball of radius 1000 m at the origin turned a quarter about z (its x axis along the frame's
+/// y), Lambert, its surface `surface`.
+fn mapped_ball(albedo: f64, surface: BodySurface) -> Body {
+    Body {
+        center: DVec3::ZERO,
+        radii: DVec3::splat(1000.0),
+        orientation: DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2),
+        albedo: Spectrum::splat(albedo),
+        reflectance: Reflectance::Lambert,
+        surface,
+        planet_shadow: None,
+        air: None,
+    }
+}
+
+#[test]
+fn an_albedo_map_patterns_the_albedo_in_the_body_s_axes() {
+    // West half 0.8, east half 0.2 (texel centres at 90° W and 90° E): brightness 0.5.
+    let halves = SurfaceMap::new(2, 1, vec![[0.8, 0.8, 0.8, 0.0], [0.2, 0.2, 0.2, 0.0]]).unwrap();
+    let body = mapped_ball(0.1, BodySurface::Map(Arc::new(halves)));
+    body.validate().unwrap();
+    // The body's +y (90° E) lies along the frame's −x, its −y (90° W) along +x.
+    let east = body.albedo_at(DVec3::new(-1000.0, 0.0, 0.0));
+    let west = body.albedo_at(DVec3::new(1000.0, 0.0, 0.0));
+    let meridian = body.albedo_at(DVec3::new(0.0, 1000.0, 0.0));
+    assert!((east - Spectrum::splat(0.04)).abs().max_element() < 1e-12, "{east:?}");
+    assert!((west - Spectrum::splat(0.16)).abs().max_element() < 1e-12, "{west:?}");
+    assert!(
+        (meridian - Spectrum::splat(0.1)).abs().max_element() < 1e-12,
+        "{meridian:?}"
+    );
+    // A texel brighter than the level allows stops at 1.
+    let bright = mapped_ball(0.9, body.surface.clone());
+    assert_eq!(bright.albedo_at(DVec3::new(1000.0, 0.0, 0.0)), Spectrum::ONE);
+}
+
+#[test]
+fn a_mapped_body_s_mean_albedo_is_its_albedo() {
+    // Colours and a pattern in latitude and longitude; the mean over the sphere (Fibonacci points,
+    // equal areas) of the albedo is the body's albedo times each channel's share of brightness.
+    let (width, height) = (16, 8);
+    let texels = (0..width * height)
+        .map(|k| {
+            let (i, j) = (f64::from(k % width), f64::from(k / width));
+            let v = 0.3 + 0.2 * (i * 0.7).sin() * (j * 0.9).cos();
+            [v as f32, (0.8 * v) as f32, (0.5 * v) as f32, 0.0]
+        })
+        .collect();
+    let map = SurfaceMap::new(width, height, texels).unwrap();
+    let [r, g, b, _] = map.mean();
+    let level = (r + g + b) / 3.0;
+    let body = mapped_ball(0.12, BodySurface::Map(Arc::new(map)));
+    let n = 200_000;
+    let golden = PI * (3.0 - 5f64.sqrt());
+    let mut sum = Spectrum::ZERO;
+    for k in 0..n {
+        let z = 1.0 - 2.0 * (f64::from(k) + 0.5) / f64::from(n);
+        let (s, c) = (golden * f64::from(k)).sin_cos();
+        let rho = (1.0 - z * z).sqrt();
+        sum += body.albedo_at(DVec3::new(rho * c, rho * s, z) * 1000.0);
+    }
+    let mean = sum / f64::from(n);
+    let expected = Spectrum::new(r, g, b) * (0.12 / level);
+    assert!(
+        ((mean / expected) - 1.0).abs().max_element() < 0.01,
+        "{mean:?} vs {expected:?}"
+    );
+}
+
+#[test]
+fn a_black_albedo_map_is_refused() {
+    let black = SurfaceMap::uniform([0.0, 0.0, 0.0, 0.0]).unwrap();
+    let body = mapped_ball(0.1, BodySurface::Map(Arc::new(black)));
+    assert!(body.validate().is_err());
+}

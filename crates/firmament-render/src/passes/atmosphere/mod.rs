@@ -30,6 +30,7 @@
 //! the low sun's air mass slightly.
 
 mod aerial_perspective;
+mod body_maps;
 mod clouds;
 pub mod luts;
 mod multiscattering;
@@ -49,6 +50,7 @@ use crate::shaders;
 
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
+use body_maps::BodyMaps;
 use clouds::CloudStages;
 pub use luts::AtmosphereLuts;
 use luts::{SKY_VIEW_FORMAT, SKY_VIEW_TILE, TRANSMITTANCE_FORMAT};
@@ -128,6 +130,8 @@ pub struct AtmospherePass {
     lighting: SkyLightingStage,
     /// The planet's surface map, read by every stage that draws the ground.
     surface: SurfaceTexture,
+    /// The bodies' albedo maps, read by the sky stages.
+    body_maps: BodyMaps,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
@@ -221,20 +225,24 @@ impl AtmospherePass {
         );
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
         // rasterizers run both sides of a branch they cannot prove uniform).
+        let body_maps = BodyMaps::new(device);
+        let sky_entries = [view_entries.as_slice(), &[BodyMaps::entry()]].concat();
+        let mut sky_resources = view_resources.clone();
+        sky_resources.push(body_maps.resource());
         let sky_stage = |mode: SkyMode| {
             Stage::new(
                 device,
                 PassPipeline {
                     owner: mode.owner(),
                     source: &shaders::ATMOSPHERE_SKY,
-                    entries: &view_entries,
+                    entries: &sky_entries,
                     color,
                     depth_stencil: Some(far_plane_depth_state(depth, convention)),
                     vertex_buffers: &[],
                     primitive: wgpu::PrimitiveState::default(),
                     constants: &[("SKY_MODE", f64::from(mode.code())), far_depth_constant(convention)],
                 },
-                &view_resources,
+                &sky_resources,
             )
         };
         let sky = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(sky_stage);
@@ -264,6 +272,7 @@ impl AtmospherePass {
             clouds: CloudStages::new(device),
             lighting,
             surface,
+            body_maps,
             sampler,
             luts,
             params,
@@ -289,6 +298,7 @@ impl AtmospherePass {
     pub fn prepare(&mut self, queue: &wgpu::Queue, sky: &AtmosphereSky, camera: &Camera) {
         self.clouds.prepare(queue, sky);
         self.surface.prepare(queue, sky.surface.as_ref());
+        self.body_maps.prepare(queue, sky);
         if !self.rebuild.is_newest(&sky.atmosphere) {
             let planet = &sky.atmosphere.planet;
             let thick = is_thick_air(&sky.atmosphere.medium, planet.atmosphere_height);
@@ -548,6 +558,7 @@ impl AtmospherePass {
         let mut resources = view_resources(&self.params, &self.view, &self.luts, &self.sampler, &self.surface);
         resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
         resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
+        resources.push(self.body_maps.resource());
         match &mut self.sky_compute {
             Some((stages, bound)) => {
                 for stage in stages.iter_mut() {
@@ -559,6 +570,7 @@ impl AtmospherePass {
                 let mut entries = view_entries();
                 entries.push(texture_entry(binding::SCENE_DEPTH, false));
                 entries.push(storage_entry(binding::SKY_OUT, crate::targets::HDR_FORMAT));
+                entries.push(BodyMaps::entry());
                 let stages = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(|mode| {
                     ComputeStage::with_constants(
                         device,

@@ -168,6 +168,11 @@ struct SkyLighting {
 // albedo (rgb) and water fraction (a), resampled to passes/atmosphere/surface.rs SURFACE_MAP_SIZE;
 // read at equirect_uv (common/ellipsoid.wgsl) with `map_sampler`.
 @group(0) @binding(18) var surface_map: texture_2d<f32>;
+// The bodies' albedo maps (atmosphere/bodies.wgsl), layer i body i's where its surface is
+// BODY_SURFACE_MAP: equirectangular in the body's axes, the map's linear albedo (Rgba8UnormSrgb,
+// mip-mapped), resampled to gpu_types/atmosphere.rs BODY_MAP_SIZE;
+// read at equirect_uv with `map_sampler`.
+@group(0) @binding(21) var body_maps: texture_2d_array<f32>;
 // The clouds' shadow map (clouds/shadow.wgsl): per sun a square of texels across its rays around
 // the camera, the suns' squares side by side; written by clouds/shadow_map.wgsl, read by the
 // march (unfilterable: textureLoad).

@@ -4,7 +4,7 @@
 // Lommel–Seeliger, its albedo uniform or patterned by the Moon's maria, lit through its own air,
 // shadowed by the planet as a ball of its volumetric mean radius or by the light of its
 // shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by the
-// planet's sunlit face too, planet-shine).
+// planet's sunlit face too, planet-shine; a map's albedo: firmament_core::atmosphere::body::map).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
@@ -14,6 +14,7 @@
 #import atmosphere/body_hits
 #import atmosphere/body_air_medium
 #import atmosphere/common
+#import common/ellipsoid
 #import atmosphere/eclipse
 #import atmosphere/rings
 #import generated/constants
@@ -25,19 +26,22 @@ struct BodySample {
     radiance: vec3<f32>,
 }
 
-// The nearest body the ray o + t·d meets at t > near, lit.
-fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32) -> BodySample {
+// The nearest body the ray o + t·d meets at t > near, lit; the ray's pixel spans `pixel_rad`
+// radians (how sharp a body's map is read).
+fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32, pixel_rad: f32) -> BodySample {
     let hit = nearest_body_hit(o, d, near);
     var out = BodySample(hit.hit, hit.t, vec3<f32>(0.0));
     if hit.hit {
-        out.radiance = body_radiance(hit.index, o + hit.t * d, hit.local, d);
+        let p = o + hit.t * d;
+        // From the camera: a far camera's rays start at their closest approach to the planet.
+        out.radiance = body_radiance(hit.index, p, hit.local, d, pixel_rad * distance(p, view.camera.xyz));
     }
     return out;
 }
 
 // The radiance body i's surface point p (planet frame; `local` in the body's axes, from its
-// centre) sends back along −d.
-fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+// centre) sends back along −d; the pixel there spans `pixel_m` metres across the ray.
+fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>, pixel_m: f32) -> vec3<f32> {
     let body = view.bodies[i];
     let to_local = body_from_planet(i);
     let radii = body.radii.xyz;
@@ -59,8 +63,16 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>) -> vec3<f
     }
     received += planetshine(p, n, mu, lommel_seeliger);
     var albedo = body.albedo.rgb;
-    if u32(body.radii.w) == BODY_SURFACE_LUNAR_MARIA {
+    let surface = u32(body.radii.w);
+    if surface == BODY_SURFACE_LUNAR_MARIA {
         albedo *= lunar_albedo_factor(n_local);
+    } else if surface == BODY_SURFACE_MAP {
+        // The pixel's footprint on the ground, stretched by the slant (the geometric mean of its
+        // two axes, 1 and 1/μ), in texels: the mip level whose texels match it.
+        let footprint = pixel_m / sqrt(max(mu, 1.0 / 64.0)) / body.air.z;
+        let lod = log2(max(footprint, 1.0));
+        let texel = textureSampleLevel(body_maps, map_sampler, equirect_uv(n_local), i32(i), lod).rgb;
+        albedo = min(albedo * texel, vec3<f32>(1.0));
     }
     return received * albedo / PI;
 }

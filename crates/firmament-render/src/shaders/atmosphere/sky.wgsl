@@ -110,7 +110,8 @@ fn sun_discs(d: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_main(in: FullscreenVertex) -> @location(0) vec4<f32> {
-    return sky_color(in.ndc);
+    // A pixel's height in NDC, from the screen-space derivatives (uniform control flow here).
+    return sky_color(in.ndc, abs(dpdy(in.ndc.y)));
 }
 
 @compute @workgroup_size(8, 8)
@@ -122,18 +123,20 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if !at_far_plane(textureLoad(scene_depth, id.xy, 0).r) {
         return; // geometry stands here
     }
-    textureStore(sky_out, id.xy, sky_color(pixel_ndc(id.xy, size)));
+    textureStore(sky_out, id.xy, sky_color(pixel_ndc(id.xy, size), 2.0 / f32(size.y)));
 }
 
 // The sky's colour (linear sRGB, Y in cd/m²; alpha 1) seen through the pixel at `ndc`: the air
 // (and lit ground), and behind it the suns' discs or a body (atmosphere/bodies.wgsl) seen
 // through the bodies' airs (atmosphere/body_air.wgsl); the rings in front of the air or between
 // it and what lies behind (atmosphere/rings.wgsl). A body, or its air, in front of the planet's
-// air comes before it.
-fn sky_color(ndc: vec2<f32>) -> vec4<f32> {
+// air comes before it. `pixel_height_ndc` is a pixel's height in NDC.
+fn sky_color(ndc: vec2<f32>, pixel_height_ndc: f32) -> vec4<f32> {
     let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
-    let body = body_sample(ray.origin, ray.direction, ray.near);
+    // The angle the pixel spans (at the image's centre: tan θ ≈ θ over one pixel).
+    let pixel_rad = pixel_height_ndc * view.camera_shape.w;
+    let body = body_sample(ray.origin, ray.direction, ray.near, pixel_rad);
     let body_air = body_air_sample(ray.origin, ray.direction, ray.near, select(BODY_AIR_UNBOUNDED, body.t, body.hit));
     // What lies beyond the bodies' airs: a body, or else the discs (hidden by the bodies).
     let behind_body_air = select(discs, body.radiance, body.hit);

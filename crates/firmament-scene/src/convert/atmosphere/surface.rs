@@ -125,6 +125,21 @@ fn mapped(scene: &Scene, albedo_file: &str, water_file: Option<&str>) -> Result<
     )
 }
 
+/// The map of the albedo image that `key` names as `file`, all land (a body's map), made once
+/// while the file stays as it was.
+pub(crate) fn albedo_map(scene: &Scene, key: &str, file: &str) -> Result<Arc<SurfaceMap>, SceneError> {
+    let path = scene.asset_file(key, file)?;
+    MAPPED.get_or_make(
+        &[path.as_path()],
+        scene.confinement.is_none(),
+        |map| map.width() as usize * map.height() as usize * std::mem::size_of::<[f32; 4]>(),
+        || {
+            let image = crate::assets::load_texture_within(key, &path, scene.confinement.as_ref())?;
+            surface_map(&image, Water::None).map_err(|e| SceneError::invalid(key, file, e.to_string()))
+        },
+    )
+}
+
 /// The map of the albedo image and the water image (each its scene value and resolved path).
 fn read_mapped(
     scene: &Scene,
