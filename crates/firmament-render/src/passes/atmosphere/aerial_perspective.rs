@@ -10,7 +10,7 @@
 
 use super::luts::{self, AERIAL_PERSPECTIVE_FORMAT, AERIAL_PERSPECTIVE_SIZE};
 use super::stages::{
-    ComputeKernel, ComputeStage, bind_group, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
+    ComputeKernel, ComputeStage, bind_group, binding, array_texture_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
 use std::num::NonZeroU64;
@@ -257,7 +257,7 @@ impl AerialPerspectiveStages {
             storage(binding::AERIAL_SCATTERING_OUT),
             storage(binding::AERIAL_TRANSMITTANCE_OUT),
         ];
-        volume_entries.push(moments_entry(binding::MULTISCATTERING));
+        volume_entries.push(array_texture_entry(binding::MULTISCATTERING));
         let volume = ComputeStage::new(
             device,
             "AtmospherePass aerial-perspective volume",

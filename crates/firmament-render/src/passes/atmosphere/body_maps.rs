@@ -11,7 +11,7 @@ use firmament_core::atmosphere::surface::map::texel_centres;
 use firmament_core::color::linear_to_srgb;
 use firmament_core::frame::AtmosphereSky;
 
-use super::stages::{binding, texture_entry};
+use super::stages::{array_texture_entry, binding};
 use crate::gpu_types::BODY_MAP_SIZE;
 
 /// The maps' texels: sRGB-encoded linear albedo in 8 bits (the sampler decodes before it
@@ -99,11 +99,7 @@ impl BodyMaps {
 
     /// The texture's layout entry (the sky stages read it with the maps' sampler).
     pub(super) fn entry() -> wgpu::BindGroupLayoutEntry {
-        let mut entry = texture_entry(binding::BODY_MAPS, true);
-        if let wgpu::BindingType::Texture { view_dimension, .. } = &mut entry.ty {
-            *view_dimension = wgpu::TextureViewDimension::D2Array;
-        }
-        entry
+        array_texture_entry(binding::BODY_MAPS)
     }
 
     /// The texture at its binding.

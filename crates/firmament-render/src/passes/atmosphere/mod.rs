@@ -63,7 +63,7 @@ pub use sky_lighting::sky_lighting_layout_entry;
 use sky_lighting::{SkyLightingResources, SkyLightingStage};
 use surface::SurfaceTexture;
 use stages::{
-    ComputeStage, Stage, binding, moments_entry, sampler_entry, storage_entry, texture_entry,
+    ComputeStage, Stage, binding, array_texture_entry, sampler_entry, storage_entry, texture_entry,
     uniform_entry,
 };
 
@@ -694,7 +694,7 @@ fn view_entries() -> Vec<wgpu::BindGroupLayoutEntry> {
         texture_entry(binding::IRRADIANCE, true),
         texture_entry(binding::SKY_VIEW, true),
     ];
-    entries.push(moments_entry(binding::MULTISCATTERING));
+    entries.push(array_texture_entry(binding::MULTISCATTERING));
     entries.extend(SurfaceTexture::entries());
     entries
 }

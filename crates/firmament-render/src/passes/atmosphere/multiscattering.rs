@@ -16,7 +16,7 @@
 use super::luts::MediumLuts;
 use super::luts::{Lut, MULTISCATTERING_FORMAT, MULTISCATTERING_MOMENTS, MULTISCATTERING_SIZE};
 use super::stages::{
-    ComputeStage, binding, moments_entry, sampler_entry, storage_buffer_entry, texture_entry,
+    ComputeStage, binding, array_texture_entry, sampler_entry, storage_buffer_entry, texture_entry,
     uniform_entry,
 };
 use crate::gpu_types::OrderSumsGpu;
@@ -123,7 +123,7 @@ impl MultiscatteringStages {
             storage_buffer_entry(binding::MULTISCATTERING_OUT),
             storage_buffer_entry(binding::MULTISCATTERING_ORDERS),
         ];
-        entries.push(moments_entry(binding::MULTISCATTERING));
+        entries.push(array_texture_entry(binding::MULTISCATTERING));
         let mut resources = vec![
             (binding::PARAMS, luts.params.as_entire_binding()),
             (

@@ -71,9 +71,9 @@ pub(super) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// The multiple-scattering moments' array texture, filterable, seen by the fragment and compute
-/// stages.
-pub(super) fn moments_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+/// A filterable array texture (the multiple-scattering moments, the bodies' maps), seen by the
+/// fragment and compute stages.
+pub(super) fn array_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     let mut entry = texture_entry(binding, true);
     if let wgpu::BindingType::Texture { view_dimension, .. } = &mut entry.ty {
         *view_dimension = wgpu::TextureViewDimension::D2Array;
