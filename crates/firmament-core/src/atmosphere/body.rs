@@ -50,7 +50,7 @@ use crate::atmosphere::{Planet, Spectrum, Sun};
 use crate::error::CoreError;
 use crate::geometry::{Ellipsoid, Ray};
 
-pub use air::{AirSegment, BodyAir};
+pub use air::{AirLight, AirSegment, BodyAir};
 
 /// The most bodies a sky takes (they are its eclipsers too, and the GPU's uniform holds this
 /// many: [`crate::atmosphere::eclipse::MAX_ECLIPSERS`]).

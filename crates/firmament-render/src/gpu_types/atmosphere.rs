@@ -5,7 +5,8 @@
 //! centre's offset on the image plane, never by its `f32` position (see `atmosphere/sky.wgsl`).
 
 use bytemuck::{Pod, Zeroable};
-use firmament_core::atmosphere::body::{self, Body, BodySurface, MAX_BODIES};
+use firmament_core::atmosphere::body::air::light as air_light;
+use firmament_core::atmosphere::body::{self, AirLight, Body, BodySurface, MAX_BODIES};
 use firmament_core::atmosphere::eclipse::MAX_ECLIPSERS;
 use firmament_core::atmosphere::planet_shadow::SHADOW_ENTRIES;
 use firmament_core::atmosphere::{Atmosphere, Planet, Spectrum};
@@ -154,6 +155,21 @@ pub(crate) const BODY_MAP_SIZE: (u32, u32) = (1024, 512);
 
 /// The angle a texel of [`BODY_MAP_SIZE`] spans along a body's equator, radians.
 const BODY_MAP_TEXEL_RAD: f64 = std::f64::consts::TAU / BODY_MAP_SIZE.0 as f64;
+
+/// The size of each of a body's two layers of its air's light (`body_air_light` in
+/// `shaders/atmosphere/bindings.wgsl`): the sun's zenith cosine across, altitude down — the
+/// nodes of the core's [`AirLight`] tables, one per texel centre.
+pub(crate) const BODY_AIR_LIGHT_SIZE: (u32, u32) = (air_light::SUN_NODES as u32, air_light::ALTITUDE_NODES as u32);
+
+/// `light`'s two tables as the layers of `body_air_light`, Rgba16Float texels of
+/// [`BODY_AIR_LIGHT_SIZE`]: Ψ (sr⁻¹ per unit irradiance), then the sky's irradiance on the
+/// ground per unit irradiance, the same on every row; as each half float's bits.
+pub(crate) fn body_air_light_layers(light: &AirLight) -> [Vec<u16>; 2] {
+    let texel = |s: &Spectrum| [s.x, s.y, s.z, 0.0].map(|v| half::f16::from_f64(v).to_bits());
+    let multiple = light.multiple.iter().flat_map(texel).collect();
+    let sky = (0..air_light::ALTITUDE_NODES).flat_map(|_| light.sky.iter().flat_map(texel)).collect();
+    [multiple, sky]
+}
 
 /// Mirrors `AtmosphereBody` in `shaders/atmosphere/bindings.wgsl`: an airless body beside the
 /// planet ([`Body`]).

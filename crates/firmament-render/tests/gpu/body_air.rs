@@ -1,7 +1,8 @@
 //! GPU tests of a body's own air (`atmosphere/body_air.wgsl`, `body_air_medium.wgsl`) against
 //! the f64 core's fine march (`firmament_core::atmosphere::body::air`, itself checked against
-//! closed forms): the light an Earth-like air scatters over the day side's limb, past the
-//! terminator and in front of the ground, and the ground lit through it.
+//! closed forms and the path tracer): the light an Earth-like air scatters, once and more, over
+//! the day side's limb, past the terminator and in front of the ground, and the ground lit
+//! through it and by its sky.
 
 use crate::bodies::{airless_with, as_srgb, planet_center};
 use crate::support::{centre_radiance, gpu};
@@ -29,22 +30,27 @@ fn core_radiance(sky: &AtmosphereSky, eye: DVec3, d: DVec3) -> DVec3 {
         })
         .collect();
     let ray = Ray::new(planet.to_planet_frame(eye), planet.direction_to_planet_frame(d)).expect("a ray");
-    let air = body.air_along(&ray, f64::INFINITY, &suns, |x, s| {
-        shadows_share(x, &suns, s, &planet, None, bodies, 0)
-    });
+    let tables = body.air_light();
+    let shadows = |x: DVec3, s: usize| shadows_share(x, &suns, s, &planet, None, bodies, 0);
+    let air = body.air_along(&ray, f64::INFINITY, &suns, shadows, tables.as_ref());
     let ground = body.hit(&ray).map_or(Spectrum::ZERO, |t| {
         let p = ray.at(t);
-        body.radiance(p, -ray.direction, &suns, |s| {
+        let direct = body.radiance(p, -ray.direction, &suns, |s| {
             sunlight_share(p, &suns, s, &planet, None, bodies, 0)
-        }) + body.planetshine_radiance(p, -ray.direction, &suns, &planet)
+        });
+        let sky = tables.as_ref().map_or(Spectrum::ZERO, |tables| {
+            body.skylight_radiance(p, -ray.direction, &suns, tables, |s| shadows(p, s))
+        });
+        direct + sky + body.planetshine_radiance(p, -ray.direction, &suns, &planet)
     });
     as_srgb(sky, air.radiance + air.transmittance * ground)
 }
 
 /// An Earth-sized Lambert ball with Earth's air, 384 400 km from a planet too thin to matter,
 /// the sun 90° from the planet seen from it, the eye 60 000 km out at 60° from the sun: the GPU
-/// within 2 % (of the brightest channel) of the core on the ground through the air, over the
-/// sunlit limb at 2, 15 and 40 km, at the terminator and past it.
+/// within 2 % (of the brightest channel) of the core on the ground through the air (by day and,
+/// lit by its sky alone, past the terminator), over the sunlit limb at 2, 15 and 40 km, at the
+/// terminator and past it.
 #[test]
 fn a_body_s_air_scatters_what_the_core_s_march_gives() {
     let mut gpu = gpu();
@@ -73,7 +79,14 @@ fn a_body_s_air_scatters_what_the_core_s_march_gives() {
     let towards_sun = sun;
     // Across the view 5° past the terminator: the ground there is dark, the air above it lit.
     let twilight = DVec3::Y * 5f64.to_radians().cos() - sun * 5f64.to_radians().sin();
+    // The ground 3° past the terminator on the side facing the eye: lit by the sky alone.
+    let towards_eye = (to_eye - sun * sun.dot(to_eye)).normalize();
+    let dusk = towards_eye * 3f64.to_radians().cos() - sun * 3f64.to_radians().sin();
     let cases = [
+        (
+            "ground 3° past the terminator",
+            (center + dusk * RADIUS_M - eye).normalize(),
+        ),
         (
             "ground half-way to the sun",
             (center + (sun + to_eye).normalize() * RADIUS_M - eye).normalize(),

@@ -14,18 +14,22 @@
 //! Account Atmospheric Scattering", SIGGRAPH 1993): along the view ray through the shell, each
 //! sun's light reaches a point after the air's transmittance towards it (zero where the body
 //! itself is in the way) and the shadows the caller supplies, and is scattered towards the viewer
-//! by Rayleigh's and the aerosols' phase functions, then dimmed by the air back to the viewer.
-//! The light scattered more than once and the sky's light on the body's ground are left out: a
-//! thin air (Earth's, Mars's) loses a few tens of per cent of its limb's glow to that, a thick one
-//! (Venus's, Titan's) far more, so those belong to the planet, whose air has every order.
-//! The body's ground gets each sun's light after the air's transmittance down to it
-//! ([`Body::air_transmittance`], which [`super::sunlight_share`] applies).
+//! by Rayleigh's and the aerosols' phase functions, then dimmed by the air back to the viewer —
+//! **plus the light scattered more than once** and **the sky's light on the body's ground** from
+//! the air's [`AirLight`] tables (Hillaire 2020's multiple-scattering approximation; [`light`]
+//! gives the model), where the caller passes them. That approximation holds for thin airs
+//! (Earth's, Mars's); thick ones (Venus's, Titan's) belong to the planet, whose air has every
+//! order. The body's ground gets each sun's light after the air's transmittance down to it
+//! ([`Body::air_transmittance`], which [`super::sunlight_share`] applies) and the sky's
+//! ([`Body::skylight_radiance`]).
 //!
 //! The functions here are the reference the GPU's march is checked against: they integrate by
 //! fine midpoint sums ([`VIEW_STEPS`] along the view, [`SUN_STEPS`] towards each sun), not by
 //! the GPU's few nodes crowded about the ray's lowest point.
 
 use glam::DVec3;
+
+pub use light::AirLight;
 
 use super::Body;
 use crate::atmosphere::medium::{Constituents, Phase};
@@ -130,6 +134,12 @@ impl BodyAir {
             + c.absorber.absorption * c.absorber.density.density(h)
     }
 
+    /// Scattering coefficient at altitude `h` metres, every scatterer without its phase, m⁻¹.
+    pub fn scattering_at(&self, h: f64) -> Spectrum {
+        let c = &self.constituents;
+        c.rayleigh.scattering * c.rayleigh.density.density(h) + c.mie.scattering * c.mie.density.density(h)
+    }
+
     /// Light scattered at altitude `h` per unit irradiance and length, Σ σ_s·p (m⁻¹·sr⁻¹), for
     /// `nu` the cosine between the view ray's direction and the direction to the sun.
     pub fn scattering_phase(&self, h: f64, nu: f64) -> Spectrum {
@@ -187,12 +197,28 @@ impl Body {
         (-depth).exp()
     }
 
+    /// The tables of the light the body's air scatters more than once and of the sky's light on
+    /// its ground, for its air around a ball of its mean radius over ground of its albedo; `None`
+    /// without air. Costs a few hundred milliseconds: make them once per air.
+    pub fn air_light(&self) -> Option<AirLight> {
+        let air = self.air.as_ref()?;
+        Some(AirLight::new(air, self.mean_radius(), self.albedo))
+    }
+
     /// The light the body's air scatters towards the viewer along `ray` (same frame as the body)
     /// from its origin up to `far` metres (where something opaque stands; `f64::INFINITY`: none),
     /// lit by `suns`, sun `s` reaching point `x` after its transmittance through the air and
     /// times `light(x, s)` (the shadows of the planet, the rings and other bodies, e.g.
-    /// [`super::sunlight_share`] without the air's own part); [`AirSegment::CLEAR`] without air.
-    pub fn air_along(&self, ray: &Ray, far: f64, suns: &[Sun], light: impl Fn(DVec3, usize) -> Spectrum) -> AirSegment {
+    /// [`super::shadows_share`]); once-scattered light only, or every order with the air's
+    /// tables `more` ([`Self::air_light`]); [`AirSegment::CLEAR`] without air.
+    pub fn air_along(
+        &self,
+        ray: &Ray,
+        far: f64,
+        suns: &[Sun],
+        light: impl Fn(DVec3, usize) -> Spectrum,
+        more: Option<&AirLight>,
+    ) -> AirSegment {
         let Some(air) = &self.air else { return AirSegment::CLEAR };
         let Some(top) = self.air_top(air).intersect(&self.local_ray(ray)) else {
             return AirSegment::CLEAR;
@@ -212,9 +238,14 @@ impl Body {
             let extinction = air.extinction_at(h);
             // The transmittance to the step's midpoint: all steps before it and half of it.
             let to_x = (-(depth + extinction * (0.5 * dt))).exp();
+            let up = self.normal_at(x);
             for (s, (sun, &direction)) in suns.iter().zip(&directions).enumerate() {
-                let lit = sun.irradiance * self.air_transmittance(x, direction) * light(x, s);
-                radiance += lit * air.scattering_phase(h, ray.direction.dot(direction)) * to_x * dt;
+                let shadows = sun.irradiance * light(x, s);
+                let once = self.air_transmittance(x, direction) * air.scattering_phase(h, ray.direction.dot(direction));
+                let again = more.map_or(Spectrum::ZERO, |more| {
+                    air.scattering_at(h) * more.multiple_scattering(h, up.dot(direction))
+                });
+                radiance += shadows * (once + again) * to_x * dt;
             }
             depth += extinction * dt;
         }
@@ -222,6 +253,29 @@ impl Body {
             radiance,
             transmittance: (-depth).exp(),
         }
+    }
+
+    /// The radiance the sky of the body's air sends back from surface point `p` (same frame as
+    /// the body) towards a viewer along `to_viewer`, the ground taken as Lambertian: its albedo
+    /// over π times each sun's irradiance, times `light(s)` (the shadows of the planet, the rings
+    /// and other bodies, e.g. [`super::shadows_share`]), times the sky's irradiance per unit of
+    /// it at the sun's height there (`tables`, [`Self::air_light`]).
+    pub fn skylight_radiance(
+        &self,
+        p: DVec3,
+        to_viewer: DVec3,
+        suns: &[Sun],
+        tables: &AirLight,
+        light: impl Fn(usize) -> Spectrum,
+    ) -> Spectrum {
+        let n = self.normal_at(p);
+        if n.dot(to_viewer) <= 0.0 {
+            return Spectrum::ZERO;
+        }
+        let received = suns.iter().enumerate().fold(Spectrum::ZERO, |sum, (s, sun)| {
+            sum + sun.irradiance * light(s) * tables.sky_irradiance(n.dot(sun.direction.normalize()))
+        });
+        received * self.albedo_at(p) / std::f64::consts::PI
     }
 }
 
@@ -234,6 +288,8 @@ fn midpoint_sum(start: f64, end: f64, steps: usize, f: impl Fn(f64) -> Spectrum)
 fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError {
     CoreError::Invalid { field, value, rule }
 }
+
+pub mod light;
 
 #[cfg(test)]
 mod tests;

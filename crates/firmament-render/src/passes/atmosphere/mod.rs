@@ -30,6 +30,7 @@
 //! the low sun's air mass slightly.
 
 mod aerial_perspective;
+mod body_air_light;
 mod body_maps;
 mod clouds;
 pub mod luts;
@@ -50,6 +51,7 @@ use crate::shaders;
 
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
+use body_air_light::BodyAirLight;
 use body_maps::BodyMaps;
 use clouds::CloudStages;
 pub use luts::AtmosphereLuts;
@@ -132,6 +134,7 @@ pub struct AtmospherePass {
     surface: SurfaceTexture,
     /// The bodies' albedo maps, read by the sky stages.
     body_maps: BodyMaps,
+    body_air_light: BodyAirLight,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
@@ -226,9 +229,11 @@ impl AtmospherePass {
         // One pipeline per sky mode, so no pixel pays for the branch it does not take (software
         // rasterizers run both sides of a branch they cannot prove uniform).
         let body_maps = BodyMaps::new(device);
-        let sky_entries = [view_entries.as_slice(), &[BodyMaps::entry()]].concat();
+        let body_air_light = BodyAirLight::new(device);
+        let sky_entries = [view_entries.as_slice(), &[BodyMaps::entry(), BodyAirLight::entry()]].concat();
         let mut sky_resources = view_resources.clone();
         sky_resources.push(body_maps.resource());
+        sky_resources.push(body_air_light.resource());
         let sky_stage = |mode: SkyMode| {
             Stage::new(
                 device,
@@ -273,6 +278,7 @@ impl AtmospherePass {
             lighting,
             surface,
             body_maps,
+            body_air_light,
             sampler,
             luts,
             params,
@@ -299,6 +305,7 @@ impl AtmospherePass {
         self.clouds.prepare(queue, sky);
         self.surface.prepare(queue, sky.surface.as_ref());
         self.body_maps.prepare(queue, sky);
+        self.body_air_light.prepare(queue, sky);
         if !self.rebuild.is_newest(&sky.atmosphere) {
             let planet = &sky.atmosphere.planet;
             let thick = is_thick_air(&sky.atmosphere.medium, planet.atmosphere_height);
@@ -559,6 +566,7 @@ impl AtmospherePass {
         resources.push((binding::SCENE_DEPTH, wgpu::BindingResource::TextureView(depth)));
         resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
         resources.push(self.body_maps.resource());
+        resources.push(self.body_air_light.resource());
         match &mut self.sky_compute {
             Some((stages, bound)) => {
                 for stage in stages.iter_mut() {
@@ -571,6 +579,7 @@ impl AtmospherePass {
                 entries.push(texture_entry(binding::SCENE_DEPTH, false));
                 entries.push(storage_entry(binding::SKY_OUT, crate::targets::HDR_FORMAT));
                 entries.push(BodyMaps::entry());
+                entries.push(BodyAirLight::entry());
                 let stages = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(|mode| {
                     ComputeStage::with_constants(
                         device,

@@ -32,6 +32,7 @@ pub(super) mod binding {
     pub(crate) const SKY_VIEW_OUT: u32 = 19;
     pub(crate) const SKY_OUT: u32 = 20;
     pub(crate) const BODY_MAPS: u32 = 21;
+    pub(crate) const BODY_AIR_LIGHT: u32 = 22;
     pub(crate) const HDR_IN: u32 = 23;
     pub(crate) const HDR_OUT: u32 = 24;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
@@ -107,6 +108,7 @@ mod tests {
             ("map_sampler", binding::MAP_SAMPLER),
             ("surface_map", binding::SURFACE_MAP),
             ("body_maps", binding::BODY_MAPS),
+            ("body_air_light", binding::BODY_AIR_LIGHT),
             ("cloud_shadow_out", binding::CLOUD_SHADOW_OUT),
             ("cloud_shadow_map", binding::CLOUD_SHADOW_MAP),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),

@@ -173,6 +173,12 @@ struct SkyLighting {
 // mip-mapped), resampled to gpu_types/atmosphere.rs BODY_MAP_SIZE;
 // read at equirect_uv with `map_sampler`.
 @group(0) @binding(21) var body_maps: texture_2d_array<f32>;
+// The light of the bodies' airs (atmosphere/body_air_medium.wgsl), Rgba16Float: for body i with
+// air, layer 2i the light scattered more than once (Ψ, sr⁻¹ per unit irradiance; the sun's
+// zenith cosine −1…1 across, altitude ground…top down) and layer 2i + 1 the sky's irradiance on
+// its ground per unit irradiance (across; every row alike): the core's AirLight nodes at texel
+// centres (gpu_types/atmosphere.rs BODY_AIR_LIGHT_SIZE); read with `lut_sampler`.
+@group(0) @binding(22) var body_air_light: texture_2d_array<f32>;
 // The clouds' shadow map (clouds/shadow.wgsl): per sun a square of texels across its rays around
 // the camera, the suns' squares side by side; written by clouds/shadow_map.wgsl, read by the
 // march (unfilterable: textureLoad).

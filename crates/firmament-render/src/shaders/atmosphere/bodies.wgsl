@@ -1,10 +1,11 @@
 // atmosphere/bodies.wgsl — the bodies beside the planet: where a view ray meets one and the
 // light its ground sends back (its air: atmosphere/body_air.wgsl); the GPU twin of
 // firmament_core::atmosphere::body, whose docs give the model (an opaque ellipsoid, Lambert or
-// Lommel–Seeliger, its albedo uniform or patterned by the Moon's maria, lit through its own air,
-// shadowed by the planet as a ball of its volumetric mean radius or by the light of its
-// shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by the
-// planet's sunlit face too, planet-shine; a map's albedo: firmament_core::atmosphere::body::map).
+// Lommel–Seeliger, its albedo uniform or patterned by the Moon's maria, lit through its own air
+// and by its sky, shadowed by the planet as a ball of its volumetric mean radius or by the light
+// of its shadow's table (a lunar eclipse's red), by the rings and by the other bodies; lit by
+// the planet's sunlit face too, planet-shine; a map's albedo:
+// firmament_core::atmosphere::body::map).
 //
 // Conventions: as atmosphere/common.wgsl. `view.bodies[i]` for i < `view.sun_count.w`; body i is
 // also eclipser i (`view.eclipsers`), which its own shading skips. Radiance is spectral, per
@@ -49,17 +50,24 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>, pixel_m: 
     let n = transpose(to_local) * n_local;
     let mu = max(dot(n, -d), 0.0);
     let lommel_seeliger = u32(body.center.w) == BODY_REFLECTANCE_LOMMEL_SEELIGER;
+    let air = body_has_air(i);
     var received = vec3<f32>(0.0);
     for (var s = 0u; s < view.sun_count.x; s++) {
         let to_sun = view.suns[s].direction.xyz;
         let mu0 = dot(n, to_sun);
-        if mu0 <= 0.0 {
+        // Below the horizon only the sky of an air still lights the ground (twilight).
+        if mu0 <= 0.0 && !air {
             continue;
         }
-        let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
-        let air = body_air_transmittance(i, local, to_local * to_sun);
-        let share = body_shadows_share(p, s, i) * ring_transmittance(p, to_sun) * air;
-        received += view.suns[s].irradiance.rgb * share * law;
+        let shadows = view.suns[s].irradiance.rgb * body_shadows_share(p, s, i) * ring_transmittance(p, to_sun);
+        if mu0 > 0.0 {
+            let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
+            received += shadows * body_air_transmittance(i, local, to_local * to_sun) * law;
+        }
+        if air {
+            // The sky's light, taken as Lambertian (firmament_core's Body::skylight_radiance).
+            received += shadows * body_air_sky(i, mu0);
+        }
     }
     received += planetshine(p, n, mu, lommel_seeliger);
     var albedo = body.albedo.rgb;

@@ -1,8 +1,8 @@
 // atmosphere/body_air.wgsl — the light the airs of the bodies beside the planet scatter towards
-// the camera along a view ray, and their transmittance along it: single scattering of every
-// sun, each reaching a point of the air through it (atmosphere/body_air_medium.wgsl) and past
-// the shadows of the planet, its rings and the other bodies (atmosphere/bodies.wgsl); the GPU
-// twin of firmament_core::atmosphere::body::Body::air_along.
+// the camera along a view ray, and their transmittance along it: every sun's light scattered
+// once, reaching a point of the air through it (atmosphere/body_air_medium.wgsl), and more than
+// once (the air's Ψ table), past the shadows of the planet, its rings and the other bodies
+// (atmosphere/bodies.wgsl); the GPU twin of firmament_core::atmosphere::body::Body::air_along.
 //
 // Conventions: as atmosphere/body_air_medium.wgsl. The airs of different bodies never overlap
 // (the core's validate_bodies), so each is one segment of the ray.
@@ -93,15 +93,19 @@ fn body_air_segment(i: u32, o: vec3<f32>, d: vec3<f32>, near: f32, far: f32) -> 
         let extinction = body_air_extinction(i, h);
         let step = exp(-extinction * node.y);
         let p = o + (closest + node.x) * d;
+        let up = normalize(x / (body.radii.xyz * body.radii.xyz));
+        let scattering = body_air_scattering(i, h);
         var source = vec3<f32>(0.0);
         for (var s = 0u; s < view.sun_count.x; s++) {
             let to_sun = view.suns[s].direction.xyz;
-            let through = body_air_transmittance(i, x, to_local * to_sun);
-            if all(through <= vec3<f32>(0.0)) {
+            let local_sun = to_local * to_sun;
+            let shadows = body_shadows_share(p, s, i) * ring_transmittance(p, to_sun);
+            if all(shadows <= vec3<f32>(0.0)) {
                 continue;
             }
-            let shadows = body_shadows_share(p, s, i) * ring_transmittance(p, to_sun);
-            source += view.suns[s].irradiance.rgb * through * shadows * body_air_scattering_phase(i, h, dot(d, to_sun));
+            let once = body_air_transmittance(i, x, local_sun) * body_air_scattering_phase(i, h, dot(d, to_sun));
+            let again = scattering * body_air_multiple(i, h, dot(up, local_sun));
+            source += view.suns[s].irradiance.rgb * shadows * (once + again);
         }
         out.radiance += out.transmittance * integrate_step(source, extinction, step, node.y);
         out.transmittance *= step;

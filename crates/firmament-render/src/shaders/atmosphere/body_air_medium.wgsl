@@ -1,6 +1,7 @@
 // atmosphere/body_air_medium.wgsl — what the air of a body beside the planet is made of and how
-// much of a sun's light crosses it: altitude over the body, extinction, scattering and the
-// transmittance towards a sun (firmament_core::atmosphere::body::air, whose docs give the model).
+// much of a sun's light crosses it: altitude over the body, extinction, scattering, the
+// transmittance towards a sun and the tables of its light scattered more than once and of its
+// sky's light on the ground (firmament_core::atmosphere::body::air, whose docs give the model).
 // The light the air scatters to the camera is atmosphere/body_air.wgsl.
 //
 // Conventions: as atmosphere/common.wgsl, but positions and directions here are in body i's
@@ -55,6 +56,35 @@ fn body_air_scattering_phase(i: u32, h: f32, nu: f32) -> vec3<f32> {
     let aerosol_phase = select(henyey_greenstein(g, nu), cornette_shanks(g, nu), u32(aerosols.scattering.w) == PHASE_CORNETTE_SHANKS);
     return molecules.scattering.rgb * (profile_density(molecules.profile, h) * rayleigh_phase(nu))
         + aerosols.scattering.rgb * (profile_density(aerosols.profile, h) * aerosol_phase);
+}
+
+// Body i's air's scattering coefficient at altitude h, every scatterer without its phase (m⁻¹).
+fn body_air_scattering(i: u32, h: f32) -> vec3<f32> {
+    let molecules = view.body_air[i][0];
+    let aerosols = view.body_air[i][1];
+    return molecules.scattering.rgb * profile_density(molecules.profile, h)
+        + aerosols.scattering.rgb * profile_density(aerosols.profile, h);
+}
+
+// Body i's table `layer` (0: Ψ, 1: the sky's light on the ground) at the sun's zenith cosine
+// mu_s and the altitude h: its nodes lie at texel centres (bindings.wgsl `body_air_light`).
+fn body_air_light_at(i: u32, layer: u32, mu_s: f32, h: f32) -> vec3<f32> {
+    let size = vec2<f32>(textureDimensions(body_air_light));
+    let x = clamp(vec2<f32>(0.5 * (mu_s + 1.0), h / view.bodies[i].air.x), vec2<f32>(0.0), vec2<f32>(1.0));
+    let uv = (0.5 + x * (size - 1.0)) / size;
+    return textureSampleLevel(body_air_light, lut_sampler, uv, i32(2u * i + layer), 0.0).rgb;
+}
+
+// The light body i's air scatters more than once at altitude h under a sun at zenith cosine
+// mu_s, per unit irradiance (sr⁻¹): Hillaire 2020's Ψ (firmament_core::atmosphere::body::AirLight).
+fn body_air_multiple(i: u32, h: f32, mu_s: f32) -> vec3<f32> {
+    return body_air_light_at(i, 0u, mu_s, h);
+}
+
+// The irradiance body i's sky casts on its horizontal ground under a sun at zenith cosine mu_s,
+// per unit irradiance of that sun.
+fn body_air_sky(i: u32, mu_s: f32) -> vec3<f32> {
+    return body_air_light_at(i, 1u, mu_s, 0.0);
 }
 
 // Node k of 2n along [t0, t1] crowded about t_c (within it), near to far: its t and its length.

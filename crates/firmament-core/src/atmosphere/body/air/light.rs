@@ -1,0 +1,301 @@
+//! The light a body's air scatters more than once, and the sky's light on its ground: two tables
+//! per air, made once for its constituents, the body's size and its albedo.
+//!
+//! # Model
+//! **Multiple scattering** follows Hillaire, "A Scalable and Production Ready Sky and Atmosphere
+//! Rendering Technique" (EGSR 2020, §5.5): at altitude `h` under a sun at zenith cosine `μ_s`,
+//! the light scattered twice is gathered over the sphere of directions with an isotropic phase
+//! (`L₂ = ∫ L'(ω) dω/4π`, `L'` the once-scattered light and the lit ground along `ω`), the share
+//! of light the air around scatters back to the point is `f = ∫∫ σ_s·T dt dω/4π`, and every
+//! higher order is taken as the same fraction of the one before: `Ψ = L₂/(1 − f)`. A view ray's
+//! march adds `σ_s(h)·Ψ(h, μ_s)·E` per sun of irradiance `E` ([`super::Body::air_along`]).
+//! The air is taken as a spherical shell of the body's volumetric mean radius; `μ_s` is the
+//! sun's cosine to the body's normal at the point.
+//!
+//! **The sky's light on the ground** is the irradiance a horizontal patch of ground receives from
+//! the whole sky (once-scattered light by the constituents' own phase functions, plus `Ψ`) under
+//! a sun at zenith cosine `μ_s`, per unit irradiance of that sun; the light the ground and the
+//! sky send back and forth once more is left out (a few per cent of it over bright ground).
+//!
+//! # Tables
+//! Both are sampled at nodes even in `μ_s ∈ [−1, 1]` ([`SUN_NODES`]) and, for `Ψ`, in altitude
+//! from the ground to the air's top ([`ALTITUDE_NODES`]), and read by linear interpolation
+//! between nodes — the GPU reads the same nodes as texel centres with its bilinear filter.
+//! Transmittance towards a sun comes from a finer table of optical depth by altitude and zenith
+//! cosine (Bruneton and Neyret 2008's parametrisation), zero where the ground is in the way.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::BodyAir;
+use crate::atmosphere::medium;
+use crate::atmosphere::spectrum::Spectrum;
+
+/// Nodes in the sun's zenith cosine, −1 to 1, of both tables.
+pub const SUN_NODES: usize = 32;
+
+/// Nodes in altitude, ground to top, of the multiple-scattering table.
+pub const ALTITUDE_NODES: usize = 32;
+
+/// Directions over the sphere of each multiple-scattering node (a Fibonacci lattice).
+const SPHERE_DIRECTIONS: usize = 128;
+
+/// Directions over the sphere of which the sky's light on the ground takes the upper half.
+const SKY_DIRECTIONS: usize = 2048;
+
+/// Midpoint steps along each direction.
+const STEPS: usize = 32;
+
+/// Nodes of the optical-depth table: radius and zenith cosine.
+const DEPTH_RADIUS_NODES: usize = 64;
+const DEPTH_MU_NODES: usize = 256;
+
+/// Midpoint steps of each optical depth.
+const DEPTH_STEPS: usize = 128;
+
+/// The two tables of one air (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AirLight {
+    /// `Ψ` per unit irradiance of a sun, sr⁻¹: [`ALTITUDE_NODES`] rows (ground first) of
+    /// [`SUN_NODES`] values (`μ_s = −1` first).
+    pub multiple: Vec<Spectrum>,
+    /// The sky's irradiance on horizontal ground per unit irradiance of a sun: [`SUN_NODES`]
+    /// values, `μ_s = −1` first.
+    pub sky: Vec<Spectrum>,
+    /// Height of the air's top, metres: the last row's altitude.
+    pub top_altitude_m: f64,
+}
+
+impl AirLight {
+    /// The tables of `air` around a ball of radius `radius_m` whose ground reflects
+    /// `ground_albedo` (Lambert).
+    pub fn new(air: &BodyAir, radius_m: f64, ground_albedo: Spectrum) -> Self {
+        let shell = Shell::new(air, radius_m);
+        let multiple: Vec<Spectrum> = (0..ALTITUDE_NODES * SUN_NODES)
+            .into_par_iter()
+            .map(|k| {
+                let h = node(k / SUN_NODES, ALTITUDE_NODES) * air.top_altitude_m;
+                let mu_s = 2.0 * node(k % SUN_NODES, SUN_NODES) - 1.0;
+                shell.multiple_scattering(h, mu_s, ground_albedo)
+            })
+            .collect();
+        let partial = Self {
+            multiple,
+            sky: Vec::new(),
+            top_altitude_m: air.top_altitude_m,
+        };
+        let sky = (0..SUN_NODES)
+            .into_par_iter()
+            .map(|k| shell.sky_irradiance(2.0 * node(k, SUN_NODES) - 1.0, &partial))
+            .collect();
+        Self { sky, ..partial }
+    }
+
+    /// `Ψ` at altitude `h` metres under a sun at zenith cosine `mu_s`, per unit irradiance,
+    /// sr⁻¹ (module docs); clamped to the table.
+    pub fn multiple_scattering(&self, h: f64, mu_s: f64) -> Spectrum {
+        let (row, t) = between(h / self.top_altitude_m, ALTITUDE_NODES);
+        let at_row = |r: usize| {
+            let values = &self.multiple[r * SUN_NODES..(r + 1) * SUN_NODES];
+            interpolate(values, 0.5 * (mu_s + 1.0))
+        };
+        at_row(row) * (1.0 - t) + at_row(row + 1) * t
+    }
+
+    /// The sky's irradiance on horizontal ground under a sun at zenith cosine `mu_s`, per unit
+    /// irradiance of that sun (module docs).
+    pub fn sky_irradiance(&self, mu_s: f64) -> Spectrum {
+        interpolate(&self.sky, 0.5 * (mu_s + 1.0))
+    }
+}
+
+/// Node `k` of `n` even over [0, 1], ends included.
+fn node(k: usize, n: usize) -> f64 {
+    k as f64 / (n - 1) as f64
+}
+
+/// The node before `x` (clamped to [0, 1]) among `n` and the fraction of the way to the next.
+fn between(x: f64, n: usize) -> (usize, f64) {
+    let position = x.clamp(0.0, 1.0) * (n - 1) as f64;
+    let k = (position.floor() as usize).min(n - 2);
+    (k, position - k as f64)
+}
+
+/// `values` at nodes even over [0, 1] read at `x`, linearly.
+fn interpolate(values: &[Spectrum], x: f64) -> Spectrum {
+    let (k, t) = between(x, values.len());
+    values[k] * (1.0 - t) + values[k + 1] * t
+}
+
+/// The air as a spherical shell, with its optical depth to the top tabulated.
+struct Shell<'a> {
+    air: &'a BodyAir,
+    radius: f64,
+    top: f64,
+    /// Optical depth to the top: [`DEPTH_RADIUS_NODES`] rows of [`DEPTH_MU_NODES`].
+    depth: Vec<Spectrum>,
+}
+
+impl<'a> Shell<'a> {
+    fn new(air: &'a BodyAir, radius: f64) -> Self {
+        let top = radius + air.top_altitude_m;
+        let mut shell = Self {
+            air,
+            radius,
+            top,
+            depth: Vec::new(),
+        };
+        let horizon = (top * top - radius * radius).sqrt();
+        shell.depth = (0..DEPTH_RADIUS_NODES * DEPTH_MU_NODES)
+            .into_par_iter()
+            .map(|k| {
+                // Bruneton and Neyret 2008: ρ even in [0, H] for the radius, and the distance to
+                // the top even between its least and most for the cosine.
+                let rho = node(k / DEPTH_MU_NODES, DEPTH_RADIUS_NODES) * horizon;
+                let r = (rho * rho + radius * radius).sqrt();
+                let (d_min, d_max) = (top - r, rho + horizon);
+                let d = d_min + node(k % DEPTH_MU_NODES, DEPTH_MU_NODES) * (d_max - d_min);
+                let mu = if d == 0.0 {
+                    1.0
+                } else {
+                    ((horizon * horizon - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
+                };
+                shell.optical_depth_by_steps(r, mu, d)
+            })
+            .collect();
+        shell
+    }
+
+    /// Optical depth from radius `r` along zenith cosine `mu` over `length` metres.
+    fn optical_depth_by_steps(&self, r: f64, mu: f64, length: f64) -> Spectrum {
+        let dt = length / DEPTH_STEPS as f64;
+        (0..DEPTH_STEPS)
+            .map(|k| {
+                let t = (k as f64 + 0.5) * dt;
+                self.air.extinction_at(self.altitude(r, mu, t))
+            })
+            .sum::<Spectrum>()
+            * dt
+    }
+
+    /// Altitude after `t` metres from radius `r` along zenith cosine `mu`.
+    fn altitude(&self, r: f64, mu: f64, t: f64) -> f64 {
+        (r * r + 2.0 * r * mu * t + t * t).sqrt() - self.radius
+    }
+
+    /// Transmittance from radius `r` along zenith cosine `mu` to the top: 0 where the ground
+    /// is in the way.
+    fn transmittance(&self, r: f64, mu: f64) -> Spectrum {
+        let r = r.clamp(self.radius, self.top);
+        if mu < 0.0 && r * r * (1.0 - mu * mu) < self.radius * self.radius {
+            return Spectrum::ZERO;
+        }
+        let horizon = (self.top * self.top - self.radius * self.radius).sqrt();
+        let rho = (r * r - self.radius * self.radius).max(0.0).sqrt();
+        let d = (r * r * (mu * mu - 1.0) + self.top * self.top).max(0.0).sqrt() - r * mu;
+        let (d_min, d_max) = (self.top - r, rho + horizon);
+        let x_mu = if d_max > d_min {
+            (d - d_min) / (d_max - d_min)
+        } else {
+            0.0
+        };
+        let (row, s) = between(rho / horizon, DEPTH_RADIUS_NODES);
+        let at_row = |i: usize| interpolate(&self.depth[i * DEPTH_MU_NODES..(i + 1) * DEPTH_MU_NODES], x_mu);
+        (-(at_row(row) * (1.0 - s) + at_row(row + 1) * s)).exp()
+    }
+
+    /// Where a path from `x` along unit `d` leaves the shell: its length and whether it ends
+    /// on the ground.
+    fn path(&self, x: DVec3, d: DVec3) -> (f64, bool) {
+        let b = x.dot(d);
+        let c_ground = x.length_squared() - self.radius * self.radius;
+        let ground = b * b - c_ground;
+        if b < 0.0 && ground >= 0.0 {
+            return (-b - ground.sqrt(), true);
+        }
+        let c_top = x.length_squared() - self.top * self.top;
+        ((b * b - c_top).max(0.0).sqrt() - b, false)
+    }
+
+    /// `Ψ` at altitude `h` under a sun at zenith cosine `mu_s` over ground of `albedo`.
+    fn multiple_scattering(&self, h: f64, mu_s: f64, albedo: Spectrum) -> Spectrum {
+        let x = DVec3::new(0.0, 0.0, self.radius + h);
+        let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
+        let mut second = Spectrum::ZERO;
+        let mut share = Spectrum::ZERO;
+        for d in fibonacci_sphere(SPHERE_DIRECTIONS) {
+            let (length, ground) = self.path(x, d);
+            let dt = length / STEPS as f64;
+            let mut depth = Spectrum::ZERO;
+            for k in 0..STEPS {
+                let y = x + d * ((k as f64 + 0.5) * dt);
+                let r = y.length();
+                let h = r - self.radius;
+                let extinction = self.air.extinction_at(h);
+                let scattering = self.air.scattering_at(h);
+                let to_y = (-(depth + extinction * (0.5 * dt))).exp();
+                let sunlit = self.transmittance(r, y.dot(sun) / r);
+                second += to_y * scattering * sunlit * (dt / (4.0 * PI));
+                share += to_y * scattering * dt;
+                depth += extinction * dt;
+            }
+            if ground {
+                let g = x + d * length;
+                let n = g / g.length();
+                let lit = self.transmittance(self.radius, n.dot(sun)) * n.dot(sun).max(0.0);
+                second += (-depth).exp() * lit * albedo / PI;
+            }
+        }
+        let n = SPHERE_DIRECTIONS as f64;
+        let (second, share) = (second / n, share / n);
+        second / (Spectrum::ONE - share)
+    }
+
+    /// The sky's irradiance on the ground under a sun at zenith cosine `mu_s`, `table` giving Ψ.
+    fn sky_irradiance(&self, mu_s: f64, table: &AirLight) -> Spectrum {
+        let x = DVec3::new(0.0, 0.0, self.radius);
+        let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
+        let c = &self.air.constituents;
+        let mut irradiance = Spectrum::ZERO;
+        for d in fibonacci_sphere(SKY_DIRECTIONS).filter(|d| d.z > 0.0) {
+            let (length, _) = self.path(x, d);
+            let dt = length / STEPS as f64;
+            let nu = d.dot(sun);
+            let phases = (medium::rayleigh_phase(nu), c.mie.phase.eval(nu));
+            let mut depth = Spectrum::ZERO;
+            let mut radiance = Spectrum::ZERO;
+            for k in 0..STEPS {
+                let y = x + d * ((k as f64 + 0.5) * dt);
+                let r = y.length();
+                let h = r - self.radius;
+                let extinction = self.air.extinction_at(h);
+                let to_y = (-(depth + extinction * (0.5 * dt))).exp();
+                let mu = y.dot(sun) / r;
+                let once = (c.rayleigh.scattering * (c.rayleigh.density.density(h) * phases.0)
+                    + c.mie.scattering * (c.mie.density.density(h) * phases.1))
+                    * self.transmittance(r, mu);
+                let more = self.air.scattering_at(h) * table.multiple_scattering(h, mu);
+                radiance += to_y * (once + more) * dt;
+                depth += extinction * dt;
+            }
+            irradiance += radiance * d.z;
+        }
+        irradiance * (4.0 * PI / SKY_DIRECTIONS as f64)
+    }
+}
+
+/// `n` unit vectors spread evenly over the sphere (a Fibonacci lattice, z even in (−1, 1)).
+fn fibonacci_sphere(n: usize) -> impl Iterator<Item = DVec3> {
+    let golden = PI * (3.0 - 5f64.sqrt());
+    (0..n).map(move |k| {
+        let z = 1.0 - (2.0 * k as f64 + 1.0) / n as f64;
+        let s = (1.0 - z * z).sqrt();
+        let phi = golden * k as f64;
+        DVec3::new(s * phi.cos(), s * phi.sin(), z)
+    })
+}
+
+#[cfg(test)]
+mod tests;
