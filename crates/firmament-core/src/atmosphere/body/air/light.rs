@@ -14,8 +14,12 @@
 //!
 //! **The sky's light on the ground** is the irradiance a horizontal patch of ground receives from
 //! the whole sky (once-scattered light by the constituents' own phase functions, plus `Ψ`) under
-//! a sun at zenith cosine `μ_s`, per unit irradiance of that sun; the light the ground and the
-//! sky send back and forth once more is left out (a few per cent of it over bright ground).
+//! a sun at zenith cosine `μ_s`, per unit irradiance of that sun, with the light the ground and
+//! the sky send back and forth: the sky returns the share `s̄` of the light leaving the ground
+//! (its spherical albedo from below, gathered as `Ψ` is, from ground of unit exitance), so each
+//! bounce is `A·s̄` of the one before and the sky's light is `E_sky/(1 − A·s̄)` — with the first
+//! bounce of the direct light already in `E_sky` (Ψ's lit ground), that is
+//! `(E_air + E_direct·A·s̄)/(1 − A·s̄)`, every bounce of both.
 //!
 //! # Tables
 //! Both are sampled at nodes even in `μ_s ∈ [−1, 1]` ([`SUN_NODES`]) and, for `Ψ`, in altitude
@@ -30,7 +34,6 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::BodyAir;
-use crate::atmosphere::medium;
 use crate::atmosphere::spectrum::Spectrum;
 
 /// Nodes in the sun's zenith cosine, −1 to 1, of both tables.
@@ -86,9 +89,12 @@ impl AirLight {
             sky: Vec::new(),
             top_altitude_m: air.top_altitude_m,
         };
+        // The light going back and forth between the ground and the sky: each bounce the share
+        // A·s̄ of the one before, which Ψ's lit ground holds once for the direct light.
+        let bounces = Spectrum::ONE / (Spectrum::ONE - ground_albedo * shell.ground_albedo_of_sky());
         let sky = (0..SUN_NODES)
             .into_par_iter()
-            .map(|k| shell.sky_irradiance(2.0 * node(k, SUN_NODES) - 1.0, &partial))
+            .map(|k| shell.sky_irradiance(2.0 * node(k, SUN_NODES) - 1.0, &partial) * bounces)
             .collect();
         Self { sky, ..partial }
     }
@@ -219,70 +225,98 @@ impl<'a> Shell<'a> {
         ((b * b - c_top).max(0.0).sqrt() - b, false)
     }
 
+    /// Marches from `x` along the unit `d` to where the path leaves the shell, calling
+    /// `step(y, h, to_y, dt)` at each midpoint `y` (altitude `h`, `to_y` the transmittance from
+    /// `x` to it, `dt` the step's length); returns the transmittance of the whole path and the
+    /// point of the ground where it ends, if it does.
+    fn march(&self, x: DVec3, d: DVec3, mut step: impl FnMut(DVec3, f64, Spectrum, f64)) -> (Spectrum, Option<DVec3>) {
+        let (length, ground) = self.path(x, d);
+        let dt = length / STEPS as f64;
+        let mut depth = Spectrum::ZERO;
+        for k in 0..STEPS {
+            let y = x + d * ((k as f64 + 0.5) * dt);
+            let h = y.length() - self.radius;
+            let extinction = self.air.extinction_at(h);
+            step(y, h, (-(depth + extinction * (0.5 * dt))).exp(), dt);
+            depth += extinction * dt;
+        }
+        (((-depth).exp()), ground.then(|| x + d * length))
+    }
+
+    /// The share of the light at altitude `h` the air around scatters back to it (Hillaire's
+    /// `f`, the same under every sun): `∫∫ σ_s·T dt dω/4π`, and, summed the same way, what the
+    /// ground along each direction sends there per unit of its exitance: `∫ T/π dω/4π`.
+    fn gathered(&self, h: f64) -> (Spectrum, Spectrum) {
+        let x = DVec3::new(0.0, 0.0, self.radius + h);
+        let (mut share, mut ground) = (Spectrum::ZERO, Spectrum::ZERO);
+        for d in fibonacci_sphere(SPHERE_DIRECTIONS) {
+            let (through, end) = self.march(x, d, |_, h, to_y, dt| share += to_y * self.air.scattering_at(h) * dt);
+            if end.is_some() {
+                ground += through / PI;
+            }
+        }
+        let n = SPHERE_DIRECTIONS as f64;
+        (share / n, ground / n)
+    }
+
     /// `Ψ` at altitude `h` under a sun at zenith cosine `mu_s` over ground of `albedo`.
     fn multiple_scattering(&self, h: f64, mu_s: f64, albedo: Spectrum) -> Spectrum {
         let x = DVec3::new(0.0, 0.0, self.radius + h);
         let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
-        let mut second = Spectrum::ZERO;
-        let mut share = Spectrum::ZERO;
+        let (mut second, mut share) = (Spectrum::ZERO, Spectrum::ZERO);
         for d in fibonacci_sphere(SPHERE_DIRECTIONS) {
-            let (length, ground) = self.path(x, d);
-            let dt = length / STEPS as f64;
-            let mut depth = Spectrum::ZERO;
-            for k in 0..STEPS {
-                let y = x + d * ((k as f64 + 0.5) * dt);
-                let r = y.length();
-                let h = r - self.radius;
-                let extinction = self.air.extinction_at(h);
-                let scattering = self.air.scattering_at(h);
-                let to_y = (-(depth + extinction * (0.5 * dt))).exp();
-                let sunlit = self.transmittance(r, y.dot(sun) / r);
-                second += to_y * scattering * sunlit * (dt / (4.0 * PI));
-                share += to_y * scattering * dt;
-                depth += extinction * dt;
-            }
-            if ground {
-                let g = x + d * length;
-                let n = g / g.length();
-                let lit = self.transmittance(self.radius, n.dot(sun)) * n.dot(sun).max(0.0);
-                second += (-depth).exp() * lit * albedo / PI;
+            let (through, end) = self.march(x, d, |y, h, to_y, dt| {
+                let scattering = to_y * self.air.scattering_at(h) * dt;
+                second += scattering * self.transmittance(y.length(), y.dot(sun) / y.length()) / (4.0 * PI);
+                share += scattering;
+            });
+            if let Some(g) = end {
+                let mu = g.normalize().dot(sun);
+                second += through * self.transmittance(self.radius, mu) * mu.max(0.0) * albedo / PI;
             }
         }
         let n = SPHERE_DIRECTIONS as f64;
-        let (second, share) = (second / n, share / n);
-        second / (Spectrum::ONE - share)
+        (second / n) / (Spectrum::ONE - share / n)
     }
 
-    /// The sky's irradiance on the ground under a sun at zenith cosine `mu_s`, `table` giving Ψ.
-    fn sky_irradiance(&self, mu_s: f64, table: &AirLight) -> Spectrum {
+    /// The irradiance on the ground of light the air sends down, `source(y, h)` the light it
+    /// scatters towards the ground at `y` (altitude `h`) per unit length, for each direction
+    /// `d` up from the ground.
+    fn gather_on_ground(&self, source: impl Fn(DVec3, f64, DVec3) -> Spectrum) -> Spectrum {
         let x = DVec3::new(0.0, 0.0, self.radius);
-        let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
-        let c = &self.air.constituents;
         let mut irradiance = Spectrum::ZERO;
         for d in fibonacci_sphere(SKY_DIRECTIONS).filter(|d| d.z > 0.0) {
-            let (length, _) = self.path(x, d);
-            let dt = length / STEPS as f64;
-            let nu = d.dot(sun);
-            let phases = (medium::rayleigh_phase(nu), c.mie.phase.eval(nu));
-            let mut depth = Spectrum::ZERO;
             let mut radiance = Spectrum::ZERO;
-            for k in 0..STEPS {
-                let y = x + d * ((k as f64 + 0.5) * dt);
-                let r = y.length();
-                let h = r - self.radius;
-                let extinction = self.air.extinction_at(h);
-                let to_y = (-(depth + extinction * (0.5 * dt))).exp();
-                let mu = y.dot(sun) / r;
-                let once = (c.rayleigh.scattering * (c.rayleigh.density.density(h) * phases.0)
-                    + c.mie.scattering * (c.mie.density.density(h) * phases.1))
-                    * self.transmittance(r, mu);
-                let more = self.air.scattering_at(h) * table.multiple_scattering(h, mu);
-                radiance += to_y * (once + more) * dt;
-                depth += extinction * dt;
-            }
+            self.march(x, d, |y, h, to_y, dt| radiance += to_y * source(y, h, d) * dt);
             irradiance += radiance * d.z;
         }
         irradiance * (4.0 * PI / SKY_DIRECTIONS as f64)
+    }
+
+    /// The sky's irradiance on the ground under a sun at zenith cosine `mu_s`, `table` giving Ψ:
+    /// the light the air scatters down, once (by the constituents' phases) and more.
+    fn sky_irradiance(&self, mu_s: f64, table: &AirLight) -> Spectrum {
+        let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
+        self.gather_on_ground(|y, h, d| {
+            let mu = y.dot(sun) / y.length();
+            let once = self.air.scattering_phase(h, d.dot(sun)) * self.transmittance(y.length(), mu);
+            once + self.air.scattering_at(h) * table.multiple_scattering(h, mu)
+        })
+    }
+
+    /// The share of the light leaving the ground (Lambertian) that the air sends back down to
+    /// it, every order (the sky's spherical albedo from below): the ground's light gathered at
+    /// each altitude, each higher order the share `f` of the one before (as for Ψ), scattered
+    /// down.
+    fn ground_albedo_of_sky(&self) -> Spectrum {
+        let lit: Vec<Spectrum> = (0..ALTITUDE_NODES)
+            .into_par_iter()
+            .map(|j| {
+                let (share, ground) = self.gathered(node(j, ALTITUDE_NODES) * self.air.top_altitude_m);
+                ground / (Spectrum::ONE - share)
+            })
+            .collect();
+        self.gather_on_ground(|_, h, _| self.air.scattering_at(h) * interpolate(&lit, h / self.air.top_altitude_m))
     }
 }
 

@@ -149,7 +149,7 @@ fn airs_count_in_how_far_apart_bodies_must_be() {
 /// the sun, against the independent path tracer of the same air as the planet's (every order):
 /// once-scattered light alone is too dark; with the tables' light scattered more than once and
 /// the sky's light on the ground, the ground through the air and the sunlit limb come within
-/// the budget (docs/ATMOSPHERE.md, "A body's air", has the figures).
+/// the budget (docs/ATMOSPHERE.md, "Bodies", has the figures).
 #[test]
 fn an_earth_sized_ball_from_space_matches_the_path_tracer() {
     use crate::atmosphere::reference::{Reference, ReferenceSettings};
