@@ -199,7 +199,7 @@ impl Body {
 
     /// The tables of the light the body's air scatters more than once and of the sky's light on
     /// its ground, for its air around a ball of its mean radius over ground of its albedo; `None`
-    /// without air. Costs a few hundred milliseconds: make them once per air.
+    /// without air. Far dearer than a frame (docs/PERFORMANCE.md): make them once per air.
     pub fn air_light(&self) -> Option<AirLight> {
         let air = self.air.as_ref()?;
         Some(AirLight::new(air, self.mean_radius(), self.albedo))

@@ -91,7 +91,7 @@ impl AirLight {
         };
         // The light going back and forth between the ground and the sky: each bounce the share
         // A·s̄ of the one before, which Ψ's lit ground holds once for the direct light.
-        let bounces = Spectrum::ONE / (Spectrum::ONE - ground_albedo * shell.ground_albedo_of_sky());
+        let bounces = Spectrum::ONE / (Spectrum::ONE - ground_albedo * shell.sky_albedo_from_below());
         let sky = (0..SUN_NODES)
             .into_par_iter()
             .map(|k| shell.sky_irradiance(2.0 * node(k, SUN_NODES) - 1.0, &partial) * bounces)
@@ -240,7 +240,7 @@ impl<'a> Shell<'a> {
             step(y, h, (-(depth + extinction * (0.5 * dt))).exp(), dt);
             depth += extinction * dt;
         }
-        (((-depth).exp()), ground.then(|| x + d * length))
+        ((-depth).exp(), ground.then(|| x + d * length))
     }
 
     /// The share of the light at altitude `h` the air around scatters back to it (Hillaire's
@@ -279,9 +279,9 @@ impl<'a> Shell<'a> {
         (second / n) / (Spectrum::ONE - share / n)
     }
 
-    /// The irradiance on the ground of light the air sends down, `source(y, h)` the light it
-    /// scatters towards the ground at `y` (altitude `h`) per unit length, for each direction
-    /// `d` up from the ground.
+    /// The irradiance on the ground of the light the air sends down: `source(y, h, d)` is what
+    /// it scatters per unit length at `y` (altitude `h`) back along the direction `d` up from
+    /// the ground.
     fn gather_on_ground(&self, source: impl Fn(DVec3, f64, DVec3) -> Spectrum) -> Spectrum {
         let x = DVec3::new(0.0, 0.0, self.radius);
         let mut irradiance = Spectrum::ZERO;
@@ -308,7 +308,7 @@ impl<'a> Shell<'a> {
     /// it, every order (the sky's spherical albedo from below): the ground's light gathered at
     /// each altitude, each higher order the share `f` of the one before (as for Ψ), scattered
     /// down.
-    fn ground_albedo_of_sky(&self) -> Spectrum {
+    fn sky_albedo_from_below(&self) -> Spectrum {
         let lit: Vec<Spectrum> = (0..ALTITUDE_NODES)
             .into_par_iter()
             .map(|j| {

@@ -57,7 +57,7 @@ fn a_thin_air_sends_half_its_scattered_light_down() {
 fn a_thin_air_sends_back_down_as_much_ground_light_as_its_depth() {
     let (beta, top) = (1e-8, 1_000.0);
     let air = constant_air(beta, top);
-    let got = Shell::new(&air, 1e9).ground_albedo_of_sky();
+    let got = Shell::new(&air, 1e9).sky_albedo_from_below();
     let want = Spectrum::splat(beta * top);
     assert!(relative(got, want) < 0.02, "{got} vs {want}");
 }
