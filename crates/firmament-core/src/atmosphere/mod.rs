@@ -13,6 +13,7 @@
 
 pub mod body;
 pub mod clouds;
+mod depth_table;
 pub mod eclipse;
 pub mod empirical;
 pub mod medium;

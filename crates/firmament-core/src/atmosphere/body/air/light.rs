@@ -26,7 +26,8 @@
 //! from the ground to the air's top ([`ALTITUDE_NODES`]), and read by linear interpolation
 //! between nodes — the GPU reads the same nodes as texel centres with its bilinear filter.
 //! Transmittance towards a sun comes from a finer table of optical depth by altitude and zenith
-//! cosine (Bruneton and Neyret 2008's parametrisation), zero where the ground is in the way.
+//! cosine (the one the reference's order-2 quadrature uses: Bruneton's parametrisation, read by
+//! cubic interpolation), zero where the ground is in the way.
 
 use std::f64::consts::PI;
 
@@ -34,7 +35,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::BodyAir;
+use crate::atmosphere::depth_table::DepthTable;
 use crate::atmosphere::spectrum::Spectrum;
+use crate::geometry::Ray;
 
 /// Nodes in the sun's zenith cosine, −1 to 1, of both tables.
 pub const SUN_NODES: usize = 32;
@@ -140,76 +143,34 @@ struct Shell<'a> {
     air: &'a BodyAir,
     radius: f64,
     top: f64,
-    /// Optical depth to the top: [`DEPTH_RADIUS_NODES`] rows of [`DEPTH_MU_NODES`].
-    depth: Vec<Spectrum>,
+    depth: DepthTable,
 }
 
 impl<'a> Shell<'a> {
     fn new(air: &'a BodyAir, radius: f64) -> Self {
         let top = radius + air.top_altitude_m;
-        let mut shell = Self {
+        let depth_along = |ray: &Ray, length: f64| {
+            let dt = length / DEPTH_STEPS as f64;
+            (0..DEPTH_STEPS)
+                .map(|k| air.extinction_at(ray.at((k as f64 + 0.5) * dt).length() - radius))
+                .sum::<Spectrum>()
+                * dt
+        };
+        let depth = DepthTable::new(radius, top, [DEPTH_MU_NODES, DEPTH_RADIUS_NODES], depth_along);
+        Self {
             air,
             radius,
             top,
-            depth: Vec::new(),
-        };
-        let horizon = (top * top - radius * radius).sqrt();
-        shell.depth = (0..DEPTH_RADIUS_NODES * DEPTH_MU_NODES)
-            .into_par_iter()
-            .map(|k| {
-                // Bruneton and Neyret 2008: ρ even in [0, H] for the radius, and the distance to
-                // the top even between its least and most for the cosine.
-                let rho = node(k / DEPTH_MU_NODES, DEPTH_RADIUS_NODES) * horizon;
-                let r = (rho * rho + radius * radius).sqrt();
-                let (d_min, d_max) = (top - r, rho + horizon);
-                let d = d_min + node(k % DEPTH_MU_NODES, DEPTH_MU_NODES) * (d_max - d_min);
-                let mu = if d == 0.0 {
-                    1.0
-                } else {
-                    ((horizon * horizon - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
-                };
-                shell.optical_depth_by_steps(r, mu, d)
-            })
-            .collect();
-        shell
-    }
-
-    /// Optical depth from radius `r` along zenith cosine `mu` over `length` metres.
-    fn optical_depth_by_steps(&self, r: f64, mu: f64, length: f64) -> Spectrum {
-        let dt = length / DEPTH_STEPS as f64;
-        (0..DEPTH_STEPS)
-            .map(|k| {
-                let t = (k as f64 + 0.5) * dt;
-                self.air.extinction_at(self.altitude(r, mu, t))
-            })
-            .sum::<Spectrum>()
-            * dt
-    }
-
-    /// Altitude after `t` metres from radius `r` along zenith cosine `mu`.
-    fn altitude(&self, r: f64, mu: f64, t: f64) -> f64 {
-        (r * r + 2.0 * r * mu * t + t * t).sqrt() - self.radius
-    }
-
-    /// Transmittance from radius `r` along zenith cosine `mu` to the top: 0 where the ground
-    /// is in the way.
-    fn transmittance(&self, r: f64, mu: f64) -> Spectrum {
-        let r = r.clamp(self.radius, self.top);
-        if mu < 0.0 && r * r * (1.0 - mu * mu) < self.radius * self.radius {
-            return Spectrum::ZERO;
+            depth,
         }
-        let horizon = (self.top * self.top - self.radius * self.radius).sqrt();
-        let rho = (r * r - self.radius * self.radius).max(0.0).sqrt();
-        let d = (r * r * (mu * mu - 1.0) + self.top * self.top).max(0.0).sqrt() - r * mu;
-        let (d_min, d_max) = (self.top - r, rho + horizon);
-        let x_mu = if d_max > d_min {
-            (d - d_min) / (d_max - d_min)
-        } else {
-            0.0
-        };
-        let (row, s) = between(rho / horizon, DEPTH_RADIUS_NODES);
-        let at_row = |i: usize| interpolate(&self.depth[i * DEPTH_MU_NODES..(i + 1) * DEPTH_MU_NODES], x_mu);
-        (-(at_row(row) * (1.0 - s) + at_row(row + 1) * s)).exp()
+    }
+
+    /// Transmittance from point `p` (from the centre) towards the unit `to_sun` to the top: 0
+    /// where the ground is in the way.
+    fn transmittance(&self, p: DVec3, to_sun: DVec3) -> Spectrum {
+        self.depth
+            .depth(p, to_sun)
+            .map_or(Spectrum::ZERO, |depth| (-depth).exp())
     }
 
     /// Where a path from `x` along unit `d` leaves the shell: its length and whether it ends
@@ -267,12 +228,12 @@ impl<'a> Shell<'a> {
         for d in fibonacci_sphere(SPHERE_DIRECTIONS) {
             let (through, end) = self.march(x, d, |y, h, to_y, dt| {
                 let scattering = to_y * self.air.scattering_at(h) * dt;
-                second += scattering * self.transmittance(y.length(), y.dot(sun) / y.length()) / (4.0 * PI);
+                second += scattering * self.transmittance(y, sun) / (4.0 * PI);
                 share += scattering;
             });
             if let Some(g) = end {
                 let mu = g.normalize().dot(sun);
-                second += through * self.transmittance(self.radius, mu) * mu.max(0.0) * albedo / PI;
+                second += through * self.transmittance(g, sun) * mu.max(0.0) * albedo / PI;
             }
         }
         let n = SPHERE_DIRECTIONS as f64;
@@ -299,7 +260,7 @@ impl<'a> Shell<'a> {
         let sun = DVec3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), 0.0, mu_s);
         self.gather_on_ground(|y, h, d| {
             let mu = y.dot(sun) / y.length();
-            let once = self.air.scattering_phase(h, d.dot(sun)) * self.transmittance(y.length(), mu);
+            let once = self.air.scattering_phase(h, d.dot(sun)) * self.transmittance(y, sun);
             once + self.air.scattering_at(h) * table.multiple_scattering(h, mu)
         })
     }
