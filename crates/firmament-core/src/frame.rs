@@ -2,6 +2,7 @@
 
 use glam::{DQuat, DVec3};
 
+use crate::atmosphere::body::cast::cast_irradiance;
 use crate::atmosphere::body::{Body, BodyInShadow};
 use crate::atmosphere::clouds::CloudLayer;
 use crate::atmosphere::empirical::{EmpiricalAtmosphere, EmpiricalStar};
@@ -85,6 +86,53 @@ impl AtmosphereSky {
         self.bodies.push(body);
     }
 
+    /// Adds each body's light on the planet (moonlight) as a sun seen from world-frame point `at`
+    /// (usually the camera, or the planet's centre for a camera far out): towards the body's
+    /// centre, the angular radius of its volumetric mean radius, no disc of its own (the body
+    /// is drawn), [`Sun::from_body`] naming it, and the irradiance its sunlit face sends to
+    /// `at` ([`crate::atmosphere::body::cast`]) under the suns already there that are not
+    /// bodies' lights, their shadows and the planet's light included. A body that sends none,
+    /// or that `at` is inside, is left out, and so is every body once there are [`MAX_SUNS`]
+    /// suns. Call it after the bodies are placed and lit ([`Self::add_body`],
+    /// [`Self::light_bodies_in_planet_shadow`]); the sum takes ~4 000 rays per body.
+    pub fn add_body_lights(&mut self, at: DVec3) {
+        let planet = &self.atmosphere.planet;
+        let suns: Vec<Sun> = self
+            .suns
+            .iter()
+            .filter(|s| s.from_body.is_none())
+            .map(|s| Sun {
+                direction: planet.direction_to_planet_frame(s.direction),
+                ..*s
+            })
+            .collect();
+        let bodies: Vec<Body> = self.bodies.iter().map(|b| b.to_planet_frame(planet)).collect();
+        let rings = self.rings.as_ref();
+        let q = planet.to_planet_frame(at);
+        for (index, body) in self.bodies.iter().enumerate() {
+            if self.suns.len() >= MAX_SUNS {
+                return;
+            }
+            let irradiance = cast_irradiance(q, index, &suns, planet, rings, &bodies);
+            let to_body = body.center - at;
+            let distance = to_body.length();
+            // NaN-safe: a light that is not positive is left out.
+            if irradiance.max_element().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+                || distance <= body.mean_radius()
+            {
+                continue;
+            }
+            self.suns.push(Sun {
+                direction: to_body / distance,
+                angular_radius: (body.mean_radius() / distance).asin(),
+                irradiance,
+                limb_darkening: 0.0,
+                disc: false,
+                from_body: Some(index),
+            });
+        }
+    }
+
     /// Gives every body that stands in the planet's shadow of one of the suns (its penumbra
     /// reaching it: [`Body::shadowing_sun`]) the light inside that shadow
     /// ([`Body::planet_shadow`]), `profile(atmosphere, sun, distance_m)` being the shadow
@@ -130,6 +178,17 @@ impl AtmosphereSky {
                 field: "bodies",
                 value: format!("{} bodies, {} eclipsers", self.bodies.len(), self.eclipsers.len()),
                 rule: "each body must also be the eclipser of the same index (AtmosphereSky::add_body)",
+            });
+        }
+        if let Some(sun) = self
+            .suns
+            .iter()
+            .find(|s| s.from_body.is_some_and(|b| b >= self.bodies.len()))
+        {
+            return Err(crate::error::CoreError::Invalid {
+                field: "suns.from_body",
+                value: format!("body {:?} of {}", sun.from_body, self.bodies.len()),
+                rule: "must be one of the sky's bodies",
             });
         }
         if let Some(shadow) = self

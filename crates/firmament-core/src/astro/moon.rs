@@ -29,6 +29,8 @@
 
 use glam::DVec3;
 
+use crate::atmosphere::body::phase::lunar_phase_magnitude;
+
 use super::moon_terms::{LATITUDE, LONGITUDE_DISTANCE};
 use super::sidereal::{
     Nutation, equatorial_to_horizon_matrix, equatorial_unit_vector, greenwich_apparent_sidereal_time,
@@ -301,8 +303,7 @@ impl MoonPhase {
     /// The Moon's V magnitude at this phase, at the mean Earth–Moon distance and 1 AU from the
     /// Sun (Allen 1973 via Krisciunas & Schaefer 1991, eq. 9).
     pub fn magnitude_at_mean_distance(&self) -> f64 {
-        let phi = self.phase_angle.to_degrees().abs();
-        -12.73 + 0.026 * phi + 4e-9 * phi.powi(4)
+        -12.73 + lunar_phase_magnitude(self.phase_angle)
     }
 }
 
@@ -318,10 +319,8 @@ pub fn moon_phase(instant: &Instant) -> MoonPhase {
 /// `sun_distance_km` from the Sun: the phase law of [`MoonPhase::magnitude_at_mean_distance`]
 /// plus `5 log₁₀(Δ/384400 km · r/1 AU)` for the inverse-square distances.
 pub fn moon_magnitude(phase_angle_rad: f64, distance_km: f64, sun_distance_km: f64) -> f64 {
-    let phi = phase_angle_rad.to_degrees().abs();
     -12.73
-        + 0.026 * phi
-        + 4e-9 * phi.powi(4)
+        + lunar_phase_magnitude(phase_angle_rad)
         + 5.0 * (distance_km / MEAN_MOON_DISTANCE_KM * sun_distance_km / ASTRONOMICAL_UNIT_KM).log10()
 }
 

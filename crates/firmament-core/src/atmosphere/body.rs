@@ -9,12 +9,14 @@
 //! - **Lambert**: `L = (A/π)·E·μ₀`;
 //! - **Lommel–Seeliger**, the single-scattering law of a dark, porous regolith whose brightness
 //!   does not fall towards the limb (Hapke, *Theory of Reflectance and Emittance Spectroscopy*,
-//!   2nd ed. 2012, §9.2; Fairbairn 2005, *JRASC* 99, 92): `L = (A/π)·E·2μ₀/(μ₀ + μ)`,
+//!   2nd ed. 2012, §9.2; Fairbairn 2005, *JRASC* 99, 92): `L = (A/π)·E·2μ₀/(μ₀ + μ)`;
+//! - **Lunar**, the Moon's: Lommel–Seeliger times `f(α)`, a factor of the phase angle that gives
+//!   the whole disc the Moon's measured phase curve ([`phase`]; `f(0) = 1`),
 //!
 //! `E` the sun's irradiance, `μ₀` and `μ` the cosines of the incidence and emergence angles and
 //! `A` the **normal albedo** (the reflectance at normal incidence seen face-on, relative to a
-//! white Lambert surface): both laws give `A·E/π` there, and for Lommel–Seeliger `A` is also the
-//! geometric albedo. The night sky's Moon disc uses the same normalisation
+//! white Lambert surface): every law gives `A·E/π` there, and for Lommel–Seeliger (and the Moon's)
+//! `A` is also the geometric albedo. The night sky's Moon disc uses the same normalisation
 //! ([`crate::sky::night::lommel_seeliger`]).
 //!
 //! Each sun reaches a point of a body dimmed by the planet, by the rings' shadow and by every
@@ -35,7 +37,12 @@
 //! *ApJ* 43, 173), the planet's clouds and air taken as a matte diffuser. It reaches a point of
 //! the body by the same reflectance law as sunlight, with the cosine towards the planet. Earth,
 //! full, lights the Moon with `0.434 × 1.3·10⁵ lx × (6371/384 400)² ≈ 15 lx`. Close moons (`d`
-//! a few `R`) get it less exactly; the bodies' light on the planet is left out.
+//! a few `R`) get it less exactly.
+//!
+//! # Their light on the planet
+//! Each body's sunlit face lights the planet and the other bodies in turn (moonlight): [`cast`]
+//! sums what the point sees of it, and the sky carries it as a sun without a disc of its own
+//! that the body neither hides nor is lit by ([`Sun::from_body`]).
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -72,6 +79,9 @@ pub enum Reflectance {
     Lambert,
     /// A dark regolith: radiance `∝ 2μ₀/(μ₀ + μ)`, as bright at the limb as at the centre.
     LommelSeeliger,
+    /// The Moon's: Lommel–Seeliger times the factor of its phase angle that gives the whole
+    /// disc the Moon's measured phase curve ([`phase`]): a quarter moon is 0.09 of full, not 0.38.
+    Lunar,
 }
 
 impl Reflectance {
@@ -80,6 +90,7 @@ impl Reflectance {
         match self {
             Self::Lambert => 0,
             Self::LommelSeeliger => 1,
+            Self::Lunar => 2,
         }
     }
 
@@ -91,7 +102,17 @@ impl Reflectance {
         }
         match self {
             Self::Lambert => mu0,
-            Self::LommelSeeliger => 2.0 * mu0 / (mu0 + mu.max(0.0)),
+            Self::LommelSeeliger | Self::Lunar => 2.0 * mu0 / (mu0 + mu.max(0.0)),
+        }
+    }
+
+    /// The law's factor for the phase angle whose cosine is `cos_alpha` (between the light's and
+    /// the viewer's directions at the point): [`phase::lunar_phase_factor`] for the Moon's law,
+    /// 1 for the others.
+    pub fn phase_factor(self, cos_alpha: f64) -> f64 {
+        match self {
+            Self::Lambert | Self::LommelSeeliger => 1.0,
+            Self::Lunar => phase::lunar_phase_factor(cos_alpha.clamp(-1.0, 1.0).acos()),
         }
     }
 }
@@ -193,16 +214,16 @@ impl BodyInShadow {
 }
 
 impl Body {
-    /// The Moon at `center`: a ball of its mean radius, its geometric albedo, Lommel–Seeliger,
-    /// its maria (the near side, `x` of its axes, faces along the frame's x: pose it with
-    /// `orientation`).
+    /// The Moon at `center`: a ball of its mean radius, its geometric albedo, its own law
+    /// ([`Reflectance::Lunar`]), its maria (the near side, `x` of its axes, faces along the
+    /// frame's x: pose it with `orientation`).
     pub fn moon(center: DVec3) -> Self {
         Self {
             center,
             radii: DVec3::splat(MOON_RADIUS_M),
             orientation: DQuat::IDENTITY,
             albedo: Spectrum::splat(MOON_ALBEDO),
-            reflectance: Reflectance::LommelSeeliger,
+            reflectance: Reflectance::Lunar,
             surface: BodySurface::LunarMaria,
             planet_shadow: None,
             air: None,
@@ -356,7 +377,8 @@ impl Body {
         let n = self.normal_at(p);
         let mu = n.dot(to_viewer);
         let received = incoming.fold(Spectrum::ZERO, |sum, (direction, irradiance)| {
-            sum + irradiance * self.reflectance.factor(n.dot(direction), mu)
+            let law = self.reflectance.factor(n.dot(direction), mu);
+            sum + irradiance * (law * self.reflectance.phase_factor(direction.dot(to_viewer)))
         });
         received * self.albedo_at(p) / PI
     }
@@ -392,7 +414,8 @@ pub fn planetshine(p: DVec3, sun_direction: DVec3, planet: &Planet) -> (DVec3, f
 /// The share of sun `s`'s light (its direction in the planet frame) that reaches the point `p` of
 /// body `index` of `bodies` (all in `planet`'s frame), per model wavelength: past the planet (its
 /// shadow's light where the body carries it, [`Body::planet_shadow`]), its `rings`, every other
-/// body and the body's own air ([`Body::air_transmittance`]).
+/// body and the body's own air ([`Body::air_transmittance`]). Zero where the light is the body's
+/// own ([`Sun::from_body`]).
 pub fn sunlight_share(
     p: DVec3,
     suns: &[Sun],
@@ -418,6 +441,9 @@ pub fn shadows_share(
     index: usize,
 ) -> Spectrum {
     let sun = &suns[s];
+    if sun.from_body == Some(index) {
+        return Spectrum::ZERO;
+    }
     let globe = match &bodies[index].planet_shadow {
         Some(shadow) if shadow.sun == s => shadow.light_at(p),
         _ => {
@@ -431,7 +457,7 @@ pub fn shadows_share(
     let others: f64 = bodies
         .iter()
         .enumerate()
-        .filter(|(i, _)| *i != index)
+        .filter(|(i, _)| *i != index && sun.from_body != Some(*i))
         .map(|(_, b)| b.eclipser().visible_fraction(p, sun))
         .product();
     let rings = rings.map_or(1.0, |r| r.transmittance(p, sun.direction.normalize()));
@@ -478,8 +504,10 @@ fn invalid(field: &'static str, value: String, rule: &'static str) -> CoreError 
 }
 
 pub mod air;
+pub mod cast;
 pub mod map;
 pub mod maria;
+pub mod phase;
 
 #[cfg(test)]
 mod tests;

@@ -111,9 +111,14 @@ impl Eclipser {
 }
 
 /// The fraction of `sun`'s light reaching `p` past every body in `eclipsers` (see the module
-/// docs for several at once).
+/// docs for several at once) but the one whose light it is ([`Sun::from_body`]).
 pub fn visible_fraction(p: DVec3, sun: &Sun, eclipsers: &[Eclipser]) -> f64 {
-    eclipsers.iter().map(|e| e.visible_fraction(p, sun)).product()
+    eclipsers
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| sun.from_body != Some(*i))
+        .map(|(_, e)| e.visible_fraction(p, sun))
+        .product()
 }
 
 /// The fraction of a limb-darkened disc's light (radius 1, limb darkening `u` in [0, 1]) hidden

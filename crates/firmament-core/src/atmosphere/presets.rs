@@ -75,6 +75,7 @@ pub fn earth_sun(direction: DVec3) -> Sun {
         irradiance: Spectrum::new(1.474, 1.8504, 1.91198),
         limb_darkening: 0.6,
         disc: true,
+        from_body: None,
     }
 }
 

@@ -24,6 +24,10 @@ pub struct Sun {
     /// Moon as the night sky's light source, whose phase the night-sky pass shades (it still
     /// scatters and lights the ground; its [`Self::disc_radiance`] is zero).
     pub disc: bool,
+    /// The body (an index into the sky's bodies, which is also its eclipser's) whose reflected
+    /// light this is — its light on the planet and the other bodies: that body neither hides it
+    /// nor is lit by it. `None` for a star and for the night sky's Moon.
+    pub from_body: Option<usize>,
 }
 
 impl Sun {
@@ -135,6 +139,7 @@ mod tests {
             irradiance: Spectrum::new(1.474, 1.8504, 1.91198),
             limb_darkening: 0.6,
             disc: true,
+            from_body: None,
         };
         // ∫ L dω over the disc, small-angle rings.
         let n = 20_000;

@@ -185,6 +185,7 @@ mod tests {
         assert!(seen.disc.iter().all(|s| s.irradiance.r == 0.0 && s.irradiance.g == 0.0));
         let moon_light = Sun {
             disc: false,
+            from_body: None,
             ..presets::earth_sun(direction(0.0, 40.0))
         };
         let seen = sun_at_eye(&atmosphere, &[], &[], &moon_light, DVec3::ZERO);

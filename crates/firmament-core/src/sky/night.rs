@@ -135,20 +135,7 @@ pub fn lommel_seeliger(mu0: f64, mu: f64) -> f64 {
     }
 }
 
-/// The disc-integrated light of a Lommel–Seeliger sphere at phase angle `g` (radians, in [0, π])
-/// relative to full phase: `Φ(g) = 1 − sin(g/2) tan(g/2) ln cot(g/4)` (Fairbairn 2005, eq. 12).
-/// 1 at g = 0, 0 at g = π.
-pub fn lommel_seeliger_phase(g: f64) -> f64 {
-    let g = g.abs();
-    if !g.is_finite() || g >= std::f64::consts::PI {
-        return 0.0;
-    }
-    if g < 1e-9 {
-        return 1.0;
-    }
-    let half = 0.5 * g;
-    (1.0 - half.sin() * half.tan() * (1.0 / (0.25 * g).tan()).ln()).max(0.0)
-}
+pub use crate::atmosphere::body::phase::lommel_seeliger_phase;
 
 /// The smallest [`lommel_seeliger_phase`] used to turn the Moon's illuminance into a radiance:
 /// near new moon the magnitude formula and the Lommel–Seeliger law part ways (and the visible

@@ -128,6 +128,9 @@ pub struct AtmosphereSunUniform {
     pub direction: [f32; 4],
     /// Spectral irradiance at the top of the atmosphere, W·m⁻²·nm⁻¹; `w` = limb darkening.
     pub irradiance: [f32; 4],
+    /// `x` = 1 + the body whose light this is (0: a star's), which neither hides it nor is lit
+    /// by it (`Sun::from_body`); `yzw` unused.
+    pub source: [u32; 4],
 }
 
 /// Mirrors `OrderSums` in `shaders/atmosphere/bindings.wgsl`: one texel's multiple-scattering
@@ -379,6 +382,7 @@ impl AtmosphereViewUniforms {
                     },
                 ),
                 irradiance: spectrum_w(sun.irradiance, sun.limb_darkening),
+                source: [sun.from_body.map_or(0, |b| b as u32 + 1), 0, 0, 0],
             };
         }
         let mut eclipsers = [[0.0; 4]; MAX_ECLIPSERS];

@@ -121,6 +121,8 @@ codes! {
     BODY_REFLECTANCE_LAMBERT = 0;
     /// A body's reflectance law: Lommel–Seeliger.
     BODY_REFLECTANCE_LOMMEL_SEELIGER = 1;
+    /// A body's reflectance law: the Moon's (Lommel–Seeliger times its phase factor).
+    BODY_REFLECTANCE_LUNAR = 2;
     /// A body's surface (`AtmosphereBodyUniform::radii.w`, in an `f32`; `firmament_core`'s
     /// `BodySurface::gpu_code`): the albedo everywhere.
     BODY_SURFACE_UNIFORM = 0;
@@ -151,6 +153,12 @@ pub fn wgsl() -> String {
          // columns (firmament_core::atmosphere::clouds).\n\
          const CLOUD_COLUMN_SPACING_CELLS: f32 = {:?};\n",
         firmament_core::atmosphere::clouds::COLUMN_SPACING_CELLS as f32
+    ));
+    text.push_str(&format!(
+        "\n// The phase angle past which the Moon's phase factor is held, radians\n\
+         // (firmament_core::atmosphere::body::phase).\n\
+         const LUNAR_PHASE_MAX_RAD: f32 = {:?};\n",
+        firmament_core::atmosphere::body::phase::LUNAR_PHASE_MAX_RAD as f32
     ));
     text
 }
@@ -229,6 +237,7 @@ mod tests {
         use firmament_core::atmosphere::body::Reflectance;
         assert_eq!(Reflectance::Lambert.gpu_code(), BODY_REFLECTANCE_LAMBERT);
         assert_eq!(Reflectance::LommelSeeliger.gpu_code(), BODY_REFLECTANCE_LOMMEL_SEELIGER);
+        assert_eq!(Reflectance::Lunar.gpu_code(), BODY_REFLECTANCE_LUNAR);
         use firmament_core::atmosphere::body::BodySurface;
         assert_eq!(BodySurface::Uniform.gpu_code(), BODY_SURFACE_UNIFORM);
         assert_eq!(BodySurface::LunarMaria.gpu_code(), BODY_SURFACE_LUNAR_MARIA);

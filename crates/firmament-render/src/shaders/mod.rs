@@ -1115,7 +1115,7 @@ fn fs_main(in: UserVertex) -> @location(0) vec4<f32> {
             atmosphere,
             "AtmosphereSun",
             AtmosphereSunUniform,
-            [direction, irradiance]
+            [direction, irradiance, source]
         );
         assert_layout!(
             atmosphere,

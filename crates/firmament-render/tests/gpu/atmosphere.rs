@@ -481,6 +481,7 @@ fn moonlight_is_a_dim_sun_without_a_disc() {
     let scale = 2.5e-6;
     let sun = Sun {
         disc: false,
+        from_body: None,
         ..presets::earth_sun(direction(80.0, 20.0))
     };
     let moon = Sun {

@@ -6,6 +6,7 @@
 use crate::support::{centre_radiance, far_view_difference, gpu};
 
 use firmament_core::atmosphere::body::maria::{MARIA, albedo_factor};
+use firmament_core::atmosphere::body::phase::lunar_phase_factor;
 use firmament_core::atmosphere::body::{Body, BodySurface, MOON_ALBEDO, MOON_RADIUS_M, Reflectance, sunlight_share};
 use firmament_core::atmosphere::clouds::{CloudKind, CloudLayer};
 use firmament_core::atmosphere::planet_shadow::{PlanetShadow, ShadowSettings};
@@ -40,10 +41,11 @@ pub(crate) fn airless_with(sun: DVec3, bodies: Vec<Body>) -> AtmosphereSky {
     sky
 }
 
-/// The Moon without its maria: its albedo 0.12 everywhere.
+/// The Moon without its maria or its phase factor: its albedo 0.12 everywhere, Lommel–Seeliger.
 fn plain_moon(center: DVec3) -> Body {
     Body {
         surface: BodySurface::Uniform,
+        reflectance: Reflectance::LommelSeeliger,
         ..Body::moon(center)
     }
 }
@@ -85,6 +87,7 @@ fn closed_form(
     let factor = match law {
         Reflectance::Lambert => mu0,
         Reflectance::LommelSeeliger => 2.0 * mu0 / (mu0 + mu),
+        Reflectance::Lunar => 2.0 * mu0 / (mu0 + mu) * lunar_phase_factor(sun.direction.angle_between(eye - p)),
     };
     as_srgb(sky, sun.irradiance * (albedo / std::f64::consts::PI * factor))
 }
@@ -93,9 +96,10 @@ fn relative(got: DVec3, want: DVec3) -> f64 {
     ((got - want) / want).abs().max_element()
 }
 
-/// A Lommel–Seeliger Moon and a Lambert ball 384 400 km out, seen from 60 000 km at points from
-/// the sub-solar point to near the limb and the terminator: the GPU within 1 % of the laws'
-/// closed forms (`(A/π)·E·μ₀` and `(A/π)·E·2μ₀/(μ₀ + μ)`).
+/// A Lommel–Seeliger Moon, a Lambert ball and the Moon with its phase factor 384 400 km out, seen
+/// from 60 000 km at points from the sub-solar point to near the limb and the terminator: the GPU
+/// within 1 % of the laws' closed forms (`(A/π)·E·μ₀`, `(A/π)·E·2μ₀/(μ₀ + μ)` and that times the
+/// core's `lunar_phase_factor`).
 #[test]
 fn a_body_sends_back_what_its_reflectance_law_says() {
     let mut gpu = gpu();
@@ -112,10 +116,16 @@ fn a_body_sends_back_what_its_reflectance_law_says() {
         planet_shadow: None,
         air: None,
     };
-    let sky = airless_with(sun, vec![plain_moon(moon_center), ball.clone()]);
+    let lunar_center = planet_center() + DVec3::new(0.0, 0.0, 384_400_000.0);
+    let lunar = Body {
+        reflectance: Reflectance::Lunar,
+        ..plain_moon(lunar_center)
+    };
+    let sky = airless_with(sun, vec![plain_moon(moon_center), ball.clone(), lunar]);
     let cases = [
         (moon_center, MOON_RADIUS_M, 0.12, Reflectance::LommelSeeliger),
         (ball_center, 1_000_000.0, 0.4, Reflectance::Lambert),
+        (lunar_center, MOON_RADIUS_M, 0.12, Reflectance::Lunar),
     ];
     for (center, radius, albedo, law) in cases {
         // The eye 60 000 km out, 40° from the sun about the body.
@@ -268,7 +278,7 @@ fn the_moon_shows_its_maria() {
         let albedo = MOON_ALBEDO * albedo_factor(n);
         let target = center + n * MOON_RADIUS_M;
         let got = centre_radiance(&mut gpu, &sky, eye, target - eye);
-        let want = closed_form(&sky, center, MOON_RADIUS_M, n, eye, albedo, Reflectance::LommelSeeliger);
+        let want = closed_form(&sky, center, MOON_RADIUS_M, n, eye, albedo, Reflectance::Lunar);
         println!("{name}: albedo {albedo:.4}, gpu {got:.1} closed form {want:.1}");
         assert!(relative(got, want) < 0.01, "{name}: {got} vs {want}");
     }

@@ -8,6 +8,7 @@ mod aerial_perspective;
 mod atmosphere;
 mod bodies;
 mod body_air;
+mod body_light;
 mod body_maps;
 mod camera;
 mod cloud_density;

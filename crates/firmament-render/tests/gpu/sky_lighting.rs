@@ -101,6 +101,7 @@ fn sky_irradiance_on_the_ground_matches_the_reference() {
             atmosphere: atmosphere.clone(),
             suns: vec![Sun {
                 disc: false,
+                from_body: None,
                 ..sun(90.0, elevation)
             }],
             clouds: Vec::new(),

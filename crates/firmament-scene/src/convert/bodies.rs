@@ -8,6 +8,7 @@ use firmament_core::astro::spa::SolarPosition;
 use firmament_core::atmosphere::body::{self, Body, BodyAir, BodySurface, MAX_BODIES, Reflectance, validate_bodies};
 use firmament_core::atmosphere::presets;
 use firmament_core::frame::AtmosphereSky;
+use firmament_core::sky::night::HORIZON_CUTOFF_DEG;
 use glam::{DQuat, DVec3};
 
 use crate::checks::{check, positive};
@@ -21,7 +22,7 @@ const PRESETS: [&str; 1] = ["moon"];
 const AIRS: [&str; 3] = ["earth", "mars", "saturn"];
 
 /// The laws `bodies[i].reflectance` takes.
-const REFLECTANCES: [&str; 2] = ["lambert", "lommel-seeliger"];
+const REFLECTANCES: [&str; 3] = ["lambert", "lommel-seeliger", "lunar"];
 
 /// Adds the scene's bodies to `sky` (as bodies and eclipsers), placing a `"moon"` without a
 /// `position` where the Moon stood at `instant`.
@@ -94,8 +95,40 @@ pub(crate) fn light_in_planet_shadow(
     }
 }
 
-/// Whether the scene has the Moon as a body (then the night sky's disc of the Moon and its
-/// eclipser are left out: the body is both).
+/// Adds each body's light on the planet as a sun without a disc
+/// ([`AtmosphereSky::add_body_lights`]), seen from the camera inside the air, from the planet's
+/// centre beyond it (the light falls on the planet, not on a far camera). Left out: the bodies
+/// whose `light` is off, a body below the horizon of a camera under the air (as the night sky's
+/// Moon is), and every body's by day under the air — a sun above the camera's horizon outshines
+/// the full Moon 4·10⁵ times, and each light costs a sun in every pass.
+pub(crate) fn add_lights(scene: &Scene, sky: &mut AtmosphereSky) {
+    if scene.bodies.iter().all(|b| b.light == Some(false)) {
+        return;
+    }
+    let planet = &sky.atmosphere.planet;
+    let camera = DVec3::from_array(scene.camera.position);
+    let in_air = planet.altitude(planet.to_planet_frame(camera)) < planet.atmosphere_height;
+    let up = (camera - planet.center).normalize_or_zero();
+    if in_air
+        && sky
+            .suns
+            .iter()
+            .any(|s| s.from_body.is_none() && s.direction.dot(up) > 0.0)
+    {
+        return;
+    }
+    let at = if in_air { camera } else { planet.center };
+    sky.add_body_lights(at);
+    let entries = &scene.bodies;
+    let above = HORIZON_CUTOFF_DEG.to_radians().sin();
+    sky.suns.retain(|sun| {
+        sun.from_body
+            .is_none_or(|b| entries[b].light != Some(false) && !(in_air && sun.direction.dot(up) < above))
+    });
+}
+
+/// Whether the scene has the Moon as a body (then the night sky's disc of the Moon, its
+/// eclipser and its light are left out: the body is all three).
 pub(crate) fn has_moon(scene: &Scene) -> bool {
     scene.bodies.iter().any(|b| b.preset.as_deref() == Some("moon"))
 }
@@ -206,6 +239,7 @@ fn body(
         body.reflectance = match name.as_str() {
             "lambert" => Reflectance::Lambert,
             "lommel-seeliger" => Reflectance::LommelSeeliger,
+            "lunar" => Reflectance::Lunar,
             other => return Err(unknown_name(&key("reflectance"), other, &REFLECTANCES)),
         };
     }

@@ -166,6 +166,7 @@ impl Scene {
         }
         bodies::add_bodies(self, instant, &mut sky)?;
         bodies::light_in_planet_shadow(self, instant, real_sun, &mut sky);
+        bodies::add_lights(self, &mut sky);
         Ok(sky)
     }
 
@@ -280,8 +281,9 @@ impl Scene {
                     AtmosphereModelName::Physical => {
                         atmosphere::clouds::drift(&mut sky, self.wind_seconds(&moment)?);
                         if let Some(instant) = &moment.instant {
-                            night::add_moonlight(self, instant, &camera, &mut sky);
+                            // A Moon body sends its own light (bodies::add_lights).
                             if !bodies::has_moon(self) {
+                                night::add_moonlight(self, instant, &camera, &mut sky);
                                 night::add_eclipsing_moon(self, instant, &camera, &mut sky);
                             }
                         }

@@ -295,6 +295,7 @@ pub(crate) fn add_moonlight(scene: &Scene, instant: &Instant, camera: &Camera, s
         irradiance: sunlight * shade * (view.illuminance_lux / sun_lux),
         limb_darkening: 0.0,
         disc: false,
+        from_body: None,
     });
 }
 

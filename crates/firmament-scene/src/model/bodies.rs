@@ -10,8 +10,8 @@ use crate::spectrum::SceneSpectrum;
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodyEntry {
-    /// `"moon"`: the Moon's mean radius (1737.4 km), geometric albedo (0.12) and the
-    /// Lommel–Seeliger law; with a date (`time.date_time`) and no `position` it stands where the
+    /// `"moon"`: the Moon's mean radius (1737.4 km), geometric albedo (0.12) and its own law
+    /// (`"lunar"`); with a date (`time.date_time`) and no `position` it stands where the
     /// Moon stood then. Keys given beside it replace the preset's.
     #[serde(default)]
     pub preset: Option<String>,
@@ -34,8 +34,9 @@ pub struct BodyEntry {
     /// the Moon's).
     #[serde(default)]
     pub albedo: Option<SceneSpectrum>,
-    /// `"lambert"` (a matte diffuser) or `"lommel-seeliger"` (a dark regolith, as bright at the
-    /// limb as at the centre); default `"lambert"` (`"lommel-seeliger"` for the Moon).
+    /// `"lambert"` (a matte diffuser), `"lommel-seeliger"` (a dark regolith, as bright at the
+    /// limb as at the centre) or `"lunar"` (that with the Moon's measured phase curve); default
+    /// `"lambert"` (`"lunar"` for the Moon).
     #[serde(default)]
     pub reflectance: Option<String>,
     /// The body's own air: `"earth"`, `"mars"` or `"saturn"` — that preset's molecules, aerosols
@@ -51,4 +52,10 @@ pub struct BodyEntry {
     /// replaces its maria. A path relative to the scene file.
     #[serde(default)]
     pub albedo_map: Option<String>,
+    /// Whether the body's sunlit face lights the planet, its air, the objects and the other
+    /// bodies (a Moon body is the night's moonlight): one more light in every pass, so `false`
+    /// saves its cost where it cannot show. Default `true`; by day under the air (a sun above the
+    /// camera's horizon) it is left out anyway.
+    #[serde(default)]
+    pub light: Option<bool>,
 }

@@ -15,7 +15,7 @@ fn earth_moon_has_the_moon_as_a_body_and_an_eclipser() {
     let moon = &sky.bodies[0];
     assert_eq!(moon.radii, DVec3::splat(MOON_RADIUS_M));
     assert_eq!(moon.albedo, DVec3::splat(MOON_ALBEDO));
-    assert_eq!(moon.reflectance, Reflectance::LommelSeeliger);
+    assert_eq!(moon.reflectance, Reflectance::Lunar);
     assert_eq!(sky.eclipsers, vec![moon.eclipser()]);
     // The near side (the body's x axis) faces the planet; its pole is the planet's.
     let planet = &sky.atmosphere.planet;
@@ -73,6 +73,60 @@ fn the_moon_at_a_date_stands_where_the_ephemeris_puts_it() {
         frame.night.moon.is_none(),
         "the night sky's Moon disc gives way to the body"
     );
+}
+
+/// The Moon as a body lights the night as the ephemeris's moonlight does — its light summed over
+/// its drawn disc (albedo 0.12, maria, its phase law) against the illuminance of its published V
+/// magnitude (Allen via Krisciunas & Schaefer 1991) — within 5 % near full (earth-night) and at a
+/// quarter, from the same direction within 0.05°, and it takes the moonlight's place.
+#[test]
+fn the_moon_as_a_body_lights_the_night_as_the_ephemeris_does() {
+    let sky_at = |scene: &firmament_scene::Scene| {
+        let frame = scene.frame_at(None).expect("frame");
+        let Sky::Atmosphere(sky) = frame.sky else {
+            panic!("expected an atmosphere sky")
+        };
+        sky
+    };
+    // 2025-03-13 (full on the 14th) and 2025-03-06 (first quarter), the Moon up at 45° N.
+    for date in ["2025-03-13T23:30:00Z", "2025-03-06T19:00:00Z"] {
+        let time = format!("time.date_time=\"{date}\"");
+        let plain = sky_at(&preset("earth-night", &[&time]).expect("valid"));
+        let with_body = sky_at(&preset("earth-night", &[&time, "bodies=[{ preset = \"moon\" }]"]).expect("valid"));
+        let moonlight = plain.suns.iter().find(|s| !s.disc).expect("the ephemeris's moonlight");
+        let body_light = with_body
+            .suns
+            .iter()
+            .find(|s| s.from_body == Some(0))
+            .expect("the body's light");
+        assert_eq!(
+            with_body.suns.iter().filter(|s| !s.disc).count(),
+            1,
+            "{date}: one moonlight"
+        );
+        let lux = |sky: &firmament_core::frame::AtmosphereSky, sun: &firmament_core::atmosphere::Sun| {
+            sky.atmosphere.spectral_conversion().luminance(sun.irradiance)
+        };
+        let (want, got) = (lux(&plain, moonlight), lux(&with_body, body_light));
+        println!("{date}: ephemeris {want:.4} lx, the body's {got:.4} lx");
+        assert!((got / want - 1.0).abs() < 0.05, "{date}: {got} lx vs {want} lx");
+        let apart = moonlight.direction.angle_between(body_light.direction).to_degrees();
+        assert!(apart < 0.05, "{date}: {apart}° apart");
+    }
+    // Off by the key, and by day.
+    let off = sky_at(&preset("earth-night", &["bodies=[{ preset = \"moon\", light = false }]"]).expect("valid"));
+    assert!(off.suns.iter().all(|s| s.from_body.is_none()), "light = false");
+    let day = sky_at(
+        &preset(
+            "earth-night",
+            &[
+                "time.date_time=\"2025-03-13T12:00:00Z\"",
+                "bodies=[{ preset = \"moon\" }]",
+            ],
+        )
+        .expect("valid"),
+    );
+    assert!(day.suns.iter().all(|s| s.from_body.is_none()), "by day");
 }
 
 #[test]

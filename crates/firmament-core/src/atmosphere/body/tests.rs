@@ -9,6 +9,7 @@ pub(super) fn sun(direction: DVec3) -> Sun {
         irradiance: Spectrum::new(1.5, 1.8, 2.0),
         limb_darkening: 0.6,
         disc: true,
+        from_body: None,
     }
 }
 

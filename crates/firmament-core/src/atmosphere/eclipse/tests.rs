@@ -113,6 +113,7 @@ fn sun_towards(direction: DVec3) -> Sun {
         irradiance: Spectrum::ONE,
         limb_darkening: 0.6,
         disc: true,
+        from_body: None,
     }
 }
 

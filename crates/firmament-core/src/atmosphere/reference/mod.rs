@@ -65,7 +65,7 @@ mod cloud_media;
 mod inputs;
 mod order_two;
 mod path_tracer;
-mod quadrature;
+pub(crate) mod quadrature;
 
 use glam::DVec3;
 

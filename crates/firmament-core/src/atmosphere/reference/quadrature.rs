@@ -62,16 +62,16 @@ fn refine(
 
 /// Gauss–Legendre nodes and weights on [−1, 1], and the integration matrix of the nodes.
 #[derive(Debug, Clone)]
-pub(super) struct GaussRule {
-    pub(super) nodes: Vec<f64>,
-    pub(super) weights: Vec<f64>,
+pub(crate) struct GaussRule {
+    pub(crate) nodes: Vec<f64>,
+    pub(crate) weights: Vec<f64>,
     /// `partial[j·n + k] = ∫_{−1}^{x_j} ℓ_k(x) dx`, `ℓ_k` the Lagrange basis polynomials of the
     /// nodes: integrating a function's interpolant from −1 to each node.
     pub(super) partial: Vec<f64>,
 }
 
 impl GaussRule {
-    pub(super) fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         let n = n.max(1);
         let mut nodes = Vec::with_capacity(n);
         let mut weights = Vec::with_capacity(n);

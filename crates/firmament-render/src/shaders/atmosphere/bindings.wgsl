@@ -87,6 +87,9 @@ struct AtmosphereBody {
 struct AtmosphereSun {
     direction: vec4<f32>,  // xyz unit direction to the sun, planet frame; w = angular radius (rad), < 0: no disc drawn
     irradiance: vec4<f32>, // rgb spectral irradiance at the top (W·m⁻²·nm⁻¹); w = limb darkening u
+    // x = 1 + the body whose light this is (0: a star's), which neither hides it nor is lit by
+    // it (firmament_core's Sun::from_body); yzw unused
+    source: vec4<u32>,
 }
 
 // The camera and the suns, per frame.

@@ -49,7 +49,7 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>, pixel_m: 
     let n_local = normalize(local / (radii * radii));
     let n = transpose(to_local) * n_local;
     let mu = max(dot(n, -d), 0.0);
-    let lommel_seeliger = u32(body.center.w) == BODY_REFLECTANCE_LOMMEL_SEELIGER;
+    let law_code = u32(body.center.w);
     let air = body_has_air(i);
     var received = vec3<f32>(0.0);
     for (var s = 0u; s < view.sun_count.x; s++) {
@@ -61,7 +61,7 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>, pixel_m: 
         }
         let shadows = view.suns[s].irradiance.rgb * body_shadows_share(p, s, i) * ring_transmittance(p, to_sun);
         if mu0 > 0.0 {
-            let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
+            let law = body_law(law_code, mu0, mu, dot(to_sun, -d));
             received += shadows * body_air_transmittance(i, local, to_local * to_sun) * law;
         }
         if air {
@@ -69,7 +69,7 @@ fn body_radiance(i: u32, p: vec3<f32>, local: vec3<f32>, d: vec3<f32>, pixel_m: 
             received += shadows * body_air_sky(i, mu0);
         }
     }
-    received += planetshine(p, n, mu, lommel_seeliger);
+    received += planetshine(p, n, -d, law_code);
     var albedo = body.albedo.rgb;
     let surface = u32(body.radii.w);
     if surface == BODY_SURFACE_LUNAR_MARIA {
@@ -98,17 +98,47 @@ fn lunar_albedo_factor(n: vec3<f32>) -> f32 {
     return mix(LUNAR_HIGHLAND_FACTOR, LUNAR_MARE_FACTOR, mare);
 }
 
+// A body's reflectance law `code` (BODY_REFLECTANCE_*) for incidence cosine mu0 (> 0), emergence
+// cosine mu and the cosine of the phase angle between the light and the viewer: 1 at normal
+// incidence seen face-on (firmament_core's Reflectance::factor times ::phase_factor).
+fn body_law(code: u32, mu0: f32, mu: f32, cos_alpha: f32) -> f32 {
+    if code == BODY_REFLECTANCE_LAMBERT {
+        return mu0;
+    }
+    let lommel_seeliger = 2.0 * mu0 / (mu0 + mu);
+    if code == BODY_REFLECTANCE_LUNAR {
+        return lommel_seeliger * lunar_phase_factor(cos_alpha);
+    }
+    return lommel_seeliger;
+}
+
+// The Moon's factor on the Lommel–Seeliger law at the phase angle whose cosine is `cos_alpha`:
+// its measured phase curve (Krisciunas & Schaefer 1991) over a Lommel–Seeliger ball's, held
+// past LUNAR_PHASE_MAX_RAD (firmament_core::atmosphere::body::phase).
+fn lunar_phase_factor(cos_alpha: f32) -> f32 {
+    let alpha = min(acos(clamp(cos_alpha, -1.0, 1.0)), LUNAR_PHASE_MAX_RAD);
+    let phi = degrees(alpha);
+    let measured = pow(10.0, -0.4 * (0.026 * phi + 4e-9 * phi * phi * phi * phi));
+    var ball = 1.0;
+    if alpha >= 1e-6 {
+        let half = 0.5 * alpha;
+        ball = 1.0 - sin(half) * tan(half) * log(1.0 / tan(0.25 * alpha));
+    }
+    return measured / ball;
+}
+
 // The irradiance the planet's sunlit face casts at planet-frame point p, reflected by the law
-// (`mu` the emergence cosine) at normal n, per unit albedo: a point of light of geometric albedo
-// `view.surface.z`, phase law of a Lambert sphere (firmament_core::atmosphere::body::planetshine).
-fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> vec3<f32> {
+// `law_code` at normal n towards `to_viewer`, per unit albedo: a point of light of geometric
+// albedo `view.surface.z`, phase law of a Lambert sphere
+// (firmament_core::atmosphere::body::planetshine).
+fn planetshine(p: vec3<f32>, n: vec3<f32>, to_viewer: vec3<f32>, law_code: u32) -> vec3<f32> {
     let distance = length(p);
     let to_planet = -p / distance;
     let mu0 = dot(n, to_planet);
     if view.surface.z <= 0.0 || mu0 <= 0.0 {
         return vec3<f32>(0.0);
     }
-    let law = select(mu0, 2.0 * mu0 / (mu0 + mu), lommel_seeliger);
+    let law = body_law(law_code, mu0, max(dot(n, to_viewer), 0.0), dot(to_planet, to_viewer));
     let size = view.surface.w / distance;
     var received = vec3<f32>(0.0);
     for (var s = 0u; s < view.sun_count.x; s++) {
@@ -122,12 +152,16 @@ fn planetshine(p: vec3<f32>, n: vec3<f32>, mu: f32, lommel_seeliger: bool) -> ve
 
 // The share of sun s's light that reaches point p of body `own`, per model wavelength: past the
 // planet (a ball of its volumetric mean radius, or the light of its shadow's table where the body
-// has one for this sun) and every other eclipser; not the rings, which the callers take
-// (firmament_core::atmosphere::body::shadows_share).
+// has one for this sun) and every other eclipser but the light's source; not the rings, which
+// the callers take (firmament_core::atmosphere::body::shadows_share). Zero for the body's own
+// light.
 fn body_shadows_share(p: vec3<f32>, s: u32, own: u32) -> vec3<f32> {
+    if eclipser_is_source(own, s) {
+        return vec3<f32>(0.0);
+    }
     var share = 1.0;
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
-        if e != own {
+        if e != own && !eclipser_is_source(e, s) {
             share *= eclipser_visible_fraction(p, s, view.eclipsers[e]);
         }
     }

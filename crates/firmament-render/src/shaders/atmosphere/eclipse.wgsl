@@ -67,11 +67,19 @@ fn eclipser_visible_fraction(p: vec3<f32>, i: u32, body: vec4<f32>) -> f32 {
     return 1.0 - eclipse_hidden_fraction(separation / alpha, beta / alpha, view.suns[i].irradiance.w);
 }
 
-// The fraction of sun i's light that reaches planet-frame point p past every eclipsing body
-// (their fractions multiply): 1 in full sunlight, 0 in the umbra.
+// Whether eclipser (and body) e is the source of sun i's light, which it does not hide.
+fn eclipser_is_source(e: u32, i: u32) -> bool {
+    return view.suns[i].source.x == e + 1u;
+}
+
+// The fraction of sun i's light that reaches planet-frame point p past every eclipsing body but
+// its source (their fractions multiply): 1 in full sunlight, 0 in the umbra.
 fn sun_visible_fraction(p: vec3<f32>, i: u32) -> f32 {
     var visible = 1.0;
     for (var e = 0u; e < min(view.sun_count.y, MAX_ECLIPSERS); e++) {
+        if eclipser_is_source(e, i) {
+            continue;
+        }
         visible *= eclipser_visible_fraction(p, i, view.eclipsers[e]);
         if visible == 0.0 {
             return 0.0;

@@ -90,6 +90,7 @@ fn sun(i: usize, entry: &SunEntry, body: Body, atmosphere: &Atmosphere) -> Resul
         },
         limb_darkening,
         disc: true,
+        from_body: None,
     };
     sun.validate().map_err(|e| match e {
         firmament_core::CoreError::Invalid { field, value, rule } => {
