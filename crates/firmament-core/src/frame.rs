@@ -93,9 +93,11 @@ impl AtmosphereSky {
     /// `at` ([`crate::atmosphere::body::cast`]) under the suns already there that are not
     /// bodies' lights, their shadows and the planet's light included. A body that sends none,
     /// or that `at` is inside, is left out, and so is every body once there are [`MAX_SUNS`]
-    /// suns. Call it after the bodies are placed and lit ([`Self::add_body`],
-    /// [`Self::light_bodies_in_planet_shadow`]); the sum takes ~4 000 rays per body.
+    /// suns. The bodies' lights already there are replaced. Call it after the bodies are placed
+    /// and lit ([`Self::add_body`], [`Self::light_bodies_in_planet_shadow`]); it costs
+    /// milliseconds of CPU per body (docs/PERFORMANCE.md, "A body's light").
     pub fn add_body_lights(&mut self, at: DVec3) {
+        self.suns.retain(|s| s.from_body.is_none());
         let planet = &self.atmosphere.planet;
         let suns: Vec<Sun> = self
             .suns

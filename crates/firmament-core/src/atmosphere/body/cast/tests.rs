@@ -120,6 +120,10 @@ fn the_sky_carries_a_bodys_light_as_a_sun_it_does_not_hide() {
     sky.add_body_lights(eye);
     sky.validate().expect("a valid sky");
     assert_eq!(sky.suns.len(), 2);
+    // Again: the light is replaced, not added twice.
+    let once = sky.suns.clone();
+    sky.add_body_lights(eye);
+    assert_eq!(sky.suns, once);
     let light = sky.suns[1];
     assert_eq!(light.from_body, Some(0));
     assert!(!light.disc);
