@@ -31,7 +31,7 @@ fn body_light(c: &mut Criterion) {
     c.bench_function("moon_light", |b| {
         b.iter(|| {
             let mut lit = sky.clone();
-            lit.add_body_lights(black_box(eye));
+            lit.add_body_lights(black_box(eye), |_| true);
             lit
         })
     });

@@ -91,18 +91,18 @@ impl AtmosphereSky {
     /// centre, the angular radius of its volumetric mean radius, no disc of its own (the body
     /// is drawn), [`Sun::from_body`] naming it, and the irradiance its sunlit face sends to
     /// `at` ([`crate::atmosphere::body::cast`]) under the suns already there that are not
-    /// bodies' lights, their shadows and the planet's light included. A body that sends none,
-    /// or that `at` is inside, is left out, and so is every body once there are [`MAX_SUNS`]
-    /// suns. The bodies' lights already there are replaced. Call it after the bodies are placed
-    /// and lit ([`Self::add_body`], [`Self::light_bodies_in_planet_shadow`]); it costs
-    /// milliseconds of CPU per body (docs/PERFORMANCE.md, "A body's light").
-    pub fn add_body_lights(&mut self, at: DVec3) {
+    /// bodies' lights, their shadows and the planet's light included. Only the bodies whose
+    /// index `wanted` takes are summed; a body that sends none, or that `at` is inside, is left
+    /// out, and so is every body once there are [`MAX_SUNS`] suns. The bodies' lights already
+    /// there are replaced. Call it after the bodies are placed and lit ([`Self::add_body`],
+    /// [`Self::light_bodies_in_planet_shadow`]); it costs milliseconds of CPU per body
+    /// (docs/PERFORMANCE.md, "A body's light").
+    pub fn add_body_lights(&mut self, at: DVec3, wanted: impl Fn(usize) -> bool) {
         self.suns.retain(|s| s.from_body.is_none());
         let planet = &self.atmosphere.planet;
         let suns: Vec<Sun> = self
             .suns
             .iter()
-            .filter(|s| s.from_body.is_none())
             .map(|s| Sun {
                 direction: planet.direction_to_planet_frame(s.direction),
                 ..*s
@@ -111,27 +111,24 @@ impl AtmosphereSky {
         let bodies: Vec<Body> = self.bodies.iter().map(|b| b.to_planet_frame(planet)).collect();
         let rings = self.rings.as_ref();
         let q = planet.to_planet_frame(at);
-        for (index, body) in self.bodies.iter().enumerate() {
+        for (index, body) in self.bodies.iter().enumerate().filter(|(i, _)| wanted(*i)) {
             if self.suns.len() >= MAX_SUNS {
                 return;
             }
+            // Zero from inside the body's reach, so `at` lies outside it where this is positive.
             let irradiance = cast_irradiance(q, index, &suns, planet, rings, &bodies);
-            let to_body = body.center - at;
-            let distance = to_body.length();
-            // NaN-safe: a light that is not positive is left out.
-            if irradiance.max_element().partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
-                || distance <= body.mean_radius()
-            {
-                continue;
+            if irradiance.max_element() > 0.0 {
+                let to_body = body.center - at;
+                let distance = to_body.length();
+                self.suns.push(Sun {
+                    direction: to_body / distance,
+                    angular_radius: (body.mean_radius() / distance).asin(),
+                    irradiance,
+                    limb_darkening: 0.0,
+                    disc: false,
+                    from_body: Some(index),
+                });
             }
-            self.suns.push(Sun {
-                direction: to_body / distance,
-                angular_radius: (body.mean_radius() / distance).asin(),
-                irradiance,
-                limb_darkening: 0.0,
-                disc: false,
-                from_body: Some(index),
-            });
         }
     }
 

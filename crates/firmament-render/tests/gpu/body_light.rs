@@ -35,7 +35,7 @@ fn a_bodys_light_is_not_hidden_by_the_body() {
     let towards = DVec3::new(0.0, 0.8, 0.6 + 3f64.to_radians());
     sky.add_body(moon(&sky, towards));
     let eye = DVec3::new(0.0, 0.0, 2.0);
-    sky.add_body_lights(eye);
+    sky.add_body_lights(eye, |_| true);
     sky.validate().expect("a valid sky");
     assert_eq!(sky.suns.len(), 2, "the Moon's light");
     let mut plain = sky.clone();
@@ -72,7 +72,7 @@ fn a_body_is_not_lit_by_its_own_light() {
     sky.atmosphere.planet.geometric_albedo = 0.0;
     // Its light as seen from the second body, alone in the sky.
     let at = second.center - DVec3::Z * 2.0 * second.mean_radius();
-    sky.add_body_lights(at);
+    sky.add_body_lights(at, |_| true);
     let own = sky
         .suns
         .iter()

@@ -102,9 +102,6 @@ pub(crate) fn light_in_planet_shadow(
 /// Moon is), and every body's by day under the air — a sun above the camera's horizon outshines
 /// the full Moon 4·10⁵ times, and each light costs a sun in every pass.
 pub(crate) fn add_lights(scene: &Scene, sky: &mut AtmosphereSky) {
-    if scene.bodies.iter().all(|b| b.light == Some(false)) {
-        return;
-    }
     let planet = &sky.atmosphere.planet;
     let camera = DVec3::from_array(scene.camera.position);
     let in_air = planet.altitude(planet.to_planet_frame(camera)) < planet.atmosphere_height;
@@ -118,13 +115,17 @@ pub(crate) fn add_lights(scene: &Scene, sky: &mut AtmosphereSky) {
         return;
     }
     let at = if in_air { camera } else { planet.center };
-    sky.add_body_lights(at);
-    let entries = &scene.bodies;
     let above = HORIZON_CUTOFF_DEG.to_radians().sin();
-    sky.suns.retain(|sun| {
-        sun.from_body
-            .is_none_or(|b| entries[b].light != Some(false) && !(in_air && sun.direction.dot(up) < above))
-    });
+    let wanted: Vec<bool> = scene
+        .bodies
+        .iter()
+        .zip(&sky.bodies)
+        .map(|(entry, body)| {
+            let up_there = !in_air || (body.center - at).normalize_or_zero().dot(up) >= above;
+            entry.light != Some(false) && up_there
+        })
+        .collect();
+    sky.add_body_lights(at, |i| wanted[i]);
 }
 
 /// Whether the scene has the Moon as a body (then the night sky's disc of the Moon, its

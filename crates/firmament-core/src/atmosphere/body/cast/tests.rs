@@ -117,12 +117,12 @@ fn the_sky_carries_a_bodys_light_as_a_sun_it_does_not_hide() {
     moon.surface = BodySurface::Uniform;
     sky.add_body(moon.clone());
     let eye = center + DVec3::new(0.0, 0.0, 6_371_000.0 + 10.0);
-    sky.add_body_lights(eye);
+    sky.add_body_lights(eye, |_| true);
     sky.validate().expect("a valid sky");
     assert_eq!(sky.suns.len(), 2);
     // Again: the light is replaced, not added twice.
     let once = sky.suns.clone();
-    sky.add_body_lights(eye);
+    sky.add_body_lights(eye, |_| true);
     assert_eq!(sky.suns, once);
     let light = sky.suns[1];
     assert_eq!(light.from_body, Some(0));
