@@ -142,6 +142,11 @@ impl Planet {
         }
     }
 
+    /// The radius of the sphere of the ellipsoid's volume, `(a·b·c)^⅓` metres.
+    pub fn mean_radius(&self) -> f64 {
+        self.radii.element_product().cbrt()
+    }
+
     /// The planet-frame point of the surface whose outward normal has geodetic `latitude` and
     /// `longitude` (radians): `x_i = a_i² n_i / |a n|`, exact for any ellipsoid.
     pub fn surface_point(&self, latitude: f64, longitude: f64) -> DVec3 {

@@ -94,7 +94,7 @@ struct Rays {
 impl Rays {
     fn new(atmosphere: &Atmosphere, distance_m: f64, settings: &ShadowSettings) -> Self {
         let planet = atmosphere.planet;
-        let radius = mean_radius(&planet);
+        let radius = planet.mean_radius();
         let height = planet.atmosphere_height;
         let sphere = Atmosphere {
             planet: Planet::sphere(radius, height),
@@ -166,11 +166,6 @@ impl Rays {
         let transmittance = self.transmittance[i].lerp(self.transmittance[i + 1], t);
         transmittance * (impact / (q * slope))
     }
-}
-
-/// The radius of the sphere with the ellipsoid's volume, metres.
-fn mean_radius(planet: &Planet) -> f64 {
-    (planet.radii.x * planet.radii.y * planet.radii.z).cbrt()
 }
 
 impl PlanetShadow {

@@ -13,6 +13,8 @@
 //!   `L = E·ϖ·p·μ₀/(μ₀ − μ)·(e^(−τ/μ₀) − e^(−τ/μ))` (`E·ϖ·p·τ/μ·e^(−τ/μ)` where μ = μ₀). A point in
 //!   the globe's shadow gets nothing. Light scattered more than once inside the rings, and the
 //!   planet's light on them, are left out.
+//! - **Their light on the globe** is that light gathered over the rings a ground point sees
+//!   ([`Rings::light_on_ground`], `light`'s docs).
 //! - **The GPU** reads τ from a table of [`RING_TABLE_ENTRIES`] samples across the rings (linear
 //!   between them: a band's edge spreads over one entry, ~490 km for Saturn's).
 
@@ -22,6 +24,10 @@ use glam::DVec3;
 
 use crate::atmosphere::{Planet, Spectrum};
 use crate::error::CoreError;
+
+mod light;
+
+pub use light::{GroundTransmittance, RING_LIGHT_TABLE_SIZE};
 
 /// The most bands a ring system has.
 pub const MAX_RING_BANDS: usize = 16;

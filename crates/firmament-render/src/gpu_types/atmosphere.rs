@@ -168,10 +168,17 @@ pub(crate) const BODY_AIR_LIGHT_SIZE: (u32, u32) = (air_light::SUN_NODES as u32,
 /// [`BODY_AIR_LIGHT_SIZE`]: Ψ (sr⁻¹ per unit irradiance), then the sky's irradiance on the
 /// ground per unit irradiance, the same on every row; as each half float's bits.
 pub(crate) fn body_air_light_layers(light: &AirLight) -> [Vec<u16>; 2] {
-    let texel = |s: &Spectrum| [s.x, s.y, s.z, 0.0].map(|v| half::f16::from_f64(v).to_bits());
-    let multiple = light.multiple.iter().flat_map(texel).collect();
-    let sky = (0..air_light::ALTITUDE_NODES).flat_map(|_| light.sky.iter().flat_map(texel)).collect();
+    let multiple = half_texels(&light.multiple);
+    let sky = (0..air_light::ALTITUDE_NODES).flat_map(|_| half_texels(&light.sky)).collect();
     [multiple, sky]
+}
+
+/// Spectra as Rgba16Float texels (alpha 0): four half floats' bits each.
+pub(crate) fn half_texels<'a>(spectra: impl IntoIterator<Item = &'a Spectrum>) -> Vec<u16> {
+    spectra
+        .into_iter()
+        .flat_map(|s| [s.x, s.y, s.z, 0.0].map(|v| half::f16::from_f64(v).to_bits()))
+        .collect()
 }
 
 /// Mirrors `AtmosphereBody` in `shaders/atmosphere/bindings.wgsl`: an airless body beside the

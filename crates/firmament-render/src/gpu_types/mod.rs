@@ -32,7 +32,7 @@ pub mod sky_lighting;
 
 pub use atmosphere::{AtmosphereParamsUniforms, AtmosphereSunUniform, AtmosphereViewUniforms};
 pub use medium::{DensityProfileUniform, MediumTermUniform};
-pub(crate) use atmosphere::{BODY_AIR_LIGHT_SIZE, BODY_MAP_SIZE, OrderSumsGpu, body_air_light_layers};
+pub(crate) use atmosphere::{BODY_AIR_LIGHT_SIZE, BODY_MAP_SIZE, OrderSumsGpu, body_air_light_layers, half_texels};
 pub use camera::{ExposureStateGpu, MeteringUniforms};
 pub use classic::{ClassicFrameUniforms, ClassicLightUniform, ClassicMaterialUniform, ClassicObjectUniforms};
 pub use clouds::{CloudLayerGpu, CloudsGpu};

@@ -1,10 +1,14 @@
 //! GPU tests of planetary rings (`atmosphere/rings.wgsl`) against the f64 core
 //! (`firmament_core::atmosphere::rings`): the sun's disc seen through them keeps
-//! `e^(−τ/μ)`, their lit face shows `Rings::radiance`, the globe's shadow darkens them and
-//! theirs darkens the globe.
+//! `e^(−τ/μ)`, their lit face shows `Rings::radiance`, the globe's shadow darkens them,
+//! theirs darkens the globe and their light falls on it (`Rings::light_on_ground`).
 
 use crate::support::{centre_radiance, far_view_difference, gpu};
 
+use std::f64::consts::PI;
+
+use firmament_core::atmosphere::planet::geodetic_normal;
+use firmament_core::atmosphere::reference::{Reference, ReferenceSettings};
 use firmament_core::atmosphere::rings::Rings;
 use firmament_core::atmosphere::{Sun, presets};
 use firmament_core::frame::AtmosphereSky;
@@ -89,7 +93,8 @@ fn the_lit_rings_show_their_single_scattering_and_the_globe_s_shadow() {
 }
 
 /// The ground under the B ring, the sun behind the ring: the rings' shadow dims it by about
-/// e^(−τ/μ) (the direct light exactly; the thin H₂ air's own light alike).
+/// e^(−τ/μ) (the direct light exactly; the thin H₂ air's own light alike), with the rings' own
+/// light ([`ringshine`]) on top.
 #[test]
 fn the_rings_shadow_the_globe() {
     let mut gpu = gpu();
@@ -118,13 +123,63 @@ fn the_rings_shadow_the_globe() {
     let view = -normal;
     let clear = centre_radiance(&mut gpu, &saturn_sky(s, None), eye, view);
     let shaded = centre_radiance(&mut gpu, &saturn_sky(s, Some(rings.clone())), eye, view);
-    let got = shaded.y / clear.y;
+    // The rings' own light on the ground comes on top of the sunlight they let through.
+    let lit_by_rings = ringshine(&rings, s, 1e-4, point, normal).y / clear.y;
+    let got = shaded.y / clear.y - lit_by_rings;
     println!(
-        "ground at {:.0} km from the pole axis: {got:.5} vs e^(−τ/μ) {want:.5}",
+        "ground at {:.0} km from the pole axis: {got:.5} vs e^(−τ/μ) {want:.5} (and the rings' light {lit_by_rings:.5})",
         point.x.abs() / 1000.0
     );
     assert!(clear.y > 0.0);
     assert!((got / want - 1.0).abs() < 0.02, "{got} vs {want}");
+}
+
+/// The rings' light (linear sRGB) that the ground at `p` with normal `n` sends straight up under
+/// [`dimmed_saturn_sky`]: the core's `Rings::light_on_ground` on the ground's albedo, each ring
+/// element's light dimmed by the air (the core's transmittance on Saturn's ellipsoid) on its way
+/// down, and all of it on the way out.
+fn ringshine(rings: &Rings, s: DVec3, dimming: f64, p: DVec3, n: DVec3) -> DVec3 {
+    let atmosphere = presets::saturn();
+    let reference = Reference::new(atmosphere.clone(), &[], ReferenceSettings::default());
+    // A metre up: a point a rounding inside the ground would see no sky.
+    let above = p + n;
+    let air = |view| reference.transmittance_to_space(above, view);
+    let light = rings.light_on_ground(atmosphere.planet.radii, p, n, s, air) * air(n);
+    let irradiance = presets::saturn_sun(s).irradiance * dimming;
+    let spectral = atmosphere.medium.ground_albedo / PI * irradiance * light;
+    let rgb = atmosphere.spectral_conversion().linear_srgb(spectral);
+    DVec3::new(rgb.r, rgb.g, rgb.b)
+}
+
+/// Saturn's night side under the rings' lit face (north, the sun 24° above the ring plane) and
+/// under their far face (south): the ground shows the rings' light within 2 % of the brightest
+/// channel of [`ringshine`].
+#[test]
+fn the_rings_light_the_night_side() {
+    let mut gpu = gpu();
+    let rings = Rings::saturn();
+    let s = DVec3::new(1.0, 0.0, 0.45).normalize();
+    let radii = presets::saturn().planet.radii;
+    let dimming = 1e-3;
+    for (latitude, longitude) in [(35.0_f64, 180.0_f64), (20.0, 150.0), (-30.0, 180.0)] {
+        let n = geodetic_normal(latitude.to_radians(), longitude.to_radians());
+        let p = radii * radii * n / (radii * n).length();
+        let (eye, view) = (p + n * 2.0e7, -n);
+        let lit = centre_radiance(&mut gpu, &dimmed_saturn_sky(s, Some(rings.clone()), dimming), eye, view);
+        let dark = centre_radiance(&mut gpu, &dimmed_saturn_sky(s, None, dimming), eye, view);
+        let want = ringshine(&rings, s, dimming, p, n);
+        let got = lit - dark;
+        let error = (got - want).abs().max_element() / want.max_element();
+        println!(
+            "latitude {latitude}°, longitude {longitude}° from the sun: {:.4e} vs {:.4e} ({:.2} %; without the rings {:.2e})",
+            got.y,
+            want.y,
+            100.0 * error,
+            dark.max_element()
+        );
+        assert!(want.max_element() > 0.0);
+        assert!(error < 0.02, "{got} vs {want}");
+    }
 }
 
 /// Saturn and its rings seen from 1 AU and from 100 AU with a field of view 100× narrower: the

@@ -29,7 +29,7 @@ fn an_airless_planet_eclipses_the_sun_as_two_discs_do() {
     };
     let sun = sun();
     let shadow = PlanetShadow::new(&atmosphere, &sun, MOON_DISTANCE_M, &settings);
-    let top = mean_radius(&atmosphere.planet) + height;
+    let top = atmosphere.planet.mean_radius() + height;
     let image = MOON_DISTANCE_M * sun.angular_radius;
     for (k, light) in shadow.light.iter().enumerate() {
         let rho = k as f64 * shadow.step_m;
@@ -83,7 +83,7 @@ fn the_eclipsed_moon_is_dim_and_red() {
     let sun = sun();
     let shadow = PlanetShadow::new(&atmosphere, &sun, MOON_DISTANCE_M, &ShadowSettings::default());
     // The geometric umbra's radius at the Moon: R − D·(α − R/D) ≈ 4600 km.
-    let radius = mean_radius(&atmosphere.planet);
+    let radius = atmosphere.planet.mean_radius();
     let umbra = radius - MOON_DISTANCE_M * sun.angular_radius;
     for rho in [0.0, 0.3 * umbra, 0.7 * umbra] {
         let light = shadow.at(rho);

@@ -8,6 +8,7 @@ use firmament_core::atmosphere::body::{Body, BodyAir, MAX_BODIES};
 use firmament_core::frame::AtmosphereSky;
 
 use super::stages::{array_texture_entry, binding};
+use super::table_layers::TableLayers;
 use crate::gpu_types::{BODY_AIR_LIGHT_SIZE, body_air_light_layers};
 
 /// What a body's tables are made from: its air, its mean radius (m) and its albedo.
@@ -16,37 +17,15 @@ type Key = (BodyAir, f64, Spectrum);
 /// The texture of every body's tables, read with the LUTs' sampler (`lut_sampler`).
 #[derive(Debug)]
 pub(super) struct BodyAirLight {
-    texture: wgpu::Texture,
-    view: wgpu::TextureView,
+    layers: TableLayers,
     /// What each body's layers were made from (`None`: nothing uploaded there).
     uploaded: [Option<Key>; MAX_BODIES],
 }
 
 impl BodyAirLight {
     pub(super) fn new(device: &wgpu::Device) -> Self {
-        let (width, height) = BODY_AIR_LIGHT_SIZE;
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("firmament AtmospherePass body air light"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 2 * MAX_BODIES as u32,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some("firmament AtmospherePass body air light view"),
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
         Self {
-            texture,
-            view,
+            layers: TableLayers::new(device, "body air light", BODY_AIR_LIGHT_SIZE, 2 * MAX_BODIES as u32),
             uploaded: Default::default(),
         }
     }
@@ -61,31 +40,8 @@ impl BodyAirLight {
                 continue;
             }
             let Some(light) = body.air_light() else { continue };
-            let (width, height) = BODY_AIR_LIGHT_SIZE;
             for (k, texels) in body_air_light_layers(&light).iter().enumerate() {
-                queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &self.texture,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d {
-                            x: 0,
-                            y: 0,
-                            z: (2 * i + k) as u32,
-                        },
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    bytemuck::cast_slice(texels),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(width * 8),
-                        rows_per_image: Some(height),
-                    },
-                    wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                );
+                self.layers.write(queue, (2 * i + k) as u32, texels);
             }
             self.uploaded[i] = Some(key);
         }
@@ -98,7 +54,7 @@ impl BodyAirLight {
 
     /// The texture at its binding.
     pub(super) fn resource(&self) -> (u32, wgpu::BindingResource<'_>) {
-        (binding::BODY_AIR_LIGHT, wgpu::BindingResource::TextureView(&self.view))
+        (binding::BODY_AIR_LIGHT, wgpu::BindingResource::TextureView(&self.layers.view))
     }
 }
 

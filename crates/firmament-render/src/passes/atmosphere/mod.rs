@@ -36,9 +36,11 @@ mod clouds;
 pub mod luts;
 mod multiscattering;
 mod rebuild;
+mod ring_light;
 mod sky_lighting;
 mod stages;
 mod surface;
+mod table_layers;
 
 use firmament_core::frame::{AtmosphereSky, MAX_SUNS};
 use firmament_core::{Camera, DepthConvention};
@@ -52,6 +54,7 @@ use crate::shaders;
 pub use aerial_perspective::{AerialPerspectiveBindings, aerial_perspective_layout_entries};
 use aerial_perspective::{AerialPerspectiveResources, AerialPerspectiveStages};
 use body_air_light::BodyAirLight;
+use ring_light::RingLight;
 use body_maps::BodyMaps;
 use clouds::CloudStages;
 pub use luts::AtmosphereLuts;
@@ -135,6 +138,8 @@ pub struct AtmospherePass {
     /// The bodies' albedo maps, read by the sky stages.
     body_maps: BodyMaps,
     body_air_light: BodyAirLight,
+    /// The rings' light on the ground, read by every stage that draws the ground.
+    ring_light: RingLight,
     sampler: wgpu::Sampler,
     /// The sky pipelines, indexed by [`SkyMode`].
     sky: [Stage; 3],
@@ -214,6 +219,9 @@ impl AtmospherePass {
             .copied()
             .collect();
         let mut sky_view_resources = resources_for(&sky_view_entries);
+        let ring_light = RingLight::new(device);
+        sky_view_entries.push(RingLight::entry());
+        sky_view_resources.push(ring_light.resource());
         sky_view_entries.push(storage_entry(binding::SKY_VIEW_OUT, SKY_VIEW_FORMAT));
         sky_view_resources.push((
             binding::SKY_VIEW_OUT,
@@ -230,10 +238,15 @@ impl AtmospherePass {
         // rasterizers run both sides of a branch they cannot prove uniform).
         let body_maps = BodyMaps::new(device);
         let body_air_light = BodyAirLight::new(device);
-        let sky_entries = [view_entries.as_slice(), &[BodyMaps::entry(), BodyAirLight::entry()]].concat();
+        let sky_entries = [
+            view_entries.as_slice(),
+            &[BodyMaps::entry(), BodyAirLight::entry(), RingLight::entry()],
+        ]
+        .concat();
         let mut sky_resources = view_resources.clone();
         sky_resources.push(body_maps.resource());
         sky_resources.push(body_air_light.resource());
+        sky_resources.push(ring_light.resource());
         let sky_stage = |mode: SkyMode| {
             Stage::new(
                 device,
@@ -270,6 +283,7 @@ impl AtmospherePass {
                 luts: &luts,
                 sampler: &sampler,
                 surface: &surface,
+                ring_light: &ring_light,
             },
         );
         Self {
@@ -279,6 +293,7 @@ impl AtmospherePass {
             surface,
             body_maps,
             body_air_light,
+            ring_light,
             sampler,
             luts,
             params,
@@ -306,6 +321,7 @@ impl AtmospherePass {
         self.surface.prepare(queue, sky.surface.as_ref());
         self.body_maps.prepare(queue, sky);
         self.body_air_light.prepare(queue, sky);
+        self.ring_light.prepare(queue, sky);
         if !self.rebuild.is_newest(&sky.atmosphere) {
             let planet = &sky.atmosphere.planet;
             let thick = is_thick_air(&sky.atmosphere.medium, planet.atmosphere_height);
@@ -567,6 +583,7 @@ impl AtmospherePass {
         resources.push((binding::SKY_OUT, wgpu::BindingResource::TextureView(color)));
         resources.push(self.body_maps.resource());
         resources.push(self.body_air_light.resource());
+        resources.push(self.ring_light.resource());
         match &mut self.sky_compute {
             Some((stages, bound)) => {
                 for stage in stages.iter_mut() {
@@ -580,6 +597,7 @@ impl AtmospherePass {
                 entries.push(storage_entry(binding::SKY_OUT, crate::targets::HDR_FORMAT));
                 entries.push(BodyMaps::entry());
                 entries.push(BodyAirLight::entry());
+                entries.push(RingLight::entry());
                 let stages = [SkyMode::Lut, SkyMode::March, SkyMode::Blend].map(|mode| {
                     ComputeStage::with_constants(
                         device,

@@ -51,6 +51,7 @@ pub(super) struct SkyLightingResources<'a> {
     pub(super) luts: &'a AtmosphereLuts,
     pub(super) sampler: &'a wgpu::Sampler,
     pub(super) surface: &'a super::surface::SurfaceTexture,
+    pub(super) ring_light: &'a super::ring_light::RingLight,
 }
 
 impl SkyLightingStage {
@@ -75,6 +76,7 @@ impl SkyLightingStage {
         ];
         // The ground the sky-view LUT leaves out when the planet has a surface.
         entries.extend(super::surface::SurfaceTexture::entries());
+        entries.push(super::ring_light::RingLight::entry());
         let luts = resources.luts;
         let mut bound = vec![
             (binding::PARAMS, resources.params.as_entire_binding()),
@@ -96,6 +98,7 @@ impl SkyLightingStage {
             (binding::SKY_LIGHTING_OUT, output.as_entire_binding()),
         ];
         bound.extend(resources.surface.resources());
+        bound.push(resources.ring_light.resource());
         let stage = ComputeStage::new(
             device,
             "AtmospherePass sky lighting",

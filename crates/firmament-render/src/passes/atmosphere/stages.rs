@@ -34,6 +34,7 @@ pub(super) mod binding {
     pub(crate) const BODY_MAPS: u32 = 21;
     pub(crate) const BODY_AIR_LIGHT: u32 = 22;
     pub(crate) const HDR_IN: u32 = 23;
+    pub(crate) const RING_LIGHT: u32 = 27;
     pub(crate) const HDR_OUT: u32 = 24;
     pub(crate) const SKY_LIGHTING_PARAMS: u32 = 25;
     pub(crate) const SKY_LIGHTING_OUT: u32 = 26;
@@ -109,6 +110,7 @@ mod tests {
             ("surface_map", binding::SURFACE_MAP),
             ("body_maps", binding::BODY_MAPS),
             ("body_air_light", binding::BODY_AIR_LIGHT),
+            ("ring_light", binding::RING_LIGHT),
             ("cloud_shadow_out", binding::CLOUD_SHADOW_OUT),
             ("cloud_shadow_map", binding::CLOUD_SHADOW_MAP),
             ("multiscattering_out", binding::MULTISCATTERING_OUT),

@@ -182,6 +182,12 @@ struct SkyLighting {
 // its ground per unit irradiance (across; every row alike): the core's AirLight nodes at texel
 // centres (gpu_types/atmosphere.rs BODY_AIR_LIGHT_SIZE); read with `lut_sampler`.
 @group(0) @binding(22) var body_air_light: texture_2d_array<f32>;
+// The rings' light on the ground (atmosphere/rings.wgsl), Rgba16Float, layer i sun i's: the
+// irradiance through the air per unit of the sun's (rgb; a unused) over the globe, azimuth from
+// the sun's 0…π across, geodetic latitude −90°…90° down (crowded at the equator: rings.wgsl), at
+// texel centres (the core's Rings::light_table; passes/atmosphere/ring_light.rs); read with
+// `lut_sampler`.
+@group(0) @binding(27) var ring_light: texture_2d_array<f32>;
 // The clouds' shadow map (clouds/shadow.wgsl): per sun a square of texels across its rays around
 // the camera, the suns' squares side by side; written by clouds/shadow_map.wgsl, read by the
 // march (unfilterable: textureLoad).

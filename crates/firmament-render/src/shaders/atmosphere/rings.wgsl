@@ -4,7 +4,7 @@
 //
 // Conventions: as atmosphere/common.wgsl. `view.rings`: x, y = inner and outer radius (m),
 // z = g, w = 1 with rings; `view.ring_depth`: the normal optical depth table, linear between
-// entries.
+// entries. `ring_light`: their light on the ground per sun, a table over the globe (bindings.wgsl).
 
 #import common/ellipsoid
 #import atmosphere/bindings
@@ -105,4 +105,16 @@ fn ring_sample(o: vec3<f32>, d: vec3<f32>, near: f32) -> RingSample {
         out.radiance += view.suns[i].irradiance.rgb * view.ring_albedo.rgb * (phase * slab);
     }
     return out;
+}
+
+// The light the rings scatter from sun i onto the ground with geodetic normal `up`, through the
+// air (irradiance per unit of the sun's): the core's Rings::light_table, relative to the sun's
+// azimuth.
+fn ring_light_irradiance(up: vec3<f32>, i: u32) -> vec3<f32> {
+    let s = view.suns[i].direction.xyz;
+    let azimuth = abs(atan2(up.x * s.y - up.y * s.x, up.x * s.x + up.y * s.y));
+    // Rows crowd at the equator: v − ½ goes as the square root of the latitude.
+    let latitude = asin(clamp(up.z, -1.0, 1.0));
+    let uv = vec2<f32>(azimuth / PI, 0.5 + 0.5 * sign(latitude) * sqrt(abs(latitude) / (0.5 * PI)));
+    return textureSampleLevel(ring_light, lut_sampler, uv, i, 0.0).rgb;
 }

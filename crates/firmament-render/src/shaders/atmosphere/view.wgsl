@@ -13,6 +13,7 @@
 #import atmosphere/luts
 #import atmosphere/eclipse
 #import atmosphere/surface
+#import atmosphere/rings
 
 const HDR_MAX: f32 = 65504.0; // largest half float (firmament_render::HDR_MAX)
 
@@ -133,7 +134,8 @@ fn view_ray(ndc: vec2<f32>) -> ViewRay {
 // The radiance the lit ground at p (altitude h, normal `up`) sends towards `to_eye` from suns
 // [first, first + count): direct sunlight and sky light on its Lambertian albedo, and each sun's
 // glint on its water (atmosphere/surface.wgsl), all dimmed by any eclipse at p (the sky light by
-// the share the air around has seen, as multiple scattering is).
+// the share the air around has seen, as multiple scattering is), and the rings' light
+// (atmosphere/rings.wgsl).
 fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, to_eye: vec3<f32>, first: u32, count: u32) -> vec3<f32> {
     let ground = ground_at(up);
     // The air's extinction only an eclipse needs (its mean free path).
@@ -154,6 +156,9 @@ fn ground_radiance(p: vec3<f32>, h: f32, up: vec3<f32>, to_eye: vec3<f32>, first
         let around = multiple_scattering_visible_fraction(p, i, seen, extinction);
         irradiance += top * (seen * direct + around * sky_irradiance(h, mu_s));
         glint += top * seen * beam * glint_factor(ground, up, s, to_eye);
+        if has_rings() {
+            irradiance += sun.irradiance.rgb * ring_light_irradiance(up, i);
+        }
     }
     return ground.albedo / PI * irradiance + glint;
 }
