@@ -30,6 +30,7 @@ mod rings;
 mod shadows;
 mod sky;
 mod sky_lighting;
+mod small_bodies;
 mod support;
 mod surface;
 mod thick_airs;

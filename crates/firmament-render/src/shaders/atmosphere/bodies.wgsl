@@ -27,15 +27,144 @@ struct BodySample {
     radiance: vec3<f32>,
 }
 
-// The nearest body the ray o + t·d meets at t > near, lit; the ray's pixel spans `pixel_rad`
-// radians (how sharp a body's map is read).
-fn body_sample(o: vec3<f32>, d: vec3<f32>, near: f32, pixel_rad: f32) -> BodySample {
-    let hit = nearest_body_hit(o, d, near);
-    var out = BodySample(hit.hit, hit.t, vec3<f32>(0.0));
-    if hit.hit {
-        let p = o + hit.t * d;
+// A body whose disc's angular radius is under this many pixels is drawn by the share of each
+// pixel it covers (`bodies_seen`), not where the pixel's ray meets it: a Moon a pixel or two
+// across then neither vanishes between pixel centres nor flickers as it moves.
+const SMALL_BODY_RADIUS_PIXELS: f32 = 2.0;
+
+// The points of a disc at which a small body's mean radiance is taken: a sunflower of this many,
+// equal areas apart.
+const SMALL_BODY_SAMPLES: u32 = 64u;
+
+// Body i's disc seen from the camera: its angular radius (rad) and the distance to its centre
+// (m), from the bounding sphere of its largest semi-axis.
+fn body_disc(i: u32) -> vec2<f32> {
+    let body = view.bodies[i];
+    // From the camera: a far camera's rays start at their closest approach to the planet.
+    let distance = length(body.center.xyz - view.camera.xyz);
+    let reach = max(body.radii.x, max(body.radii.y, body.radii.z));
+    return vec2<f32>(asin(min(reach / distance, 1.0)), distance);
+}
+
+fn is_small_body(i: u32, pixel_rad: f32) -> bool {
+    return body_disc(i).x < SMALL_BODY_RADIUS_PIXELS * pixel_rad;
+}
+
+// The signed area of the disc of radius r about the origin within the quadrant between the axes
+// and (x, y): the disc's area in any axis-aligned box is four of them, signed by the corners.
+// For x, y ≥ 0: y·m + G(x) − G(m), m where the disc's chord height falls to y, G(t) = ∫₀ᵗ √(r² − u²) du.
+fn disc_corner_area(x: f32, y: f32, r: f32) -> f32 {
+    let ax = min(abs(x), r);
+    let ay = min(abs(y), r);
+    let m = min(ax, sqrt(max(r * r - ay * ay, 0.0)));
+    let g_x = 0.5 * (ax * sqrt(max(r * r - ax * ax, 0.0)) + r * r * asin(clamp(ax / r, -1.0, 1.0)));
+    let g_m = 0.5 * (m * sqrt(max(r * r - m * m, 0.0)) + r * r * asin(clamp(m / r, -1.0, 1.0)));
+    return sign(x) * sign(y) * (ay * m + g_x - g_m);
+}
+
+// What a pixel sees of the bodies: the nearest large one its ray meets, and the nearest small one
+// whose disc overlaps it (in front of the large one).
+struct BodiesSeen {
+    body: BodySample,
+    small: SmallBody,
+}
+
+// A small body in a pixel: its mean radiance over its disc times the share of the pixel it covers
+// (`radiance`), that share (`coverage`; 0: none), and the distance to its centre along the ray.
+struct SmallBody {
+    radiance: vec3<f32>,
+    coverage: f32,
+    t: f32,
+}
+
+// The bodies seen through the pixel whose ray is o + t·d (t > near) and which spans `pixel_rad`
+// radians (how sharp a body's map is read). A large body is drawn where the ray meets it. A small
+// one (SMALL_BODY_RADIUS_PIXELS) covers the exact area of the pixel's square its disc overlaps —
+// the shares of neighbouring pixels add up to the disc's area wherever it stands, so its light is
+// whole at any sub-pixel position — with its disc's mean radiance: rays along d through a
+// sunflower of points on it. Both are shaded in one loop, so the shader holds one copy of a
+// body's lighting (software rasterizers pay for every copy).
+fn bodies_seen(o: vec3<f32>, d: vec3<f32>, near: f32, pixel_rad: f32) -> BodiesSeen {
+    var hit = BodyHit(false, 0.0, 0u, vec3<f32>(0.0));
+    for (var i = 0u; i < min(view.sun_count.w, MAX_BODIES); i++) {
+        let candidate = body_hit(i, o, d, near);
+        if candidate.hit && (!hit.hit || candidate.t < hit.t) && !is_small_body(i, pixel_rad) {
+            hit = candidate;
+        }
+    }
+    var out = BodiesSeen(BodySample(hit.hit, hit.t, vec3<f32>(0.0)), SmallBody(vec3<f32>(0.0), 0.0, 0.0));
+    // The nearest small body whose disc overlaps the pixel, in front of the large one.
+    var small = MAX_BODIES;
+    var small_t = select(NO_BODY_T, hit.t, hit.hit);
+    var off_ray = vec3<f32>(0.0);
+    var reach = 0.0;
+    let right = view.view_to_planet[0].xyz;
+    let up = view.view_to_planet[1].xyz;
+    for (var i = 0u; i < min(view.sun_count.w, MAX_BODIES); i++) {
+        let disc = body_disc(i);
+        if disc.x >= SMALL_BODY_RADIUS_PIXELS * pixel_rad {
+            continue;
+        }
+        let body = view.bodies[i];
+        let to_center = body.center.xyz - o;
+        let along = dot(to_center, d);
+        let off = to_center - along * d;
+        // The disc's centre and radius in pixels from this pixel's centre.
+        let pixels = 1.0 / (disc.y * pixel_rad);
+        let offset = vec2<f32>(dot(off, right), dot(off, up)) * pixels;
+        let radius = max(body.radii.x, max(body.radii.y, body.radii.z));
+        let r = radius * pixels;
+        if along <= near || along >= small_t || any(abs(offset) >= vec2<f32>(r + 0.5)) {
+            continue; // behind, or the disc misses the pixel
+        }
+        // The pixel's square from the disc's centre, in pixels.
+        let low = vec2<f32>(-0.5) - offset;
+        let high = vec2<f32>(0.5) - offset;
+        let overlap = disc_corner_area(high.x, high.y, r) - disc_corner_area(low.x, high.y, r)
+            - disc_corner_area(high.x, low.y, r) + disc_corner_area(low.x, low.y, r);
+        if overlap > 0.0 {
+            small = i;
+            small_t = along;
+            off_ray = off;
+            reach = radius;
+            out.small.coverage = min(overlap, 1.0);
+            out.small.t = along;
+        }
+    }
+    let small_samples = select(0u, SMALL_BODY_SAMPLES, small < MAX_BODIES);
+    let across = normalize(cross(d, select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(d.x) > 0.9)));
+    let other = cross(d, across);
+    var sum = vec3<f32>(0.0);
+    var hits = 0u;
+    // The small body's sunflower first, then the large body's hit.
+    for (var k = 0u; k < small_samples + select(0u, 1u, hit.hit); k++) {
+        var seen = hit;
+        var start = o;
+        if k < small_samples {
+            let r = sqrt((f32(k) + 0.5) / f32(SMALL_BODY_SAMPLES)) * reach;
+            let angle = f32(k) * 2.39996323; // the golden angle
+            start = o + off_ray + (cos(angle) * across + sin(angle) * other) * r;
+            seen = body_hit(small, start, d, near);
+            if !seen.hit {
+                continue;
+            }
+        }
+        let p = start + seen.t * d;
         // From the camera: a far camera's rays start at their closest approach to the planet.
-        out.radiance = body_radiance(hit.index, p, hit.local, d, pixel_rad * distance(p, view.camera.xyz));
+        let radiance = body_radiance(seen.index, p, seen.local, d, pixel_rad * distance(p, view.camera.xyz));
+        if k < small_samples {
+            sum += radiance;
+            hits += 1u;
+        } else {
+            out.body.radiance = radiance;
+        }
+    }
+    if hits > 0u {
+        // An ellipsoid fills only the share of its bounding disc that the rays met.
+        out.small.coverage *= f32(hits) / f32(SMALL_BODY_SAMPLES);
+        out.small.radiance = sum / f32(hits) * out.small.coverage;
+    } else {
+        out.small.coverage = 0.0;
     }
     return out;
 }

@@ -15,9 +15,6 @@
 #import atmosphere/bodies
 #import atmosphere/rings
 
-// A `far` for rays that meet nothing opaque.
-const BODY_AIR_UNBOUNDED: f32 = 3.0e38;
-
 // Nodes on each side of a view path's nearest point.
 const BODY_AIR_VIEW_NODES: u32 = 16u;
 

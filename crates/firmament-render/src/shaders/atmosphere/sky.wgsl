@@ -21,6 +21,7 @@
 #import atmosphere/view
 #import atmosphere/eclipse
 #import atmosphere/rings
+#import atmosphere/body_hits
 #import atmosphere/bodies
 #import atmosphere/body_air
 #import atmosphere/sky_view
@@ -130,21 +131,26 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 // (and lit ground), and behind it the suns' discs or a body (atmosphere/bodies.wgsl) seen
 // through the bodies' airs (atmosphere/body_air.wgsl); the rings in front of the air or between
 // it and what lies behind (atmosphere/rings.wgsl). A body, or its air, in front of the planet's
-// air comes before it. `pixel_height_ndc` is a pixel's height in NDC.
+// air comes before it; a body under a few pixels across covers its share of the pixel (in front of
+// the rings and of its own air, which it leaves out). `pixel_height_ndc` is a pixel's height in
+// NDC.
 fn sky_color(ndc: vec2<f32>, pixel_height_ndc: f32) -> vec4<f32> {
     let ray = view_ray(ndc);
     let discs = sun_discs(ray.direction);
     // The angle the pixel spans (at the image's centre: tan θ ≈ θ over one pixel).
     let pixel_rad = pixel_height_ndc * view.camera_shape.w;
-    let body = body_sample(ray.origin, ray.direction, ray.near, pixel_rad);
-    let body_air = body_air_sample(ray.origin, ray.direction, ray.near, select(BODY_AIR_UNBOUNDED, body.t, body.hit));
+    let seen = bodies_seen(ray.origin, ray.direction, ray.near, pixel_rad);
+    let body = seen.body;
+    // A body under a few pixels across, in front of the nearest large one, by its share of the pixel.
+    let small = seen.small;
+    let body_air = body_air_sample(ray.origin, ray.direction, ray.near, select(NO_BODY_T, body.t, body.hit));
     // What lies beyond the bodies' airs: a body, or else the discs (hidden by the bodies).
     let behind_body_air = select(discs, body.radiance, body.hit);
     var beyond = body_air.radiance + body_air.transmittance * behind_body_air;
     var rings = ring_sample(ray.origin, ray.direction, ray.near);
     // Rings behind a body are hidden by it.
     rings.hit = rings.hit && !(body.hit && body.t < rings.t);
-    let behind_air = rings.hit || body.hit || body_air.hit || any(discs > vec3<f32>(0.0));
+    let behind_air = rings.hit || body.hit || body_air.hit || small.coverage > 0.0 || any(discs > vec3<f32>(0.0));
     var radiance: vec3<f32>;
     // The air's transmittance along the ray, where something lies behind it.
     var through = vec3<f32>(0.0);
@@ -196,6 +202,16 @@ fn sky_color(ndc: vec2<f32>, pixel_height_ndc: f32) -> vec4<f32> {
         }
     } else {
         radiance += beyond * through;
+    }
+    if small.coverage > 0.0 {
+        let air = ellipsoid_hits(ray.origin, ray.direction, top_radii(), ray.c_top);
+        if air.x > air.y || air.y <= ray.near || small.t < air.x {
+            // In front of the air: over everything.
+            radiance = small.radiance + (1.0 - small.coverage) * radiance;
+        } else {
+            // Behind the air, hiding their share of what lies behind them.
+            radiance += through * (small.radiance - small.coverage * beyond);
+        }
     }
     // The half-float HDR target ends at 65504; a sun disc in cd/m² is far beyond.
     return vec4<f32>(min(to_linear_srgb(radiance), vec3<f32>(HDR_MAX)), 1.0);

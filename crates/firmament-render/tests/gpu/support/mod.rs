@@ -123,12 +123,24 @@ pub(crate) fn origin_camera_45(width: u32, height: u32) -> firmament_core::Camer
 }
 
 /// The GPU's linear sRGB (cd/m²) along the centre of a 1×1 image of `sky` from `eye` towards
-/// `view` (world frame), with a 1° field of view.
+/// `view` (world frame): a point's radiance, the pixel 0.01° across (a body under a few pixels
+/// across is drawn by its coverage of the pixel; none is that small here).
 pub(crate) fn centre_radiance(
     gpu: &mut Gpu,
     sky: &firmament_core::frame::AtmosphereSky,
     eye: glam::DVec3,
     view: glam::DVec3,
+) -> glam::DVec3 {
+    centre_radiance_in_pixel(gpu, sky, eye, view, 0.01f64.to_radians())
+}
+
+/// [`centre_radiance`] with a pixel `pixel_rad` radians across.
+pub(crate) fn centre_radiance_in_pixel(
+    gpu: &mut Gpu,
+    sky: &firmament_core::frame::AtmosphereSky,
+    eye: glam::DVec3,
+    view: glam::DVec3,
+    pixel_rad: f64,
 ) -> glam::DVec3 {
     use firmament_core::Camera;
     let camera = Camera::looking_at(eye, eye + view, glam::DVec3::Z)
@@ -136,7 +148,7 @@ pub(crate) fn centre_radiance(
         .expect("a view direction");
     let frame = firmament_core::Frame::new(
         Camera {
-            fov_y: 1f64.to_radians(),
+            fov_y: pixel_rad,
             ..camera
         },
         firmament_core::frame::Sky::Atmosphere(sky.clone()),
