@@ -110,15 +110,12 @@ fn a_far_body_s_map_reads_a_level_as_coarse_as_its_pixels() {
     // The centre of the dark square (40, 10), 16 texels a side: 47.8° E, 30.9° N.
     let n = normal(90.0 - 168.0 * 180.0 / 512.0, -180.0 + 648.0 * 360.0 / 1024.0);
     let p = center + n * RADIUS_M;
-    // From afar a pixel 0.3° across (the ball 3.2 pixels in radius, not drawn by coverage).
-    let far_pixel_rad = 0.3f64.to_radians();
-    for (distance_m, reference, budget) in [(300_000.0, &body, 0.02), (60_000_000.0, &uniform, 0.03)] {
+    // From afar a pixel 0.3° across: the ball 3.2 pixels in radius, not drawn by coverage.
+    for (distance_m, reference, budget, pixel_deg) in
+        [(300_000.0, &body, 0.02, 0.01_f64), (60_000_000.0, &uniform, 0.03, 0.3)]
+    {
         let eye = p + n * distance_m;
-        let got = if reference == &uniform {
-            centre_radiance_in_pixel(&mut gpu, &sky, eye, p - eye, far_pixel_rad)
-        } else {
-            centre_radiance(&mut gpu, &sky, eye, p - eye)
-        };
+        let got = centre_radiance_in_pixel(&mut gpu, &sky, eye, p - eye, pixel_deg.to_radians());
         let want = as_srgb(&sky, reference.radiance(p, n, &sky.suns, |_| Spectrum::ONE));
         let error = ((got - want) / want).abs().max_element();
         println!(

@@ -8,7 +8,7 @@
 //! plane's normal. The integral runs over each band in radius (Gauss–Legendre) and, at each radius,
 //! over the arcs of azimuth that lie above `p`'s horizon and outside the globe's shadow — both arcs
 //! in closed form (the shadow's for a spheroid, scaled to a unit sphere), so the integrand is smooth
-//! on every arc and a few Gauss–Legendre nodes reach 10⁻³. The ellipsoid being convex, every
+//! on every arc and a few Gauss–Legendre nodes are enough. The ellipsoid being convex, every
 //! point above the tangent plane is in sight. Each element's light is dimmed by the air on its
 //! way down (a caller's transmittance along the direction; [`GroundTransmittance`] is the air's
 //! from the ground of the mean-radius sphere the GPU's LUTs use).
@@ -16,8 +16,8 @@
 //! # The table
 //! For a spheroid the light depends on the point's geodetic latitude and its azimuth from the
 //! sun's, and on the sun only through its elevation over the ring plane: [`Rings::light_table`]
-//! samples it at [`RING_LIGHT_TABLE_SIZE`] texel centres, which the GPU reads bilinearly (within
-//! 0.4 % of the integral on average; docs/ATMOSPHERE.md, "Rings").
+//! samples it at [`RING_LIGHT_TABLE_SIZE`] texel centres, which the GPU reads bilinearly (how
+//! closely: docs/ATMOSPHERE.md, "Rings").
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 

@@ -48,14 +48,14 @@ impl RingLight {
         let mut air = None;
         for (i, sun) in sky.suns.iter().enumerate().take(MAX_SUNS) {
             let s = planet.direction_to_planet_frame(sun.direction).normalize_or_zero();
-            let key = (rings.clone(), unposed.clone(), (s.z / SUN_ELEVATION_STEP).round() as i64);
-            if self.uploaded[i].as_ref() == Some(&key) {
+            let step = (s.z / SUN_ELEVATION_STEP).round() as i64;
+            if matches!(&self.uploaded[i], Some((r, a, k)) if r == rings && *a == unposed && *k == step) {
                 continue;
             }
             let air = air.get_or_insert_with(|| GroundTransmittance::new(&sky.atmosphere));
             let table = rings.light_table(planet.radii, s, air);
             self.layers.write(queue, i as u32, &half_texels(&table));
-            self.uploaded[i] = Some(key);
+            self.uploaded[i] = Some((rings.clone(), unposed.clone(), step));
         }
     }
 
