@@ -20,6 +20,7 @@
 //! closely: docs/ATMOSPHERE.md, "Rings").
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::sync::OnceLock;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -183,8 +184,11 @@ fn integrate_over_annuli(
     dark: impl Fn(f64) -> Option<(f64, f64)>,
     f: impl Fn(f64, DVec3) -> Spectrum,
 ) -> Spectrum {
-    let radial = GaussRule::new(RADIUS_NODES);
-    let angular = GaussRule::new(AZIMUTH_NODES);
+    // Made once: a rule's construction costs as much as a few hundred of the integrand's values.
+    static RADIAL: OnceLock<GaussRule> = OnceLock::new();
+    static ANGULAR: OnceLock<GaussRule> = OnceLock::new();
+    let radial = RADIAL.get_or_init(|| GaussRule::new(RADIUS_NODES));
+    let angular = ANGULAR.get_or_init(|| GaussRule::new(AZIMUTH_NODES));
     let horizontal = n.truncate().length();
     let normal_azimuth = n.y.atan2(n.x);
     let height = n.dot(p);
