@@ -54,7 +54,7 @@ impl BodyAirLight {
 
     /// The texture at its binding.
     pub(super) fn resource(&self) -> (u32, wgpu::BindingResource<'_>) {
-        (binding::BODY_AIR_LIGHT, wgpu::BindingResource::TextureView(&self.layers.view))
+        (binding::BODY_AIR_LIGHT, wgpu::BindingResource::TextureView(self.layers.view()))
     }
 }
 

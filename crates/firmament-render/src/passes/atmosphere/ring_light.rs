@@ -67,6 +67,6 @@ impl RingLight {
 
     /// The texture at its binding.
     pub(super) fn resource(&self) -> (u32, wgpu::BindingResource<'_>) {
-        (binding::RING_LIGHT, wgpu::BindingResource::TextureView(&self.layers.view))
+        (binding::RING_LIGHT, wgpu::BindingResource::TextureView(self.layers.view()))
     }
 }

@@ -1,38 +1,33 @@
 //! An array texture of small Rgba16Float tables, one per layer, uploaded layer by layer: what the
-//! bodies' air light and the rings' light keep on the GPU.
+//! bodies' air light and the rings' light keep on the GPU (a [`Lut`] the CPU writes).
+
+use super::luts::Lut;
 
 /// The texture and its array view, read with the LUTs' sampler.
 #[derive(Debug)]
 pub(super) struct TableLayers {
-    texture: wgpu::Texture,
-    pub(super) view: wgpu::TextureView,
+    lut: Lut,
     size: (u32, u32),
 }
 
 impl TableLayers {
-    /// `layers` tables of `size` texels (width, height), labelled after `owner`.
+    /// `layers` (at least 2, so the view is an array) tables of `size` texels (width, height),
+    /// labelled after `owner`.
     pub(super) fn new(device: &wgpu::Device, owner: &str, size: (u32, u32), layers: u32) -> Self {
-        let (width, height) = size;
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(&format!("firmament AtmospherePass {owner}")),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some(&format!("firmament AtmospherePass {owner} view")),
-            dimension: Some(wgpu::TextureViewDimension::D2Array),
-            ..Default::default()
-        });
-        Self { texture, view, size }
+        let lut = Lut::with_layers(
+            device,
+            owner,
+            size,
+            layers,
+            wgpu::TextureFormat::Rgba16Float,
+            wgpu::TextureUsages::empty(),
+        );
+        Self { lut, size }
+    }
+
+    /// The array view.
+    pub(super) fn view(&self) -> &wgpu::TextureView {
+        &self.lut.view
     }
 
     /// Writes `layer`: its texels row by row, four half floats' bits each.
@@ -40,7 +35,7 @@ impl TableLayers {
         let (width, height) = self.size;
         queue.write_texture(
             wgpu::TexelCopyTextureInfo {
-                texture: &self.texture,
+                texture: &self.lut.texture,
                 mip_level: 0,
                 origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
                 aspect: wgpu::TextureAspect::All,
